@@ -1,0 +1,530 @@
+"""The frame camera and central projection (guide §4–§5, figure 8).
+
+Everything else in aerophoto builds on this module. It is pure numpy.
+
+Coordinate systems and sign conventions
+---------------------------------------
+Ground (object space)
+    X east, Y north, Z up, all in metres.
+
+Photo (image space, the positive photo, in front of the lens)
+    x, y in millimetres, origin at the principal point o, +x along the photo's
+    x fiducial axis, +y 90° counter-clockwise from +x (looking down at the
+    positive print).  The image vector of a photo point in the camera frame is
+    (x, y, −f): the camera's third axis points from the photo back up through
+    the projection centre S.
+
+Exterior orientation (:class:`Pose`)
+    The projection centre S = (X_m, Y_m, Z_m) and three angles:
+
+    * ``alpha_deg`` — the tilt α (угол наклона), the angle between the optical
+      axis So and the plumb line SN (guide §5).
+    * ``lambda_deg`` — the direction of the principal vertical vv (главная
+      вертикаль) on the photo: the angle, counter-clockwise from the photo's
+      +x axis, of the **positive** direction of the principal vertical.  The
+      guide's variant calls it λ = −60° + i ("rotation of the photo in its own
+      plane", §1) and finds the principal vertical "by the angle χ" (§5).
+    * ``kappa_deg`` — the heading κ: the azimuth, counter-clockwise from ground
+      +X, of the photo's +x axis once the photo is levelled.  A strip flown
+      along +X has κ = 0.
+
+The guide's sign convention (§5), used everywhere in aerophoto
+    The positive direction of the principal vertical points from o **away from
+    the nadir**, towards the far (upper) side of the tilted photo.  Measured
+    along it, the nadir point n lies at −f·tan α and the isocentre c
+    (точка нулевых искажений) at −f·tan(α/2):
+
+        on = f·tan α,  oc = −f·tg(α/2) = −2.6 mm for f = 100 mm, α = 3°
+
+    The angle φ of a point is measured counter-clockwise from that positive
+    direction, as seen from c.  Points with cos φ > 0 lie on the far side and
+    are pulled towards c (tilt displacement δα < 0); points with cos φ < 0 lie
+    on the near (nadir) side and are pushed away from c (δα > 0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+
+from ._validate import check_positive, check_range
+
+__all__ = [
+    "Camera",
+    "Pose",
+    "FlatTerrain",
+    "rotation_matrix",
+    "principal_vertical",
+    "principal_point",
+    "nadir_point",
+    "isocentre",
+    "ground_to_photo",
+    "photo_to_plane",
+    "photo_to_dem",
+    "footprint",
+    "tilt_displacement_exact",
+    "tilt_displacement_vectors",
+    "tilt_displacement_approx",
+    "relief_displacement",
+    "photo_scale_denominator",
+]
+
+MAX_F_MM = 2000.0
+MAX_FRAME_MM = 500.0
+
+
+# --------------------------------------------------------------------------- camera
+@dataclass(frozen=True)
+class Camera:
+    """A metric frame camera (аэрофотоаппарат, АФА).
+
+    Parameters
+    ----------
+    f_mm : float
+        Focal length (principal distance) f in mm, 0 < f ≤ 2000 (guide §1:
+        f = 100 + 10i mm).
+    frame_mm : float
+        Side of the square frame in mm, 0 < frame ≤ 500 (guide §1: 18×18 cm,
+        i.e. 180 mm).
+    """
+
+    f_mm: float = 100.0
+    frame_mm: float = 180.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "f_mm", check_positive("f_mm", self.f_mm, unit="mm", hi=MAX_F_MM))
+        object.__setattr__(self, "frame_mm", check_positive("frame_mm", self.frame_mm, unit="mm", hi=MAX_FRAME_MM))
+
+    @property
+    def half_mm(self) -> float:
+        """Half the frame side, mm (the photo spans −half…+half in x and y)."""
+        return self.frame_mm / 2.0
+
+    def corners_mm(self) -> np.ndarray:
+        """The frame corners, shape (4, 2), counter-clockwise from (−half, −half), mm."""
+        h = self.half_mm
+        return np.array([[-h, -h], [h, -h], [h, h], [-h, h]], dtype=float)
+
+    def inside(self, xy_mm) -> np.ndarray:
+        """Boolean mask, shape (...,): which photo points fall inside the frame."""
+        xy = np.asarray(xy_mm, dtype=float)
+        return np.all(np.abs(xy) <= self.half_mm, axis=-1)
+
+    @property
+    def field_angle_deg(self) -> float:
+        """Angle of field 2β across the diagonal, degrees (guide §3)."""
+        return 2.0 * math.degrees(math.atan(self.half_mm * math.sqrt(2.0) / self.f_mm))
+
+
+# --------------------------------------------------------------------------- pose
+@dataclass(frozen=True)
+class Pose:
+    """Exterior orientation of one photo: projection centre S and the angles.
+
+    Parameters
+    ----------
+    X_m, Y_m, Z_m : float
+        Projection centre S in ground coordinates, metres.  ``Z_m`` is the
+        absolute height of S; the flying height H over a ground plane at
+        height Z0 is ``Z_m − Z0``.
+    alpha_deg : float
+        Tilt α in degrees, |α| < 90.  A negative α is the same photo as
+        (|α|, λ + 180°).
+    lambda_deg : float
+        Direction λ of the positive principal vertical on the photo, degrees
+        counter-clockwise from the photo's +x axis (see the module notes).
+    kappa_deg : float
+        Heading κ of the levelled photo's +x axis, degrees counter-clockwise
+        from ground +X.
+    """
+
+    X_m: float = 0.0
+    Y_m: float = 0.0
+    Z_m: float = 1000.0
+    alpha_deg: float = 0.0
+    lambda_deg: float = 0.0
+    kappa_deg: float = 0.0
+
+    def __post_init__(self):
+        for name in ("X_m", "Y_m", "Z_m", "lambda_deg", "kappa_deg"):
+            v = check_range(name, getattr(self, name), -1e9, 1e9)
+            object.__setattr__(self, name, v)
+        a = check_range("alpha_deg", self.alpha_deg, -90.0, 90.0, lo_open=True, hi_open=True, unit="degrees")
+        object.__setattr__(self, "alpha_deg", a)
+
+    @classmethod
+    def vertical(cls, X_m: float, Y_m: float, H_m: float, *, ground_Z_m: float = 0.0, kappa_deg: float = 0.0) -> "Pose":
+        """A vertical photo (α = 0) taken from flying height H above a plane at ``ground_Z_m``."""
+        check_positive("H_m", H_m, unit="m")
+        return cls(X_m, Y_m, ground_Z_m + H_m, 0.0, 0.0, kappa_deg)
+
+    @property
+    def centre(self) -> np.ndarray:
+        """Projection centre S, shape (3,), metres."""
+        return np.array([self.X_m, self.Y_m, self.Z_m], dtype=float)
+
+    def levelled(self) -> "Pose":
+        """The equivalent vertical photo: same S, λ and κ, with α = 0."""
+        return replace(self, alpha_deg=0.0)
+
+    def with_(self, **changes) -> "Pose":
+        """A copy with some fields changed (validated again)."""
+        return replace(self, **changes)
+
+    def flying_height(self, ground_Z_m: float = 0.0) -> float:
+        """H = Z_S − Z_ground in metres; raises if S is not above the ground."""
+        H = self.Z_m - float(ground_Z_m)
+        if H <= 0:
+            raise ValueError(
+                f"Z_m = {self.Z_m:g} is at or below the terrain (ground_Z_m = {float(ground_Z_m):g}); "
+                f"the valid range is Z_m > {float(ground_Z_m):g} m"
+            )
+        return H
+
+
+@dataclass(frozen=True)
+class FlatTerrain:
+    """Horizontal ground at height ``z_m`` (a DEM with no relief)."""
+
+    z_m: float = 0.0
+
+    @property
+    def z_min_m(self) -> float:
+        return self.z_m
+
+    @property
+    def z_max_m(self) -> float:
+        return self.z_m
+
+    def height(self, X, Y) -> np.ndarray:
+        return np.full(np.broadcast(np.asarray(X), np.asarray(Y)).shape, self.z_m, dtype=float)
+
+    __call__ = height
+
+
+# --------------------------------------------------------------------------- rotation
+def _dir(az_rad: float) -> np.ndarray:
+    return np.array([math.cos(az_rad), math.sin(az_rad), 0.0])
+
+
+def rotation_matrix(pose: Pose) -> np.ndarray:
+    """Rotation R, shape (3, 3), taking camera-frame vectors to ground-frame vectors.
+
+    Ground vector = R @ camera vector; a photo point (x, y) has the camera
+    vector (x, y, −f).  Built so that the plumb line seen from S pierces the
+    photo at the nadir n = −f·tan α along the positive principal vertical, and
+    that for α = 0 the photo's +x axis points at azimuth κ on the ground.
+    """
+    a = math.radians(pose.alpha_deg)
+    lam = math.radians(pose.lambda_deg)
+    kap = math.radians(pose.kappa_deg)
+    u = np.array([math.cos(lam), math.sin(lam), 0.0])  # + principal vertical (camera frame)
+    v = np.array([-math.sin(lam), math.cos(lam), 0.0])  # along the horizontals h-h
+    w = np.array([0.0, 0.0, 1.0])
+    zc = math.sin(a) * u + math.cos(a) * w  # ground "up" seen in the camera frame
+    e1 = math.cos(a) * u - math.sin(a) * w  # horizontal direction of the principal plane
+    L = np.column_stack([e1, v, zc])  # level frame, columns in camera coordinates
+    G = np.column_stack([_dir(kap + lam), _dir(kap + lam + math.pi / 2), w])
+    return G @ L.T
+
+
+def principal_vertical(pose: Pose) -> np.ndarray:
+    """Unit vector, shape (2,), of the positive principal vertical on the photo (away from n)."""
+    lam = math.radians(pose.lambda_deg)
+    return np.array([math.cos(lam), math.sin(lam)])
+
+
+def principal_point(camera: Camera, pose: Pose) -> np.ndarray:
+    """Principal point o, shape (2,), mm: the origin of photo coordinates."""
+    return np.zeros(2)
+
+
+def nadir_point(camera: Camera, pose: Pose) -> np.ndarray:
+    """Nadir point n (точка надира), shape (2,), mm: at −f·tan α on the principal vertical."""
+    return -camera.f_mm * math.tan(math.radians(pose.alpha_deg)) * principal_vertical(pose)
+
+
+def isocentre(camera: Camera, pose: Pose) -> np.ndarray:
+    """Isocentre c (точка нулевых искажений), shape (2,), mm: at oc = −f·tg(α/2) (guide §5)."""
+    return -camera.f_mm * math.tan(math.radians(pose.alpha_deg) / 2.0) * principal_vertical(pose)
+
+
+# --------------------------------------------------------------------------- projection
+def ground_to_photo(camera: Camera, pose: Pose, XYZ_m) -> np.ndarray:
+    """Exact central projection (collinearity) of ground points onto the photo.
+
+    Parameters
+    ----------
+    XYZ_m : array_like, shape (..., 3)
+        Ground points X, Y, Z in metres.
+
+    Returns
+    -------
+    ndarray, shape (..., 2)
+        Photo coordinates x, y in mm (they may fall outside the frame).
+
+    Raises
+    ------
+    ValueError
+        If a point lies at or above the plane through S parallel to the photo
+        (it has no image on the positive photo).
+    """
+    P = np.asarray(XYZ_m, dtype=float)
+    if P.shape[-1] != 3:
+        raise ValueError(f"XYZ_m has shape {P.shape}; the last axis must hold X, Y, Z (length 3)")
+    R = rotation_matrix(pose)
+    d = P - pose.centre
+    c = d @ R  # = (R.T @ d.T).T, camera-frame components
+    cz = c[..., 2]
+    if np.any(cz >= 0):
+        n_bad = int(np.count_nonzero(cz >= 0))
+        raise ValueError(
+            f"{n_bad} ground point(s) lie behind the camera (not below the plane of S); "
+            f"a ground point must be below S: Z < Z_m = {pose.Z_m:g} m along the view direction"
+        )
+    scale = -camera.f_mm / cz
+    return np.stack([c[..., 0] * scale, c[..., 1] * scale], axis=-1)
+
+
+def _rays(camera: Camera, pose: Pose, xy_mm) -> np.ndarray:
+    xy = np.asarray(xy_mm, dtype=float)
+    if xy.shape[-1] != 2:
+        raise ValueError(f"xy_mm has shape {xy.shape}; the last axis must hold x, y (length 2)")
+    cam = np.concatenate([xy, np.full(xy.shape[:-1] + (1,), -camera.f_mm)], axis=-1)
+    return cam @ rotation_matrix(pose).T  # ground directions, shape (..., 3)
+
+
+def photo_to_plane(camera: Camera, pose: Pose, xy_mm, Z_m: float = 0.0) -> np.ndarray:
+    """Intersect the rays of photo points with the horizontal plane Z = ``Z_m``.
+
+    Parameters
+    ----------
+    xy_mm : array_like, shape (..., 2)
+        Photo coordinates in mm.
+    Z_m : float
+        Height of the plane in metres; it must lie below S.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Ground points X, Y, Z in metres.
+    """
+    Zp = float(Z_m)
+    pose.flying_height(Zp)  # raises if S is not above the plane
+    g = _rays(camera, pose, xy_mm)
+    gz = g[..., 2]
+    if np.any(gz >= 0):
+        raise ValueError(
+            f"a photo ray points at or above the horizon (alpha_deg = {pose.alpha_deg:g}); "
+            "it never meets the ground plane — use a smaller tilt or points nearer o"
+        )
+    t = (Zp - pose.Z_m) / gz
+    return pose.centre + t[..., None] * g
+
+
+def photo_to_dem(
+    camera: Camera,
+    pose: Pose,
+    xy_mm,
+    dem,
+    *,
+    tol_m: float = 1e-4,
+    max_iter: int = 60,
+) -> np.ndarray:
+    """Intersect photo rays with a digital elevation model (DEM).
+
+    Parameters
+    ----------
+    xy_mm : array_like, shape (..., 2)
+        Photo coordinates, mm.
+    dem : object
+        Terrain with a vectorised ``height(X, Y)`` (metres) and the bounds
+        ``z_min_m`` ≤ Z ≤ ``z_max_m``, e.g. :class:`FlatTerrain` or
+        :class:`aerophoto.site.Site`.  A plain callable ``dem(X, Y)`` is
+        accepted too, with its bounds then found from the plane through the
+        nadir point.
+    tol_m : float
+        Convergence tolerance along the ray, metres.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Ground points in metres.  The root is bracketed between the planes
+        at ``z_max_m`` and ``z_min_m`` and refined by the Illinois
+        (modified regula falsi) method, so it converges for any terrain whose
+        heights stay within those bounds.
+    """
+    height: Callable = getattr(dem, "height", dem)
+    zmin = float(getattr(dem, "z_min_m", np.nan))
+    zmax = float(getattr(dem, "z_max_m", np.nan))
+    if not np.isfinite(zmin) or not np.isfinite(zmax):
+        raise ValueError("dem must provide finite z_min_m and z_max_m bounds (metres)")
+    pose.flying_height(zmax)
+    g = _rays(camera, pose, xy_mm)
+    gz = g[..., 2]
+    if np.any(gz >= 0):
+        raise ValueError(
+            f"a photo ray points at or above the horizon (alpha_deg = {pose.alpha_deg:g}); it never meets the terrain"
+        )
+    S = pose.centre
+    t0 = (zmax - pose.Z_m) / gz  # ray at the top bound: above (or on) the terrain
+    t1 = (zmin - pose.Z_m) / gz  # ray at the bottom bound: below (or on) the terrain
+
+    def resid(t):
+        P = S + t[..., None] * g
+        return P[..., 2] - height(P[..., 0], P[..., 1])
+
+    f0 = resid(t0)
+    f1 = resid(t1)
+    if zmax - zmin <= tol_m:
+        t = t0
+    else:
+        side = np.zeros(t0.shape, dtype=int)
+        t = t0.copy()
+        for _ in range(max_iter):
+            denom = np.where(f0 - f1 == 0, 1.0, f0 - f1)
+            t = np.where(f0 - f1 == 0, t0, (f0 * t1 - f1 * t0) / denom)
+            ft = resid(t)
+            step = np.abs(t1 - t0) * np.sqrt(np.sum(g * g, axis=-1))
+            if np.all((np.abs(ft) <= tol_m) | (step <= tol_m)):
+                break
+            upper = ft * f0 > 0  # t replaces t0
+            # Illinois: halve the retained end's residual when the same end is kept twice
+            t0 = np.where(upper, t, t0)
+            f0 = np.where(upper, ft, np.where(side == -1, f0 * 0.5, f0))
+            t1 = np.where(upper, t1, t)
+            f1 = np.where(upper, np.where(side == 1, f1 * 0.5, f1), ft)
+            side = np.where(upper, 1, -1)
+    return S + t[..., None] * g
+
+
+def footprint(camera: Camera, pose: Pose, Z_m: float = 0.0, *, samples_per_side: int = 1) -> np.ndarray:
+    """The photo frame projected onto the plane Z = ``Z_m``.
+
+    Returns the ground polygon, shape (4·samples_per_side, 3), metres, going
+    round the frame counter-clockwise from the (−half, −half) corner.  With
+    ``samples_per_side`` > 1 the edges are sampled too (they stay straight on
+    a plane, but not on a DEM).
+    """
+    c = camera.corners_mm()
+    k = int(samples_per_side)
+    if k < 1:
+        raise ValueError(f"samples_per_side = {samples_per_side} is outside the valid range 1 ≤ samples_per_side")
+    pts = []
+    for i in range(4):
+        a, b = c[i], c[(i + 1) % 4]
+        for s in np.arange(k) / k:
+            pts.append(a + (b - a) * s)
+    return photo_to_plane(camera, pose, np.array(pts), Z_m)
+
+
+def photo_scale_denominator(camera: Camera, H_m: float) -> float:
+    """The scale denominator m of a vertical photo, 1/m = f/H (guide §2: H = f·m)."""
+    H = check_positive("H_m", H_m, unit="m")
+    return H / (camera.f_mm / 1000.0)
+
+
+# --------------------------------------------------------------------------- displacements
+def _polar_about_c(camera: Camera, pose: Pose, xy_mm):
+    xy = np.asarray(xy_mm, dtype=float)
+    c = isocentre(camera, pose)
+    u = principal_vertical(pose)
+    v = np.array([-u[1], u[0]])
+    d = xy - c
+    a = d @ u
+    b = d @ v
+    r = np.hypot(a, b)
+    phi = np.arctan2(b, a)  # counter-clockwise from the + principal vertical
+    return r, phi
+
+
+def tilt_displacement_approx(camera: Camera, pose: Pose, xy_mm) -> np.ndarray:
+    """Tilt displacement by the guide's approximate formula (guide §5, table 6).
+
+        δα = −(r_c² · cos φ / f) · sin α
+
+    Parameters
+    ----------
+    xy_mm : array_like, shape (..., 2)
+        Points on the tilted photo, mm.
+
+    Returns
+    -------
+    ndarray, shape (...,)
+        Signed radial displacement δα in mm, along the line from c through
+        the point: negative = pulled towards c (far side, cos φ > 0),
+        positive = pushed away from c (nadir side).  r_c is the distance from
+        the isocentre c, φ the angle from the positive principal vertical.
+    """
+    r, phi = _polar_about_c(camera, pose, xy_mm)
+    return -(r**2) * np.cos(phi) / camera.f_mm * math.sin(math.radians(pose.alpha_deg))
+
+
+def tilt_displacement_exact(camera: Camera, pose: Pose, xy_mm) -> np.ndarray:
+    """Exact tilt displacement of points of the tilted photo, in mm (radial from c).
+
+        δα = −r_c² · cos φ · sin α / (f − r_c · cos φ · sin α)
+
+    This is the closed form of what :func:`tilt_displacement_vectors` computes
+    by projection: the difference between a point's distance from c on the
+    tilted photo and on the equivalent vertical photo hinged about the
+    isoline h_c h_c.  For small α it tends to :func:`tilt_displacement_approx`.
+    Same shapes and signs as that function.
+    """
+    r, phi = _polar_about_c(camera, pose, xy_mm)
+    s = math.sin(math.radians(pose.alpha_deg))
+    return -(r**2) * np.cos(phi) * s / (camera.f_mm - r * np.cos(phi) * s)
+
+
+def tilt_displacement_vectors(camera: Camera, pose: Pose, XYZ_m):
+    """Exact tilt displacement of ground points, by projecting them twice.
+
+    Each ground point is projected through the tilted photo (``pose``) and
+    through the equivalent vertical photo (``pose.levelled()``); the vertical
+    photo is then turned about the isoline h_c h_c into the plane of the
+    tilted one, which shifts it by −2·f·tg(α/2) along the principal vertical.
+
+    Returns
+    -------
+    xy_tilted : ndarray, shape (..., 2)
+        Image on the tilted photo, mm.
+    xy_vertical : ndarray, shape (..., 2)
+        Where the point would be without tilt, in the same photo coordinates, mm.
+    The displacement vector is ``xy_tilted − xy_vertical``; it points along
+    the line from c (the isocentre keeps angles).
+    """
+    xy_t = ground_to_photo(camera, pose, XYZ_m)
+    xy_v = ground_to_photo(camera, pose.levelled(), XYZ_m)
+    shift = -2.0 * camera.f_mm * math.tan(math.radians(pose.alpha_deg) / 2.0) * principal_vertical(pose)
+    return xy_t, xy_v + shift
+
+
+def relief_displacement(r_mm, h_m, H_m):
+    """Relief displacement δh = r·h/H (guide §4, formula 4.1).
+
+    Parameters
+    ----------
+    r_mm : array_like
+        Distance r_n of the point's image from the nadir point n, mm.
+    h_m : array_like
+        Height h of the point above the mean object plane (средняя предметная
+        плоскость), metres; negative below it.
+    H_m : float
+        Flying height H above the mean object plane, metres (H > 0).
+
+    Returns
+    -------
+    ndarray
+        δh in mm, radial from n: positive = displaced away from n (the point
+        is above the plane; the correction moves it towards n), negative =
+        displaced towards n.  Exact on a vertical photo when r is measured to
+        the point's actual image.
+    """
+    H = check_positive("H_m", H_m, unit="m")
+    h = np.asarray(h_m, dtype=float)
+    if np.any(h >= H):
+        raise ValueError(f"h_m = {float(np.max(h)):g} is at or above the camera; the valid range is h_m < H_m = {H:g} m")
+    return np.asarray(r_mm, dtype=float) * h / H

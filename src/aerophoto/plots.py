@@ -1,0 +1,212 @@
+"""Shared plotting: the book's style, colours and small figure helpers.
+
+Figure builders in the topic modules follow one pattern so that a static
+figure and its live version share one function::
+
+    view = SomePlot(ax=None)      # builds artists once; creates a figure if ax is None
+    view.update(result)           # changes the artists in place (set_data, set_UVC, ...)
+
+Colours are the Okabe–Ito palette, distinguishable with every common form of
+colour blindness, and the style uses projector-sized fonts.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import html as _html
+
+import matplotlib as mpl
+import numpy as np
+
+__all__ = [
+    "COLORS",
+    "STYLE",
+    "use_style",
+    "style_context",
+    "new_axes",
+    "figure",
+    "figure_widget",
+    "draw",
+    "html_table",
+    "mark_points",
+    "photo_frame",
+]
+
+#: Okabe–Ito colours with the meaning each has throughout the book.
+COLORS = {
+    "black": "#000000",
+    "orange": "#E69F00",
+    "skyblue": "#56B4E9",
+    "green": "#009E73",
+    "yellow": "#F0E442",
+    "blue": "#0072B2",
+    "vermillion": "#D55E00",
+    "purple": "#CC79A7",
+    "grey": "#777777",
+    # meanings
+    "photo": "#000000",  # photo frame, principal point o
+    "nadir": "#D55E00",  # nadir point n
+    "isocentre": "#0072B2",  # isocentre c
+    "relief": "#D55E00",  # relief displacement
+    "tilt": "#0072B2",  # exact tilt displacement
+    "approx": "#E69F00",  # the guide's approximate formula
+    "truth": "#009E73",  # ground truth
+    "control": "#CC79A7",  # control points (опознаки)
+    "footprint": "#56B4E9",
+}
+
+#: rcParams of the book: readable on a projector at 1280×800.
+STYLE = {
+    "figure.figsize": (7.2, 4.6),
+    "figure.dpi": 100,
+    "savefig.dpi": 150,
+    "font.size": 12,
+    "axes.titlesize": 13,
+    "axes.labelsize": 12,
+    "xtick.labelsize": 11,
+    "ytick.labelsize": 11,
+    "legend.fontsize": 11,
+    "lines.linewidth": 2.0,
+    "lines.markersize": 7,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "axes.prop_cycle": mpl.cycler(
+        color=["#0072B2", "#D55E00", "#009E73", "#E69F00", "#CC79A7", "#56B4E9", "#000000"]
+    ),
+    "image.cmap": "cividis",
+    "figure.constrained_layout.use": True,
+}
+
+
+def use_style() -> None:
+    """Apply the book's matplotlib style globally (called by :func:`aerophoto.setup`)."""
+    mpl.rcParams.update(STYLE)
+
+
+@contextlib.contextmanager
+def style_context():
+    """Apply the book's style only inside a ``with`` block."""
+    with mpl.rc_context(STYLE):
+        yield
+
+
+def figure(figsize=None, **kwargs):
+    """Create a figure without showing it yet, ready to sit inside a widget layout.
+
+    With the ipympl backend the canvas is a widget; its header is hidden and
+    its size fixed so the demo layout does not jump.  Returns the Figure.
+    """
+    import matplotlib.pyplot as plt
+
+    with plt.ioff():
+        fig = plt.figure(figsize=figsize, **kwargs)
+    canvas = fig.canvas
+    for attr, value in (("header_visible", False), ("footer_visible", False), ("resizable", False),
+                        ("toolbar_visible", "fade-in-fade-out"), ("toolbar_position", "right")):
+        if hasattr(canvas, attr):
+            with contextlib.suppress(Exception):
+                setattr(canvas, attr, value)
+    return fig
+
+
+def new_axes(ax=None, *, figsize=None, **subplot_kw):
+    """Return ``(fig, ax)``: the given axes and its figure, or a new figure with one axes."""
+    if ax is not None:
+        return ax.figure, ax
+    fig = figure(figsize=figsize)
+    return fig, fig.add_subplot(1, 1, 1, **subplot_kw)
+
+
+def figure_widget(fig):
+    """The widget that shows ``fig``: its ipympl canvas, or an Output holding a static image.
+
+    Outside the widget backend (e.g. ``%matplotlib inline``) a live demo still
+    renders once, as a static picture inside an Output widget.
+    """
+    import ipywidgets as w
+
+    if isinstance(fig.canvas, w.DOMWidget):
+        return fig.canvas
+    out = w.Output()
+    with out:
+        from IPython.display import display
+
+        display(fig)
+    return out
+
+
+def draw(fig, *, force: bool = False) -> None:
+    """Redraw after artists changed: one ``draw_idle`` (or a full draw if ``force``)."""
+    if force:
+        fig.canvas.draw()
+    else:
+        fig.canvas.draw_idle()
+
+
+def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=None, highlight=None) -> str:
+    """Render a DataFrame as compact, projector-friendly HTML for an HTML widget.
+
+    ``highlight`` is an optional boolean DataFrame/array of the same shape:
+    True cells are shaded (e.g. a tolerance exceeded).  ``notes`` is a list of
+    strings printed under the table.
+    """
+    def fmt(v):
+        if isinstance(v, (float, np.floating)):
+            if np.isnan(v):
+                return "—"
+            return float_format.format(v)
+        return _html.escape(str(v))
+
+    hl = None if highlight is None else np.asarray(highlight, dtype=bool)
+    head = "".join(f"<th>{_html.escape(str(c))}</th>" for c in df.columns)
+    index_name = _html.escape(str(df.index.name or ""))
+    rows = []
+    for i, (idx, row) in enumerate(df.iterrows()):
+        cells = []
+        for j, v in enumerate(row.values):
+            style = ' style="background:#F0E442"' if hl is not None and hl[i, j] else ""
+            cells.append(f"<td{style}>{fmt(v)}</td>")
+        rows.append(f"<tr><th>{_html.escape(str(idx))}</th>{''.join(cells)}</tr>")
+    cap = f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{_html.escape(caption)}</caption>" if caption else ""
+    foot = ""
+    if notes:
+        foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(f"<li>{_html.escape(n)}</li>" for n in notes) + "</ul>"
+    return (
+        "<div class='aerophoto-table' style='font-size:13px'>"
+        "<table style='border-collapse:collapse' border='1' cellpadding='3'>"
+        f"{cap}<thead><tr><th>{index_name}</th>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{foot}</div>"
+    )
+
+
+def photo_frame(ax, camera, *, color=None, label="photo frame", lw=1.5):
+    """Draw the camera's frame (photo coordinates, mm) on ``ax``; returns the Line2D."""
+    c = camera.corners_mm()
+    c = np.vstack([c, c[:1]])
+    (line,) = ax.plot(c[:, 0], c[:, 1], color=color or COLORS["photo"], lw=lw, label=label)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x, mm")
+    ax.set_ylabel("y, mm")
+    return line
+
+
+def mark_points(ax, points: dict, *, size=9):
+    """Mark named points, e.g. ``{"o": (0, 0), "n": (...), "c": (...)}``, on ``ax``.
+
+    Returns a dict name → (Line2D marker, Text label) so callers can move them
+    with ``marker.set_data`` and ``label.set_position`` on update.
+    """
+    style = {
+        "o": dict(marker="+", color=COLORS["photo"], ms=size + 4, mew=2),
+        "n": dict(marker="^", color=COLORS["nadir"], ms=size),
+        "c": dict(marker="o", color=COLORS["isocentre"], ms=size, mfc="none", mew=2),
+    }
+    out = {}
+    for name, (x, y) in points.items():
+        st = style.get(name, dict(marker="o", color=COLORS["black"], ms=size))
+        (m,) = ax.plot([x], [y], linestyle="none", **st, zorder=5)
+        t = ax.annotate(name, (x, y), xytext=(6, 6), textcoords="offset points", color=st["color"],
+                        fontsize=12, fontweight="bold", zorder=6)
+        out[name] = (m, t)
+    return out

@@ -1,0 +1,310 @@
+"""Live demos: bounded, labelled, grouped sliders with a Reset, state in an object.
+
+Every live demonstration of the book is a subclass of :class:`LiveDemo`:
+
+* its parameters are declared once as :class:`Param` (name with unit, the
+  slider's label with symbol and unit, bounds, step, default, group);
+* it builds its figure **once** (:meth:`LiveDemo.build`) and on every change
+  recomputes with the pure functions of a topic module (:meth:`compute`) and
+  moves the existing artists (:meth:`render`), then draws once;
+* its state lives in the object (``demo.values``, ``demo.result``), never in
+  notebook globals, so a later cell cannot change what a callback shows;
+* it can be driven from code — ``demo.set(f_mm=150, alpha_deg=2)`` — which is
+  how tests, benchmarks and browser tests exercise it; ``set`` checks names
+  and ranges with the same message as the package's functions;
+* sliders observe ``names="value"`` only and are bounded by the parameter's
+  range, so a slider can never produce input the model rejects.
+
+A subclass looks like::
+
+    class FootprintDemo(LiveDemo):
+        title = "Camera footprint"
+        params = (Param("f_mm", "f, mm", 50, 350, 10, 100, group="Camera"), ...)
+
+        def build(self):
+            self.fig, self.ax = plots.new_axes()
+            (self.line,) = self.ax.plot([], [])
+
+        def compute(self, f_mm, ...):
+            return some_module.footprint(...)
+
+        def render(self, result):
+            self.line.set_data(result.x, result.y)
+            self.table.value = plots.html_table(result.table())
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+from dataclasses import dataclass
+
+from ._validate import check_range
+
+__all__ = ["Param", "LiveDemo"]
+
+
+@dataclass(frozen=True)
+class Param:
+    """One slider of a live demo.
+
+    Parameters
+    ----------
+    name : str
+        Keyword of :meth:`LiveDemo.set` and :meth:`LiveDemo.compute`, with its
+        unit in the name (``f_mm``, ``alpha_deg``).
+    label : str
+        Slider label: the guide's symbol and the unit, e.g. ``"f, mm"``.
+    lo, hi : float
+        Inclusive bounds; the slider cannot leave them.
+    step : float
+        Slider step (also the keyboard step).
+    default : float
+        Value at start and after Reset.
+    group : str
+        Heading of the slider group ("Camera", "Flight", "Terrain", ...).
+    kind : {"float", "int", "choice"}
+        ``choice`` shows a dropdown of ``options`` (value = the option itself).
+    options : tuple
+        For ``kind="choice"``: ``(label, value)`` pairs or plain values.
+    help : str
+        Tooltip shown on hover.
+    continuous : bool
+        Update while dragging (True) or only on release (False).
+    fmt : str
+        Readout format of the slider, e.g. ``".1f"``.
+    """
+
+    name: str
+    label: str
+    lo: float = 0.0
+    hi: float = 1.0
+    step: float = 0.1
+    default: float = 0.0
+    group: str = ""
+    kind: str = "float"
+    options: tuple = ()
+    help: str = ""
+    continuous: bool = True
+    fmt: str = ""
+
+    def validate(self, value):
+        if self.kind == "choice":
+            values = [o[1] if isinstance(o, tuple) else o for o in self.options]
+            if value not in values:
+                raise ValueError(f"{self.name} = {value!r} is not one of the valid choices {values}")
+            return value
+        x = check_range(self.name, value, self.lo, self.hi)
+        if self.kind == "int":
+            if x != int(x):
+                raise ValueError(f"{self.name} = {value!r} must be a whole number with {self.lo:g} ≤ {self.name} ≤ {self.hi:g}")
+            return int(x)
+        return x
+
+    def make_widget(self):
+        import ipywidgets as w
+
+        style = {"description_width": "initial"}
+        layout = w.Layout(width="330px")
+        if self.kind == "choice":
+            wid = w.Dropdown(options=list(self.options), value=self.default, description=self.label,
+                             style=style, layout=layout)
+        elif self.kind == "int":
+            wid = w.IntSlider(value=int(self.default), min=int(self.lo), max=int(self.hi), step=int(self.step),
+                              description=self.label, continuous_update=self.continuous, style=style, layout=layout)
+        else:
+            fmt = self.fmt or _auto_format(self.step)
+            wid = w.FloatSlider(value=self.default, min=self.lo, max=self.hi, step=self.step, readout_format=fmt,
+                                description=self.label, continuous_update=self.continuous, style=style, layout=layout)
+        if self.help:
+            wid.tooltip = self.help
+        return wid
+
+
+def _auto_format(step: float) -> str:
+    if step >= 1 and float(step).is_integer():
+        return ".0f"
+    decimals = max(0, min(4, -int(math.floor(math.log10(step)))))
+    return f".{decimals}f"
+
+
+class LiveDemo:
+    """Base class of every live demo (see the module notes for the pattern).
+
+    Subclasses set ``params`` and ``title`` and implement :meth:`build`,
+    :meth:`compute` and :meth:`render`.  Construct with keyword values to start
+    somewhere other than the defaults: ``Demo(f_mm=150)``.
+
+    Attributes
+    ----------
+    values : dict
+        Current parameter values, name → value.
+    result : object
+        What :meth:`compute` returned for ``values``.
+    fig : matplotlib.figure.Figure
+        The figure, built once.
+    table : ipywidgets.HTML
+        A table beside the figure; :meth:`render` sets its ``value``.
+    n_updates : int
+        How many times the demo has recomputed (for tests and benchmarks).
+    """
+
+    title: str = ""
+    params: tuple = ()
+    #: a short sentence under the title: what to try
+    hint: str = ""
+
+    def __init__(self, **values):
+        import ipywidgets as w
+
+        self._params = {p.name: p for p in self.params}
+        self.values = {p.name: p.default for p in self.params}
+        for p in self.params:  # defaults must themselves be valid
+            p.validate(p.default)
+        self.values.update(self._checked(values))
+        self.table = w.HTML()
+        self.status = w.HTML()
+        self.n_updates = 0
+        self._controls = {}
+        self._syncing = False
+        self._layout = None
+        self.build()
+        self.update()
+
+    # ----------------------------------------------------------- to override
+    def build(self) -> None:
+        """Create ``self.fig`` and its artists once."""
+        raise NotImplementedError
+
+    def compute(self, **values):
+        """Return the model result for the parameter values (pure; no drawing)."""
+        raise NotImplementedError
+
+    def render(self, result) -> None:
+        """Move the existing artists and refresh ``self.table`` for ``result``."""
+        raise NotImplementedError
+
+    # ----------------------------------------------------------- driving
+    def _checked(self, values: dict) -> dict:
+        out = {}
+        for name, value in values.items():
+            if name not in self._params:
+                valid = ", ".join(self._params)
+                raise ValueError(f"{name!r} is not a parameter of {type(self).__name__}; valid parameters: {valid}")
+            out[name] = self._params[name].validate(value)
+        return out
+
+    def set(self, **values):
+        """Change parameters from code, as if the sliders were moved; returns self."""
+        checked = self._checked(values)
+        self.values.update(checked)
+        self._sync_controls(checked)
+        self.update()
+        return self
+
+    def reset(self):
+        """Back to every parameter's default."""
+        return self.set(**{p.name: p.default for p in self.params})
+
+    def update(self) -> None:
+        """Recompute with the current values, move the artists, draw once."""
+        self.result = self.compute(**self.values)
+        self.render(self.result)
+        self.n_updates += 1
+        self.draw()
+
+    def draw(self, force: bool = False) -> None:
+        """Redraw the figure (``force=True`` renders now, e.g. in tests and benchmarks)."""
+        fig = getattr(self, "fig", None)
+        if fig is None:
+            return
+        if force:
+            fig.canvas.draw()
+        else:
+            fig.canvas.draw_idle()
+
+    # ----------------------------------------------------------- widgets
+    def _sync_controls(self, values: dict) -> None:
+        if not self._controls:
+            return
+        self._syncing = True
+        try:
+            for name, value in values.items():
+                ctl = self._controls.get(name)
+                if ctl is not None and ctl.value != value:
+                    ctl.value = value
+        finally:
+            self._syncing = False
+
+    def _on_change(self, change) -> None:
+        if self._syncing:
+            return
+        name = change["owner"]._aerophoto_name
+        try:
+            self.values[name] = self._params[name].validate(change["new"])
+            self.update()
+            self.status.value = ""
+        except Exception as exc:  # never let a callback die silently
+            self.status.value = f"<span style='color:#D55E00'>⚠ {type(exc).__name__}: {exc}</span>"
+
+    def controls(self) -> dict:
+        """The slider widgets, name → widget (created on first call)."""
+        if not self._controls:
+            for p in self.params:
+                ctl = p.make_widget()
+                ctl.value = self.values[p.name]
+                ctl._aerophoto_name = p.name
+                ctl.observe(self._on_change, names="value")
+                self._controls[p.name] = ctl
+        return self._controls
+
+    def figure_widget(self):
+        from .plots import figure_widget
+
+        return figure_widget(self.fig)
+
+    def widget(self):
+        """The whole demo: title, grouped sliders with a Reset, the figure and the table."""
+        if self._layout is not None:
+            return self._layout
+        import ipywidgets as w
+
+        ctls = self.controls()
+        groups: dict[str, list] = {}
+        for p in self.params:
+            groups.setdefault(p.group, []).append(ctls[p.name])
+        boxes = []
+        for g, items in groups.items():
+            head = [w.HTML(f"<b>{g}</b>")] if g else []
+            boxes.append(w.VBox(head + items, layout=w.Layout(margin="0 12px 6px 0")))
+        reset = w.Button(description="Reset", icon="undo", tooltip="Back to the starting values",
+                         layout=w.Layout(width="110px"))
+        reset.on_click(lambda _b: self.reset())
+        self.reset_button = reset
+        parts = []
+        if self.title:
+            parts.append(w.HTML(f"<h3 style='margin:4px 0'>{self.title}</h3>"))
+        if self.hint:
+            parts.append(w.HTML(f"<div style='margin-bottom:4px'>{self.hint}</div>"))
+        parts.append(w.HBox([w.HBox(boxes, layout=w.Layout(flex_flow="row wrap")), reset],
+                            layout=w.Layout(align_items="flex-start")))
+        parts.append(self.status)
+        parts.append(w.HBox([self.figure_widget(), self.table], layout=w.Layout(align_items="flex-start",
+                                                                                flex_flow="row wrap")))
+        self._layout = w.VBox(parts, layout=w.Layout(max_width="1260px"))
+        self._layout.add_class("aerophoto-demo")
+        return self._layout
+
+    def _ipython_display_(self):
+        from IPython.display import display
+
+        display(self.widget())
+
+    def close(self) -> None:
+        """Close the figure and widgets (frees the kernel side)."""
+        import matplotlib.pyplot as plt
+
+        with contextlib.suppress(Exception):
+            plt.close(self.fig)
+        if self._layout is not None:
+            self._layout.close()

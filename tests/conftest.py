@@ -1,0 +1,27 @@
+"""Shared test set-up: a private AEROPHOTO_HOME so tests never read a student's remembered number."""
+
+import os
+import tempfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = ROOT / "notebooks"
+
+# before any test imports aerophoto.book: no remembered record-book number leaks in or out
+os.environ["AEROPHOTO_HOME"] = tempfile.mkdtemp(prefix="aerophoto-home-")
+os.environ.pop("AEROPHOTO_RECORD_BOOK", None)
+os.environ.setdefault("MPLBACKEND", "Agg")
+
+
+def all_notebooks():
+    return sorted(p for p in NOTEBOOKS.rglob("*.ipynb") if ".ipynb_checkpoints" not in p.parts)
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    yield
+    import matplotlib.pyplot as plt
+
+    plt.close("all")

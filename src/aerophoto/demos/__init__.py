@@ -13,6 +13,11 @@ import importlib
 
 _SUBMODULES = (
     "footprint",  # camera footprint with o, n, c (chapter 00)
+    "displacement",  # relief and tilt displacement explorer (chapters 03, 04)
+    "flight_plan",  # survey plan: strips, photos, footprints, timing (chapter 01)
+    "reduction",  # the reduction explorer: free radial strip, error triangles, k, v (chapters 06, 12)
+    "quality",  # rough mosaic and the §3 verdicts of a simulated flight (chapter 02)
+    "fotoschema",  # the live single-strip fotoschema: seams, RMS, mean scale (chapter 05)
 )
 
 __all__ = list(_SUBMODULES)

@@ -1,0 +1,38 @@
+# nbgrader configuration of the aerophoto course.
+#
+# Written into the course folder by `aerophoto-course` the first time it runs there; edit it freely,
+# `aerophoto-course` never overwrites it and reads it on every run (its command-line options win).
+# The same file drives plain `nbgrader ...` commands and the formgrader when run from this folder.
+#
+# Course layout (nbgrader's standard one; one assignment per chapter, named after the notebook):
+#
+#   course/
+#     nbgrader_config.py          this file
+#     roster.csv                  optional: student_id,record_book (see README, "For instructors")
+#     source/00_start_here/00_start_here.ipynb      copied from notebooks/ by `aerophoto-course generate`
+#     release/00_start_here/00_start_here.ipynb     student version (solutions, hidden tests removed)
+#     submitted/<student_id>/00_start_here/00_start_here.ipynb    from `aerophoto-course import`
+#     autograded/<student_id>/00_start_here/...     executed and scored
+#     feedback/<student_id>/00_start_here/00_start_here.html
+#     gradebook.db                nbgrader's sqlite gradebook
+#     grades.csv                  `aerophoto-course gradebook`
+
+c = get_config()  # noqa: F821  (provided by nbgrader's config loader)
+
+c.CourseDirectory.course_id = "aerophoto"
+
+# Each cell of a submission may run this long (seconds) before the kernel is interrupted and the cell
+# recorded as failed (CellTimeoutError); the rest of the notebook still runs.  nbgrader's default is 30 s;
+# the book's heaviest cells (rendering the virtual site) take a few seconds on a slow machine.
+c.ExecutePreprocessor.timeout = 120
+c.ExecutePreprocessor.interrupt_on_timeout = True
+
+# What replaces the solution in the student version.  nbgrader's default stub,
+# `raise NotImplementedError()`, would stay below the template lines (`H_m = ...`) the student fills,
+# so a correct answer cell would still raise.  The template lines already make an unanswered task
+# fail its check with "no answer yet".
+c.ClearSolutions.code_stub = {"python": "# ↑ replace each ... with your value (your working may go here)"}
+
+# A whole class on JupyterHub: uncomment and point every user's nbgrader at one exchange folder,
+# then use nbgrader's release_assignment / collect (see README, "For instructors").
+# c.Exchange.root = "/srv/nbgrader/exchange"

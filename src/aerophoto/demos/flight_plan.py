@@ -1,0 +1,308 @@
+"""Planning an aerial survey: strips, photo centres and footprints over the area (chapter 01, guide §2).
+
+The pure part is :mod:`aerophoto.flight` (:func:`~aerophoto.flight.plan` and
+:func:`~aerophoto.flight.layout`); :class:`FlightPlanView` draws a
+:class:`~aerophoto.flight.FlightLayout` — the whole area with its flight lines
+on the left, a detail of one corner with the footprints, their overlaps and
+the working areas on the right — and :class:`FlightPlanDemo` binds sliders for
+the camera, the overlaps, the terrain, the area and the aircraft to both, with
+the table of every quantity of the guide's calculation beside the figure.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.collections import PolyCollection
+
+from .. import flight
+from .. import plots
+from ..widgets import LiveDemo, Param
+
+__all__ = ["FlightPlanView", "FlightPlanDemo", "format_value", "plan_table_html", "guide_example_html",
+           "MAX_CENTRES"]
+
+#: at most this many photo centres are drawn; beyond it every s-th strip and photo is shown
+MAX_CENTRES = 6000
+#: at most this many footprints per strip on the overview
+MAX_FOOTPRINTS_PER_STRIP = 120
+
+
+def format_value(v) -> str:
+    """A table value as text: whole numbers as they are, large values with thin spaces, else 4 digits."""
+    if isinstance(v, (int, np.integer)):
+        return f"{int(v):,}".replace(",", " ")
+    v = float(v)
+    if abs(v) >= 1000:
+        return f"{v:,.0f}".replace(",", " ")
+    return f"{v:.4g}"
+
+
+#: compact labels of the demo's table (symbol first), by FlightPlan attribute
+SHORT_LABELS = {
+    "S_km2": "S, area", "H_m": "H, flying height", "h_m": "h, relief", "Px_percent": "Px, forward overlap",
+    "Py_percent": "Py, side overlap", "bx_cm": "bx, working area", "by_cm": "by, working area",
+    "Bx_km": "Bx, photo base", "By_km": "By, strip spacing", "K": "K, strips", "n": "n, photos per strip",
+    "N": "N, photos in all", "LS_km": "LS, route length", "TS_h": "TS, flight time",
+    "tmax_s": "tmax, longest exposure", "tau_s": "τ, interval",
+}
+
+
+def plan_table_html(p: flight.FlightPlan, lay: flight.FlightLayout | None = None, *, caption: str = "") -> str:
+    """The plan's table (guide §2 steps, compact labels) as HTML for the demo's table widget."""
+    df = p.table()[["quantity", "value", "unit"]].copy()
+    df["quantity"] = [SHORT_LABELS[k] for k in flight.TABLE_ATTRS]
+    df["value"] = [format_value(v) for v in df["value"]]
+    notes = [f"40·h/H = {p.relief_allowance_percent:.2f} %", f"footprint l·m = {p.footprint_side_km:.2f} km"]
+    if lay is not None:
+        notes.append(f"drawn route {lay.route_length_km:.0f} km (LS {p.LS_km:.0f} km)")
+    return plots.html_table(df, caption=caption or "Survey parameters (guide §2)", notes=notes)
+
+
+def guide_example_html() -> str:
+    """The guide's §2 example recomputed (left) beside its line-by-line audit (right), as HTML.
+
+    Rows of the audit where the printed line does not follow from its inputs are shaded.
+    """
+    p = flight.guide_example()
+    left = p.table(rounded=True)[["quantity", "value", "unit"]].copy()
+    left["quantity"] = [q.split(" (")[0] for q in left["quantity"]]
+    left["value"] = [f"{x:.{flight.GUIDE_DECIMALS[k]}f}" if not isinstance(x, int) else str(x)
+                     for k, x in zip(flight.TABLE_ATTRS, left["value"])]
+    a = flight.guide_example_audit()
+    right = a[["step", "printed", "correct_factors", "computed_as_printed", "differs"]].copy()
+    dec = [int(flight.GUIDE_DECIMALS[k]) for k in a["attr"]]
+    right["computed_as_printed"] = [f"{x:.{d}f}" for x, d in zip(a["computed_as_printed"], dec)]
+    right["differs"] = np.where(right["differs"], "✗ slip", "✓")
+    right = right.rename(columns={"printed": "printed in the guide", "correct_factors": "factors that follow",
+                                  "computed_as_printed": "computed", "differs": ""}).set_index("step")
+    hl = np.zeros(right.shape, dtype=bool)
+    hl[a["differs"].to_numpy(), :] = True
+    notes = [f"step {r.step}, {r.quantity}: {r.reason}" for r in a.itertuples() if r.differs]
+    return ("<div style='display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start'>"
+            "<div style='flex:0 0 auto'>"
+            + plots.html_table(left, caption="Recomputed by aerophoto (guide's rounding)")
+            + "</div><div style='flex:1 1 480px;max-width:760px'>"
+            + plots.html_table(right, caption="Printed vs computed (guide §2, variant 00)", highlight=hl,
+                               notes=notes)
+            + "</div></div>")
+
+
+def _rect(x0, y0, x1, y1):
+    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1], [x0, y0]], dtype=float)
+
+
+def _stride(count: int, cap: int) -> int:
+    return max(1, math.ceil(count / cap))
+
+
+class FlightPlanView:
+    """Overview (left) and corner detail (right) of a :class:`~aerophoto.flight.FlightLayout`.
+
+    Parameters
+    ----------
+    layout : FlightLayout, optional
+        Drawn at once if given; otherwise call :meth:`update`.
+    ax : pair of Axes, optional
+        ``(ax_plan, ax_detail)``; a new figure (860×460 px) if None.
+
+    Everything is in ground kilometres, X along the flight lines (east), Y
+    across them (north).  :meth:`update` only moves existing artists.
+    """
+
+    def __init__(self, layout: flight.FlightLayout | None = None, ax=None):
+        if ax is None:
+            # a fixed layout (no constrained layout): it is recomputed on every draw and would
+            # double the time of a slider update
+            fig = plots.figure(figsize=(8.6, 4.6), layout="none")
+            ax_plan, ax_zoom = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.25, 1]})
+            fig.subplots_adjust(left=0.075, right=0.985, bottom=0.22, top=0.9, wspace=0.18)
+        else:
+            ax_plan, ax_zoom = ax
+            fig = ax_plan.figure
+        self.fig, self.ax_plan, self.ax_zoom = fig, ax_plan, ax_zoom
+        C = plots.COLORS
+        a = ax_plan
+        a.set_aspect("equal")
+        a.set_xlabel("X (along the strips), km")
+        a.set_ylabel("Y, km")
+        self.footprints = PolyCollection([], facecolors=C["footprint"], edgecolors=C["blue"], alpha=0.25,
+                                         linewidths=0.6, label="footprints (first strips)")
+        a.add_collection(self.footprints)
+        (self.route,) = a.plot([], [], color=C["blue"], lw=1.0, label="flight path")
+        (self.area,) = a.plot([], [], color=C["black"], lw=2.0, label="survey area Lx × Ly")
+        self.centres = a.scatter(np.zeros(0), np.zeros(0), s=5, color=C["vermillion"], zorder=4,
+                                 label="photo centres")
+        (self.arrows_e,) = a.plot([], [], ">", color=C["orange"], ms=6, zorder=5, linestyle="none")
+        (self.arrows_w,) = a.plot([], [], "<", color=C["orange"], ms=6, zorder=5, linestyle="none")
+        (self.zoom_box,) = a.plot([], [], ls="--", color=C["purple"], lw=1.5, label="detail (right)")
+        z = ax_zoom
+        z.set_aspect("equal")
+        z.set_title("Detail: first strips and photos", fontsize=10)
+        z.set_xlabel("X, km")
+        self.z_fp = PolyCollection([], facecolors=C["footprint"], edgecolors=C["blue"], alpha=0.18,
+                                   linewidths=1.0, label="footprint l·m")
+        z.add_collection(self.z_fp)
+        self.z_work = PolyCollection([], facecolors="none", edgecolors=C["green"], linewidths=1.4,
+                                     linestyles="--", label="working area Bx × By")
+        z.add_collection(self.z_work)
+        (self.z_area,) = z.plot([], [], color=C["black"], lw=2.0)
+        (self.z_route,) = z.plot([], [], color=C["blue"], lw=1.0)
+        (self.z_centres,) = z.plot([], [], "+", color=C["vermillion"], ms=9, mew=2, linestyle="none")
+        arrow = dict(arrowstyle="<->", color=C["black"], lw=1.3, shrinkA=0, shrinkB=0)
+        self.bx_arrow = z.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=arrow, zorder=6)
+        self.by_arrow = z.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=arrow, zorder=6)
+        self.bx_label = z.text(0, 0, "", ha="center", va="top", fontsize=10, zorder=6,
+                               bbox=dict(fc="white", ec="none", alpha=0.8, pad=1))
+        self.by_label = z.text(0, 0, "", ha="left", va="center", fontsize=10, zorder=6,
+                               bbox=dict(fc="white", ec="none", alpha=0.8, pad=1))
+        handles = [self.area, self.route, self.centres, self.footprints, self.z_work, self.zoom_box]
+        self.legend = fig.legend(handles=handles, labels=[h.get_label() for h in handles],
+                                 loc="lower center", ncol=3, fontsize=9, frameon=False)
+        self.shown = 0
+        self.stride = 1
+        if layout is not None:
+            self.update(layout)
+
+    def update(self, lay: flight.FlightLayout) -> None:
+        p = lay.plan
+        K, n = lay.K, lay.n
+        Lx, Ly = p.Lx_km, p.Ly_km
+        area = _rect(0, 0, Lx, Ly)
+        # overview -------------------------------------------------------------
+        self.area.set_data(area[:, 0], area[:, 1])
+        s = max(1, math.ceil(math.sqrt(K * n / MAX_CENTRES))) if K * n > MAX_CENTRES else 1
+        ks, js = np.arange(0, K, s), np.arange(0, n, s)
+        self.stride = s
+        self.centres.set_offsets(lay.centres_km(ks, js))
+        self.shown = len(ks) * len(js)
+        route = lay.route_km(turn_points=12)
+        if K > 400:   # keep the path light: the flight lines are drawn by the centres anyway
+            route = route[:: max(1, len(route) // 8000)]
+        self.route.set_data(route[:, 0], route[:, 1])
+        dirs = lay.directions()
+        xm = (lay.photo_x_km[0] + lay.photo_x_km[-1]) / 2
+        east, west = ks[dirs[ks] > 0], ks[dirs[ks] < 0]
+        self.arrows_e.set_data(np.full(len(east), xm), lay.strip_y_km[east])
+        self.arrows_w.set_data(np.full(len(west), xm), lay.strip_y_km[west])
+        jf = np.arange(0, n, _stride(n, MAX_FOOTPRINTS_PER_STRIP))
+        self.footprints.set_verts(list(lay.footprints_km(np.arange(min(K, 2)), jf)))
+        half = p.footprint_side_km / 2
+        xs = np.concatenate([[0, Lx], route[:, 0]])
+        ys = np.concatenate([[0, Ly], route[:, 1]])
+        pad = 0.04 * max(Lx, Ly)
+        self.ax_plan.set_xlim(min(xs.min(), lay.photo_x_km[0] - half) - pad, max(xs.max(), Lx) + pad)
+        self.ax_plan.set_ylim(min(ys.min(), lay.strip_y_km[0] - half) - pad,
+                              max(ys.max(), lay.strip_y_km[-1] + half) + pad)
+        shown = "" if s == 1 else f" (1 in {s}² drawn)"
+        self.ax_plan.set_title(f"K = {K} strips × n = {n} = N = {_count_text(p.N)} photos{shown}", fontsize=10)
+        # detail ---------------------------------------------------------------
+        kz, jz = np.arange(min(K, 3)), np.arange(min(n, 4))
+        self.z_fp.set_verts(list(lay.footprints_km(kz, jz)))
+        self.z_work.set_verts(list(lay.working_areas_km(kz, jz)))
+        c = lay.centres_km(kz, jz)
+        self.z_centres.set_data(c[:, 0], c[:, 1])
+        self.z_area.set_data(area[:, 0], area[:, 1])
+        self.z_route.set_data(route[:, 0], route[:, 1])
+        x0, x1 = lay.photo_x_km[jz[0]] - half, lay.photo_x_km[jz[-1]] + half
+        y0, y1 = lay.strip_y_km[kz[0]] - half, lay.strip_y_km[kz[-1]] + half
+        m = 0.06 * max(x1 - x0, y1 - y0)
+        self.ax_zoom.set_xlim(x0 - m, x1 + m)
+        self.ax_zoom.set_ylim(y0 - m, y1 + m)
+        box = _rect(x0, y0, x1, y1)
+        self.zoom_box.set_data(box[:, 0], box[:, 1])
+        xa, ya = lay.photo_x_km[0], lay.strip_y_km[0]
+        if n > 1:
+            yb = ya - 0.72 * half
+            self.bx_arrow.xy, self.bx_arrow.xyann = (xa, yb), (xa + p.Bx_km, yb)
+            self.bx_label.set_position((xa + p.Bx_km / 2, yb - 0.04 * half))
+            self.bx_label.set_text(f"Bx = {p.Bx_km:.3g} km")
+        if K > 1:
+            xb = xa + 0.35 * half
+            self.by_arrow.xy, self.by_arrow.xyann = (xb, ya), (xb, ya + p.By_km)
+            self.by_label.set_position((xb + 0.04 * half, ya + p.By_km / 2))
+            self.by_label.set_text(f"By = {p.By_km:.3g} km")
+        for art, ok in ((self.bx_arrow, n > 1), (self.bx_label, n > 1), (self.by_arrow, K > 1),
+                        (self.by_label, K > 1)):
+            art.set_visible(ok)
+
+
+def _count_text(N: int) -> str:
+    return f"{N:,}".replace(",", " ")
+
+
+class FlightPlanDemo(LiveDemo):
+    """Live survey plan: camera, overlaps, relief, area and aircraft → strips, photos and timing.
+
+    The slider bounds keep every combination valid: H = f·m ≥ 100 mm·5000 =
+    500 m > h ≤ 250 m, and the relief allowance 40·h/H ≤ 20 %, so Px ≤ 95 %
+    and Py ≤ 80 %.  Construct with keyword values (``FlightPlanDemo(f_mm=150)``)
+    or from a variant with :meth:`for_variant`.  ``Zmin_m`` (not a slider)
+    fixes the lowest ground; the relief slider sets Zmax = Zmin + h.
+    """
+
+    title = "Planning the survey: strips, photos and time (guide §2)"
+    hint = ("Raise the relief h or lower the scale denominator m and watch the number of strips and photos "
+            "grow; a faster aircraft shortens the flight but also the longest admissible exposure.")
+    params = (
+        Param("f_mm", "f, mm", 100, 1100, 10, 100, group="Camera", help="focal length f"),
+        Param("m", "m (scale 1:m)", 5000, 30000, 100, 12000, group="Camera", help="photo-scale denominator"),
+        Param("px_percent", "px, %", 50, 75, 1, 60, group="Overlaps", help="normative forward overlap"),
+        Param("py_percent", "py, %", 20, 60, 1, 30, group="Overlaps", help="normative side overlap"),
+        Param("h_m", "h = Zmax − Zmin, m", 0, 250, 5, 30, group="Terrain and area", help="relief of the area"),
+        Param("Lx_km", "Lx, km", 5, 150, 1, 25, group="Terrain and area", help="area along the strips"),
+        Param("Ly_km", "Ly, km", 5, 150, 1, 30, group="Terrain and area", help="area across the strips"),
+        Param("W_kmh", "W, km/h", 100, 1200, 10, 200, group="Aircraft", help="ground speed"),
+        Param("M", "photoplan 1:M", kind="choice", default=10000.0, group="Aircraft",
+              options=(("1:2 000", 2000.0), ("1:5 000", 5000.0), ("1:10 000", 10000.0), ("1:25 000", 25000.0)),
+              help="photoplan scale: the blur δ = 0.1 mm is measured on it"),
+    )
+
+    def __init__(self, Zmin_m: float = 170.0, **values):
+        self.Zmin_m = float(Zmin_m)
+        self.clamped: dict = {}
+        super().__init__(**values)
+
+    @classmethod
+    def for_variant(cls, v) -> "FlightPlanDemo":
+        """A demo starting at variant ``v``'s values, each clamped to its slider's range.
+
+        ``demo.clamped`` lists what had to move: name → (variant value, start value).
+        The full, unclamped plan of the variant is :func:`aerophoto.flight.plan` (v).
+        """
+        wanted = dict(f_mm=v.f_mm, m=v.m, px_percent=v.px_percent, py_percent=v.py_percent,
+                      h_m=v.Zmax_m - v.Zmin_m, Lx_km=v.Lx_km, Ly_km=v.Ly_km, W_kmh=v.W_kmh, M=v.M)
+        start, clamped = {}, {}
+        for p in cls.params:
+            x = wanted[p.name]
+            if p.kind == "choice":
+                opts = [o[1] if isinstance(o, tuple) else o for o in p.options]
+                y = min(opts, key=lambda o: abs(math.log(o / x)))
+            else:
+                y = min(max(x, p.lo), p.hi)
+                y = p.lo + round((y - p.lo) / p.step) * p.step
+                y = min(max(y, p.lo), p.hi)
+            if abs(y - x) > 1e-9:
+                clamped[p.name] = (x, y)
+            start[p.name] = y
+        demo = cls(Zmin_m=v.Zmin_m, **start)
+        demo.clamped = clamped
+        if clamped:
+            moved = "; ".join(f"{name} = {a:g} → {b:g}" for name, (a, b) in clamped.items())
+            demo.status.value = (f"<span style='color:#0072B2'>Your variant lies outside the sliders' range; "
+                                 f"the demo starts at the nearest values ({moved}). The table of your own "
+                                 "variant is computed with aerophoto.flight.plan(v), unclamped.</span>")
+        return demo
+
+    def build(self):
+        self.view = FlightPlanView()
+        self.fig = self.view.fig
+
+    def compute(self, h_m, **v):
+        p = flight.plan(Zmax_m=self.Zmin_m + h_m, Zmin_m=self.Zmin_m, **v)
+        return flight.layout(p)
+
+    def render(self, result):
+        self.view.update(result)
+        self.table.value = plan_table_html(result.plan, result)

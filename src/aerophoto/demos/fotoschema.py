@@ -1,0 +1,573 @@
+"""The live fotoschema: a single-strip photo mosaic, its seams and its scale (chapter 05, guide §6).
+
+The pure part is :mod:`aerophoto.mosaic`; :func:`fotoschema_model` flies a
+strip over the virtual site (:mod:`aerophoto.site`, :mod:`aerophoto.simulate`)
+with the chosen camera, scale, tilt, relief and overlap, assembles it
+(:func:`aerophoto.mosaic.assemble`) and glues the working areas onto a sheet
+raster (:func:`aerophoto.mosaic.sheet_raster`).  :class:`FotoschemaView` draws
+the sheet with the cuts and the mismatch markers and, below it, the
+mismatches ΔI of every cut against the 0.5 mm tolerance; :class:`FotoschemaDemo`
+binds sliders to both.
+
+Preview while dragging, full resolution on release
+--------------------------------------------------
+Gluing the sheet at print resolution takes about half a second, too slow to
+follow a slider.  The demo therefore renders every slider event at the
+*preview* resolution (``preview_px_per_mm``, about 40 ms of gluing) and
+starts a short *settle timer* (``settle_s`` = 0.35 s) on the kernel's event
+loop; each new event restarts the timer, and when the slider has been still
+for that long the sheet is glued once more at the *full* resolution
+(``full_px_per_mm``).  This debounce needs nothing from the browser — an
+ipywidgets slider does not report "released" separately — and works the same
+for keyboard steps.  Outside a running event loop (a script, a test) there is
+no timer: a slider event is followed at once by the full render.  From code,
+``demo.set(...)`` renders at full resolution and ``demo.set(..., preview=True)``
+at the preview one; ``demo.result.preview`` says which is shown.
+
+Static figures for the notebook: :func:`correction_sheet` (the корректурный
+лист with the ΔI values written along each cut), :func:`sheet_figure` (the
+finished sheet with the guide's marginalia, at true scale on an ISO paper
+size) and :func:`export_sheet` (PNG and PDF, never overwriting silently).
+"""
+
+from __future__ import annotations
+
+import datetime
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from matplotlib.collections import LineCollection
+
+from .. import geometry as g
+from .. import mosaic as mo
+from .. import plots
+from .. import simulate as sim
+from ..widgets import LiveDemo, Param
+
+__all__ = [
+    "FotoschemaResult",
+    "fotoschema_model",
+    "default_ground",
+    "FotoschemaView",
+    "FotoschemaDemo",
+    "correction_sheet",
+    "sheet_figure",
+    "export_sheet",
+    "PAPER_MM",
+    "freeze_layout_after_first_draw",
+]
+
+#: ISO A paper sizes, landscape (width, height) in mm
+PAPER_MM = {"A4": (297.0, 210.0), "A3": (420.0, 297.0), "A2": (594.0, 420.0), "A1": (841.0, 594.0),
+            "A0": (1189.0, 841.0)}
+
+N_PHOTOS = 5
+
+
+def default_ground(relief_m: float = 30.0):
+    """The default virtual site with its relief rescaled to ``relief_m`` (:class:`aerophoto.mosaic.RescaledRelief`)."""
+    from .. import site as site_mod
+
+    return mo.RescaledRelief(site_mod.get_site(), relief_m)
+
+
+@dataclass(frozen=True)
+class FotoschemaResult:
+    """What the fotoschema demo shows.
+
+    Attributes
+    ----------
+    fs : aerophoto.mosaic.Fotoschema
+    image : (ny, nx) float32 sheet raster, row 0 at y_min
+    extent_mm : (x_min, x_max, y_min, y_max) of the raster, sheet mm
+    px_per_mm : resolution of the raster
+    preview : True if rendered at the preview resolution
+    strip : the simulated strip
+    ground : the terrain (the site with rescaled relief)
+    timings_s : dict of the stages' durations, seconds
+    """
+
+    fs: mo.Fotoschema
+    image: np.ndarray
+    extent_mm: tuple
+    px_per_mm: float
+    preview: bool
+    strip: object
+    ground: object
+    timings_s: dict
+
+    def table(self) -> pd.DataFrame:
+        """The headline numbers: RMS m, worst cut-out, number of points, mean scale vs design, verdict."""
+        fs = self.fs
+        s = fs.scale
+        rows = [
+            ("m = √(ΣΔI²/n), RMS of the seams", "mm", f"{fs.rms_mm:.2f}"),
+            ("largest cut-out (вырез), allowed −0.5", "mm", f"{fs.worst_cutout_mm:+.2f}"),
+            ("largest duplicate (дублет)", "mm", f"{max(0.0, float(fs.dI_mm.max())) if fs.dI_mm.size else 0.0:+.2f}"),
+            ("check points n", "", f"{fs.dI_mm.size}"),
+            ("mean scale 1:m (6.1), four bases", "1:", f"{s.m:,.0f}".replace(",", " ")),
+            ("design scale of the photos", "1:", f"{fs.m_design:,.0f}".replace(",", " ")),
+            ("spread of the partial scales m_i", "", f"{float(np.ptp(s.m_i)):,.0f}".replace(",", " ")),
+            ("seams", "", "pass" if fs.ok else "FAIL: cut-out > 0.5 mm"),
+        ]
+        return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
+
+
+def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: float = 1.0, relief_m: float = 30.0,
+                     px_percent: float = 60.0, cut_shape: str = "straight", seed: int = 1, *,
+                     n_photos: int = N_PHOTOS, px_per_mm: float = 2.5, preview: bool = False, ground=None,
+                     prints=None) -> FotoschemaResult:
+    """Fly a strip over the virtual site, assemble its fotoschema and glue the sheet.
+
+    Parameters
+    ----------
+    f_mm : focal length f, mm (with m it fixes H = f·m)
+    m : photo scale denominator (1/m)
+    alpha_max_deg : largest tilt α of the photos; each gets α uniform in
+        [0, α_max] with a random direction (seeded, :class:`aerophoto.simulate.Imperfections`)
+    relief_m : height difference of the terrain, m (the site's hills rescaled)
+    px_percent : forward overlap p_x, %
+    cut_shape : "straight", "zigzag" or "curved"
+    seed : random stream of the tilts
+    px_per_mm : resolution of the sheet raster, pixels per sheet mm
+    preview : only recorded in the result (the caller chooses ``px_per_mm``)
+    ground : terrain to use (default :func:`default_ground` with ``relief_m``)
+    prints : "render" to glue rendered prints (:func:`aerophoto.render.render_strip`,
+        1024 px, with light fall-off and fiducial marks) instead of sampling the
+        ground directly
+    """
+    t0 = time.perf_counter()
+    gr = default_ground(relief_m) if ground is None else ground
+    cam = g.Camera(f_mm)
+    imp = sim.Imperfections(max_tilt_deg=alpha_max_deg, seed=int(seed))
+    strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos, imperfections=imp)
+    t1 = time.perf_counter()
+    fs = mo.assemble(strip, gr, cut_shape=cut_shape, points_m=mo.catalogue_points(gr))
+    t2 = time.perf_counter()
+    photos = None
+    if prints == "render":
+        from .. import render
+
+        photos = render.render_strip(gr, strip, 1024)
+    image, extent = mo.sheet_raster(fs, gr, px_per_mm, photos=photos)
+    t3 = time.perf_counter()
+    return FotoschemaResult(fs, image, extent, float(px_per_mm), bool(preview), strip, gr,
+                            {"fly": t1 - t0, "assemble": t2 - t1, "glue": t3 - t2})
+
+
+# =========================================================================== the view
+def freeze_layout_after_first_draw(fig) -> None:
+    """Keep the constrained layout found at the figure's first draw for every later draw.
+
+    Laying out the axes takes about a third of a redraw; a live demo's axes
+    keep their places while the sliders move, so the layout is computed once
+    (at the first draw) and then replaced by a do-nothing engine.
+    """
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    def freeze(_event):
+        fig.canvas.mpl_disconnect(cid)
+        fig.set_layout_engine(PlaceHolderLayoutEngine(adjust_compatible=False, colorbar_gridspec=True))
+
+    cid = fig.canvas.mpl_connect("draw_event", freeze)
+
+
+_CUTOUT = plots.COLORS["vermillion"]
+_DUPLICATE = plots.COLORS["blue"]
+
+
+class FotoschemaView:
+    """The sheet with cuts and mismatch markers (top) and ΔI along every cut (bottom).
+
+    ``view = FotoschemaView(ax=None)`` builds the figure once (``ax`` may be a
+    pair of axes); ``view.update(result)`` moves every artist in place.
+    """
+
+    def __init__(self, result: FotoschemaResult | None = None, ax=None, *, figsize=(9.6, 5.9)):
+        if ax is None:
+            fig = plots.figure(figsize=figsize, layout="constrained")
+            gs = fig.add_gridspec(2, 1, height_ratios=[3.0, 1.25])
+            ax_sheet, ax_d = fig.add_subplot(gs[0]), fig.add_subplot(gs[1])
+        else:
+            ax_sheet, ax_d = ax
+            fig = ax_sheet.figure
+        self.fig, self.ax_sheet, self.ax_dI = fig, ax_sheet, ax_d
+        C = plots.COLORS
+        a = ax_sheet
+        a.set_aspect("equal")
+        a.grid(False)
+        a.set_xlabel("along the strip, sheet mm")
+        a.set_ylabel("across, mm")
+        self.image = a.imshow(np.ones((2, 2), np.float32), cmap="gray", vmin=0.0, vmax=1.0, origin="lower",
+                              extent=(0, 1, 0, 1), interpolation="antialiased", zorder=0)
+        self.frames = LineCollection([], colors=C["skyblue"], linewidths=0.8, alpha=0.9, zorder=2)
+        a.add_collection(self.frames)
+        self.cuts = LineCollection([], colors=C["orange"], linewidths=1.8, zorder=3, label="cuts (порезы)")
+        a.add_collection(self.cuts)
+        self.points = a.scatter(np.zeros(0), np.zeros(0), s=np.zeros(0), facecolors=[], edgecolors="white",
+                                linewidths=0.8, zorder=5)
+        (self.ties,) = a.plot([], [], linestyle="none", marker="x", ms=6, mew=1.8, color=C["green"], zorder=6,
+                              label="tie points a, b")
+        (self.o,) = a.plot([], [], linestyle="none", marker="+", ms=10, mew=1.8, color=C["black"], zorder=6,
+                           label="principal points o")
+        self.numbers = []
+        # legend proxies for the markers
+        a.plot([], [], "o", color=_CUTOUT, label="cut-out (вырез, −)")
+        a.plot([], [], "o", color=_DUPLICATE, label="duplicate (дублет, +)")
+        if ax is None:
+            fig.legend(*a.get_legend_handles_labels(), loc="outside lower center", ncol=5, fontsize=9,
+                       frameon=False)
+        else:
+            a.legend(loc="lower right", fontsize=8)
+        self.title = a.set_title("", fontsize=12)
+        d = ax_d
+        d.set_ylabel("ΔI, mm")
+        d.axhline(0.0, color=C["grey"], lw=1.0)
+        self.tol = d.axhline(-mo.ALLOWED_CUTOUT_MM, color=_CUTOUT, lw=1.2, ls="--")
+        d.text(1.0, -mo.ALLOWED_CUTOUT_MM, " −0.5 mm", color=_CUTOUT, fontsize=9, va="center", ha="left",
+               transform=d.get_yaxis_transform())
+        self.stems = LineCollection([], linewidths=2.2, zorder=3)
+        d.add_collection(self.stems)
+        self.tops = d.scatter(np.zeros(0), np.zeros(0), s=18, facecolors=[], zorder=4)
+        self.separators = LineCollection([], colors=C["grey"], linewidths=0.8, linestyles=":", zorder=1)
+        d.add_collection(self.separators)
+        d.grid(True, axis="y")
+        if result is not None:
+            self.update(result)
+
+    def update(self, r: FotoschemaResult) -> None:
+        fs = r.fs
+        a = self.ax_sheet
+        self.image.set_data(r.image)
+        self.image.set_extent(r.extent_mm)
+        x0, x1, y0, y1 = fs.extent_mm
+        a.set_xlim(x0 - 3, x1 + 3)
+        a.set_ylim(y0 - 3, y1 + 3)
+        self.frames.set_segments(list(fs.frames_mm()))
+        self.cuts.set_segments([s.cut_mm for s in fs.seams])
+        pts = np.vstack([s.points_mm for s in fs.seams]) if fs.seams else np.zeros((0, 2))
+        dI = fs.dI_mm
+        cols = np.where(dI < 0, _CUTOUT, _DUPLICATE)
+        self.points.set_offsets(pts)
+        self.points.set_sizes(12.0 + 260.0 * np.minimum(np.abs(dI), 1.5))
+        self.points.set_facecolors(cols)
+        bad = np.round(dI, 2) < -mo.ALLOWED_CUTOUT_MM  # as read, to 0.01 mm
+        edge = np.where(bad, "black", "white")
+        self.points.set_edgecolors(edge)
+        self.points.set_linewidths(np.where(bad, 2.0, 0.8))
+        ties = np.vstack([T.apply(s.ties.photo_a_mm) for s, T in zip(fs.seams, fs.to_sheet[:-1])])
+        self.ties.set_data(ties[:, 0], ties[:, 1])
+        o = fs.principal_points_mm()
+        self.o.set_data(o[:, 0], o[:, 1])
+        while len(self.numbers) < len(o):
+            self.numbers.append(a.annotate("", (0, 0), xytext=(4, -12), textcoords="offset points", fontsize=10,
+                                           fontweight="bold", color=plots.COLORS["black"], zorder=7,
+                                           bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.7)))
+        for k, t in enumerate(self.numbers):
+            if k < len(o):
+                t.xy = (o[k, 0], o[k, 1])
+                t.set_text(str(fs.numbers[k]))
+                t.set_visible(True)
+            else:
+                t.set_visible(False)
+        res = "preview" if r.preview else "full resolution"
+        self.title.set_text(f"Fotoschema 1:{fs.scale.m:,.0f} · m = {fs.rms_mm:.2f} mm · "
+                            f"{'seams pass' if fs.ok else 'cut-out > 0.5 mm'} · {res}".replace(",", " "))
+        # ΔI chart: points grouped by cut
+        xs, ticks, labels, seps = [], [], [], []
+        x = 0.0
+        for k, s in enumerate(fs.seams):
+            n = len(s.dI_mm)
+            xx = x + np.arange(1, n + 1)
+            xs.append(xx)
+            ticks.append(x + (n + 1) / 2.0)
+            labels.append(f"cut {s.numbers[0]}/{s.numbers[1]}")
+            x += n + 1.5
+            if k < len(fs.seams) - 1:
+                seps.append(x - 0.25)
+        xs = np.concatenate(xs) if xs else np.zeros(0)
+        self.stems.set_segments([np.array([[xi, 0.0], [xi, di]]) for xi, di in zip(xs, dI)])
+        self.stems.set_colors(list(cols))
+        self.tops.set_offsets(np.column_stack([xs, dI]) if len(xs) else np.zeros((0, 2)))
+        self.tops.set_facecolors(cols)
+        lim = max(0.7, float(np.max(np.abs(dI))) * 1.15 if dI.size else 0.7)
+        self.separators.set_segments([np.array([[sx, -lim], [sx, lim]]) for sx in seps])
+        d = self.ax_dI
+        d.set_xlim(0.0, max(x - 0.5, 1.0))
+        d.set_ylim(-lim, lim)
+        d.set_xticks(ticks)
+        d.set_xticklabels(labels, fontsize=10)
+
+
+# =========================================================================== the live demo
+class FotoschemaDemo(LiveDemo):
+    """Live single-strip fotoschema: f, scale, tilt, relief and overlap → sheet, seams, m and mean scale.
+
+    While a slider is dragged the sheet is glued at ``preview_px_per_mm``;
+    when it has been still for ``settle_s`` seconds, at ``full_px_per_mm``
+    (see the module notes).  ``demo.set(...)`` renders at full resolution,
+    ``demo.set(..., preview=True)`` at the preview one.
+    """
+
+    title = "The single-strip fotoschema (одномаршрутная фотосхема)"
+    hint = ("Raise the relief or the tilt and watch cut-outs (−, vermillion) and duplicates (+, blue) appear along "
+            "the cuts; a longer focal length flies higher at the same scale and shrinks the relief mismatches.")
+    params = (
+        Param("f_mm", "f, mm", 70, 350, 10, 100, group="Camera", help="focal length f; H = f·m"),
+        Param("m", "m (scale 1:m)", 8000, 16000, 500, 12000, group="Camera", help="photo scale denominator"),
+        Param("px_percent", "p_x, %", 56, 80, 1, 60, group="Flight", help="forward overlap"),
+        Param("alpha_max_deg", "α max, °", 0, 5, 0.25, 1, group="Flight",
+              help="largest tilt of the photos (each is tilted at random up to this)"),
+        Param("seed", "seed", 0, 20, 1, 1, kind="int", group="Flight", help="random stream of the tilts"),
+        Param("relief_m", "h, relief, m", 0, 200, 5, 30, group="Terrain",
+              help="height difference of the ground (the site's hills rescaled)"),
+        Param("cut_shape", "cut", kind="choice", options=(("straight", "straight"), ("zigzag", "zigzag"),
+                                                           ("curved", "curved")),
+              default="straight", group="Mosaic", help="form of the cuts (guide figure 12)"),
+    )
+    #: sheet resolution while dragging and after release, pixels per sheet mm
+    preview_px_per_mm = 1.0
+    full_px_per_mm = 2.5
+    #: how long a slider must stay still before the full-resolution render, seconds
+    settle_s = 0.35
+
+    def __init__(self, **values):
+        self._preview = False
+        self._pending = None
+        super().__init__(**values)
+
+    # ---- LiveDemo hooks
+    def build(self):
+        self.view = FotoschemaView()
+        self.fig = self.view.fig
+        freeze_layout_after_first_draw(self.fig)
+
+    def compute(self, **v):
+        r = self.full_px_per_mm if not self._preview else self.preview_px_per_mm
+        return fotoschema_model(v["f_mm"], v["m"], v["alpha_max_deg"], v["relief_m"], v["px_percent"],
+                                v["cut_shape"], v["seed"], px_per_mm=r, preview=self._preview)
+
+    def render(self, result: FotoschemaResult):
+        self.view.update(result)
+        fs = result.fs
+        notes = [f"H = f·m = {fs.camera.f_mm / 1000 * fs.m_design:,.0f} m above the mean ground".replace(",", " "),
+                 "ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip"]
+        self.table.value = (plots.html_table(result.table(), caption="Seams and scale (guide §6)",
+                                             float_format="{:.3g}", notes=notes)
+                            + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm",
+                                               float_format="{:.2f}")
+                            + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000",
+                                               float_format="{:.1f}"))
+
+    # ---- preview / full resolution
+    def update(self, preview: bool = False) -> None:
+        """Recompute and redraw, at the preview resolution if ``preview`` else at full resolution."""
+        self._preview = bool(preview)
+        super().update()
+
+    def set(self, preview: bool = False, **values):
+        """Change parameters from code; full resolution unless ``preview=True``.  Returns self."""
+        checked = self._checked(values)
+        self.values.update(checked)
+        self._sync_controls(checked)
+        self._cancel_pending()
+        self.update(preview=preview)
+        return self
+
+    def _cancel_pending(self):
+        if self._pending is not None:
+            self._pending.cancel()
+            self._pending = None
+
+    def _on_change(self, change) -> None:
+        if self._syncing:
+            return
+        name = change["owner"]._aerophoto_name
+        try:
+            self.values[name] = self._params[name].validate(change["new"])
+            self.update(preview=True)
+            self.status.value = "<span style='color:#777777'>preview — full resolution when the slider rests</span>"
+            self._schedule_full()
+        except Exception as exc:  # never let a callback die silently
+            self.status.value = f"<span style='color:#D55E00'>⚠ {type(exc).__name__}: {exc}</span>"
+
+    def _schedule_full(self) -> None:
+        import asyncio
+
+        self._cancel_pending()
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            loop = None
+        if loop is None:  # no event loop (a script or a test): render in full at once
+            self._settle()
+            return
+        self._pending = loop.call_later(self.settle_s, self._settle)
+
+    def _settle(self) -> None:
+        self._pending = None
+        try:
+            self.update(preview=False)
+            self.status.value = ""
+        except Exception as exc:
+            self.status.value = f"<span style='color:#D55E00'>⚠ {type(exc).__name__}: {exc}</span>"
+
+    def close(self) -> None:
+        self._cancel_pending()
+        super().close()
+
+
+# =========================================================================== static sheets
+def correction_sheet(fs: mo.Fotoschema, ax=None, *, values: bool = True):
+    """The correction sheet (корректурный лист, guide §6, figure 13): the frames, the cuts and ΔI along each.
+
+    Each check point carries its ΔI in mm with its sign (− cut-out,
+    + duplicate), written beside the cut; cut-outs beyond 0.5 mm are boxed.
+    Returns the Axes.
+    """
+    fig, ax = plots.new_axes(ax, figsize=(10.0, 4.6))
+    C = plots.COLORS
+    ax.set_aspect("equal")
+    ax.grid(False)
+    for fr in fs.frames_mm():
+        ax.plot(fr[:, 0], fr[:, 1], color=C["grey"], lw=0.8)
+    o = fs.principal_points_mm()
+    for k, p in enumerate(o):
+        ax.plot(*p, "+", color=C["black"], ms=9, mew=1.5)
+        ax.annotate(str(fs.numbers[k]), p, xytext=(4, 4), textcoords="offset points", fontsize=10, fontweight="bold")
+    for s in fs.seams:
+        ax.plot(s.cut_mm[:, 0], s.cut_mm[:, 1], color=C["orange"], lw=1.6)
+        for p, d in zip(s.points_mm, s.dI_mm):
+            col = _CUTOUT if d < 0 else _DUPLICATE
+            ax.plot(*p, "o", color=col, ms=4)
+            if values:
+                bad = round(float(d), 2) < -mo.ALLOWED_CUTOUT_MM
+                ax.annotate(f"{d:+.2f}", p, xytext=(5, 0), textcoords="offset points", va="center", fontsize=9,
+                            color=col, fontweight="bold" if bad else "normal",
+                            bbox=dict(boxstyle="square,pad=0.1", fc="white", ec=col) if bad else None)
+    x0, x1, y0, y1 = fs.extent_mm
+    ax.set_xlim(x0 - 5, x1 + 12)
+    ax.set_ylim(y0 - 5, y1 + 5)
+    ax.set_xlabel("sheet mm")
+    ax.set_title(f"Correction sheet (корректурный лист): ΔI in mm along each cut · m = {fs.rms_mm:.2f} mm, "
+                 f"n = {fs.dI_mm.size}")
+    return ax
+
+
+def _paper_for(w_mm: float, h_mm: float) -> tuple[str, tuple]:
+    for name in ("A4", "A3", "A2", "A1", "A0"):
+        pw, ph = PAPER_MM[name]
+        if w_mm <= pw and h_mm <= ph:
+            return name, (pw, ph)
+    raise ValueError(f"a {w_mm:.0f} × {h_mm:.0f} mm sheet does not fit A0; the valid range is up to 1189 × 841 mm")
+
+
+def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", checked_by: str = "",
+                 year: int | None = None, place: str = "", english: bool = True):
+    """The finished fotoschema with its marginalia (зарамочное оформление), guide §6 step 9 and appendix.
+
+    The mosaic is drawn at true size — one sheet millimetre is one millimetre
+    of paper — on the smallest ISO A sheet (landscape) that holds it with the
+    margins, so the PDF prints at the fotoschema's scale.  Above it the title
+    "ФОТОСХЕМА" (and "Photo mosaic" if ``english``) and the mean scale
+    "М 1:m" rounded to hundreds as in the guide's appendix; under it a scale
+    bar, the year it was made and "Выполнил / made by", "Проверил / checked by".
+
+    Returns
+    -------
+    matplotlib.figure.Figure (not attached to pyplot; save it with :func:`export_sheet`)
+    """
+    from matplotlib.figure import Figure
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    x0, x1, y0, y1 = fs.extent_mm
+    w, h = x1 - x0, y1 - y0
+    top, bottom, side = 48.0, 42.0, 10.0  # the guide trims 1–1.5 cm beyond the working area
+    name, (pw, ph) = _paper_for(w + 2 * side, h + top + bottom)
+    import matplotlib as mpl
+
+    with mpl.rc_context({"figure.constrained_layout.use": False, "figure.autolayout": False}):
+        fig = Figure(figsize=(pw / 25.4, ph / 25.4))
+    # axes placed by hand, at true size: a do-nothing engine (with None, savefig would restore the
+    # rcParams' constrained layout after its first save)
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    fig.set_layout_engine(PlaceHolderLayoutEngine(adjust_compatible=True, colorbar_gridspec=True))
+    FigureCanvasAgg(fig)
+    left = (pw - w) / 2.0
+    base = bottom + (ph - top - bottom - h) / 2.0
+    ax = fig.add_axes((left / pw, base / ph, w / pw, h / ph))
+    ax.imshow(image, cmap="gray", vmin=0, vmax=1, origin="lower", extent=extent_mm, interpolation="antialiased")
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_axis_off()
+    ax.set_aspect("auto")
+    # a neat line round the mosaic, 0.5 mm outside
+    fx = lambda mm: mm / pw  # noqa: E731
+    fy = lambda mm: mm / ph  # noqa: E731
+    from matplotlib.patches import Rectangle
+
+    fig.add_artist(Rectangle((fx(left - 2), fy(base - 2)), fx(w + 4), fy(h + 4), fill=False, lw=1.2,
+                             transform=fig.transFigure))
+    yr = datetime.date.today().year if year is None else int(year)
+    m_txt = f"{fs.scale.m_rounded:,}".replace(",", " ")
+    cx = 0.5
+    fig.text(cx, fy(ph - 16), "ФОТОСХЕМА", ha="center", va="center", fontsize=26, fontweight="bold")
+    if english:
+        fig.text(cx, fy(ph - 26), "Photo mosaic (single strip, photos "
+                 f"{fs.numbers[0]}–{fs.numbers[-1]})", ha="center", va="center", fontsize=13)
+    fig.text(cx, fy(base + h + 8), f"М 1:{m_txt}", ha="center", va="center", fontsize=15, fontweight="bold")
+    # scale bar: a round ground length close to a fifth of the mosaic
+    ground_len = w / 5.0 * fs.scale.m / 1000.0
+    step = 10 ** math.floor(math.log10(ground_len))
+    bar_m = max(step, round(ground_len / step) * step)
+    bar_mm = bar_m * 1000.0 / fs.scale.m
+    by = base - 12.0
+    bx = left
+    from matplotlib.lines import Line2D
+
+    fig.add_artist(Line2D([fx(bx), fx(bx + bar_mm)], [fy(by), fy(by)], lw=3, color="black",
+                          transform=fig.transFigure))
+    for t in (0.0, 0.5, 1.0):
+        fig.add_artist(Line2D([fx(bx + t * bar_mm)] * 2, [fy(by - 1.5), fy(by + 1.5)], lw=1.2, color="black",
+                              transform=fig.transFigure))
+    fig.text(fx(bx + bar_mm + 3), fy(by), f"{bar_m:,.0f} m".replace(",", " "), va="center", fontsize=10)
+    made = f"Фотосхема изготовлена в {yr} г." + (f" ({place})" if place else "")
+    fig.text(fx(left), fy(by - 12), made + (f"  ·  made in {yr}" if english else ""), fontsize=11, va="center")
+    rx = left + w
+    fig.text(fx(rx), fy(by), f"Выполнил{' (made by)' if english else ''}: {made_by or '________________'}",
+             fontsize=11, ha="right", va="center")
+    fig.text(fx(rx), fy(by - 12), f"Проверил{' (checked by)' if english else ''}: {checked_by or '________________'}",
+             fontsize=11, ha="right", va="center")
+    fig.text(1 - fx(6), fy(5), f"{name}, mosaic drawn at 1:{m_txt}", fontsize=7, ha="right", va="bottom",
+             color="#777777")
+    fig.aerophoto_paper = name
+    return fig
+
+
+def export_sheet(fig, folder, stem: str = "fotoschema", *, overwrite: bool = False, dpi: int = 150) -> dict:
+    """Write the sheet as ``<folder>/<stem>.png`` and ``<folder>/<stem>.pdf``.
+
+    Existing files are never replaced silently: with ``overwrite=False`` (the
+    default) an existing file raises FileExistsError naming it.  The folder is
+    created if needed.  Returns ``{"png": Path, "pdf": Path}``.
+    """
+    folder = Path(folder)
+    if not stem or any(c in stem for c in "/\\"):
+        raise ValueError(f"stem = {stem!r} must be a plain file name without folders")
+    dpi = int(dpi)
+    if not 50 <= dpi <= 600:
+        raise ValueError(f"dpi = {dpi} is outside the valid range 50 ≤ dpi ≤ 600")
+    paths = {"png": folder / f"{stem}.png", "pdf": folder / f"{stem}.pdf"}
+    if not overwrite:
+        for p in paths.values():
+            if p.exists():
+                raise FileExistsError(f"{p} exists; choose another stem or pass overwrite=True to replace it")
+    folder.mkdir(parents=True, exist_ok=True)
+    fig.savefig(paths["png"], dpi=dpi, format="png")
+    fig.savefig(paths["pdf"], format="pdf")
+    return paths

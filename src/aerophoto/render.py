@@ -1,0 +1,527 @@
+"""Exact photographs of the virtual site (:mod:`aerophoto.site`).
+
+:func:`render` takes a frame camera (:class:`aerophoto.geometry.Camera`) and
+an exterior orientation (:class:`aerophoto.geometry.Pose`) and computes, for
+the centre of every pixel, the ray from the projection centre S through that
+photo point (the camera model of :mod:`aerophoto.geometry`), intersects it
+with the site's DEM and samples the ground texture there.  So the picture is
+a true central projection of the terrain: relief displacement, tilt
+displacement and scale variation are all in it, exactly as
+:func:`aerophoto.geometry.ground_to_photo` predicts.
+
+Pixel convention
+----------------
+A photo of ``n_px`` × ``n_px`` pixels covers the whole frame (side l =
+``camera.frame_mm``); the pixel size is p = l/n_px mm.  ``image[row, col]``:
+row 0 is the **top** of the photo (+y), column 0 its left edge (−x).  Integer
+(row, col) are pixel **centres**:
+
+    x = −l/2 + (col + 0.5)·p,    y = +l/2 − (row + 0.5)·p      (mm)
+
+and :meth:`Photo.mm_to_pixel` / :meth:`Photo.pixel_to_mm` convert both ways
+(fractional rows/columns allowed).  ``imshow(photo.image, extent=photo.extent_mm)``
+with the default ``origin="upper"`` shows the photo in photo millimetres.
+
+How a pixel is computed
+-----------------------
+1. Ray directions: the camera vectors (x, y, −f) of all pixel centres are
+   cached per (f, l, n_px) and rotated by the pose (``R`` of
+   :func:`aerophoto.geometry.rotation_matrix`).
+2. Ray–DEM intersection, coarse to fine: on a coarse lattice of pixels
+   (every 8th) the rays are intersected exactly with
+   :func:`aerophoto.geometry.photo_to_dem` (bracketed Illinois method); the
+   ground heights found are interpolated to every pixel and refined there by
+   secant iterations on the bilinear DEM until the largest residual
+   |Z − h(X, Y)| is below ``tol_m`` (default 1 mm; typically 2–3 DEM
+   evaluations).  The final residual is kept in :attr:`Photo.dem_residual_m`.
+3. Brightness: :meth:`aerophoto.site.Site.sample` (bilinear) at the ground
+   point, on the texture-pyramid level whose texels best match the pixel's
+   ground size at the principal point (less aliasing), then multiplied by the
+   light fall-off 1 − v·(r/r_corner)² (``vignetting`` v, r the distance from
+   o; v = 0 gives the texture values exactly).  Pixels whose ground point is
+   off the site get ``background`` and ``valid`` False.
+4. Optionally the four fiducial marks (координатные метки) at the middles of
+   the frame sides are burnt in (black wedges with a white centre line on
+   the x and y axes).
+
+Public API
+----------
+``render(site, camera, pose, n_px=512, *, vignetting=0.15, fiducials=True,
+level=None, background=0.5, keep_ground=False, tol_m=1e-3, number=None) -> Photo``
+``render_shot(site, shot, n_px=512, **kw) -> Photo`` (a :class:`aerophoto.simulate.Shot`)
+``render_strip(site, strip, n_px=512, **kw) -> list[Photo]``
+``Photo``: ``image`` (n, n) float32 0…1, ``camera``, ``pose``, ``pixel_mm``,
+``mm_to_pixel``, ``pixel_to_mm``, ``pixel_centres_mm()``, ``project(XYZ)``,
+``points(catalogue=None)``, ``show(ax=None)``, ``value_at(xy_mm)``,
+``light_falloff()``, ``valid``, ``ground_m``, ``level``.
+``PhotoView(ax=None)``: a view of a photo with ``update(photo)`` (moves the
+image and the points in place).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from . import geometry as g
+from ._validate import check_int_range, check_range
+
+__all__ = ["Photo", "PhotoView", "render", "render_shot", "render_strip"]
+
+COARSE_STEP = 8
+MAX_PX = 4096
+
+
+# --------------------------------------------------------------------------- the photo
+@dataclass(frozen=True, eq=False, repr=False)
+class Photo:
+    """A rendered photograph and everything needed to measure on it.
+
+    Attributes
+    ----------
+    image : ndarray, shape (n_px, n_px), float32
+        Brightness 0…1 (0 black); row 0 at the top (+y), column 0 at the left (−x).
+    camera : Camera
+    pose : Pose
+        The true exterior orientation the photo was taken with.
+    site : Site
+        The site photographed.
+    valid : ndarray, shape (n_px, n_px), bool
+        True where the pixel's ground point lies on the site.
+    level : int
+        Texture-pyramid level sampled (texels ``site.texel_m(level)`` metres).
+    vignetting : float
+        Light fall-off v used (see :meth:`light_falloff`).
+    fiducials : bool
+        Whether fiducial marks were burnt in.
+    dem_residual_m : float
+        Largest |Z − h(X, Y)| of the pixels' ground points, metres.
+    ground_m : ndarray, shape (n_px, n_px, 3), float64, or None
+        Ground point (X, Y, Z) of every pixel centre, when rendered with ``keep_ground=True``.
+    number : int or None
+        The photo's number (e.g. from a simulated shot).
+    dem_evaluations : int
+        Full-resolution DEM evaluations the intersection needed (for profiling).
+    """
+
+    image: np.ndarray
+    camera: g.Camera
+    pose: g.Pose
+    site: object
+    valid: np.ndarray
+    level: int
+    vignetting: float
+    fiducials: bool
+    dem_residual_m: float
+    ground_m: np.ndarray | None = None
+    number: int | None = None
+    dem_evaluations: int = 0
+
+    def __repr__(self) -> str:
+        p = self.pose
+        num = f" {self.number}" if self.number is not None else ""
+        return (f"Photo{num}({self.n_px}×{self.n_px} px, p = {self.pixel_mm:.4g} mm, f = {self.camera.f_mm:g} mm, "
+                f"S = ({p.X_m:.1f}, {p.Y_m:.1f}, {p.Z_m:.1f}) m, α = {p.alpha_deg:.3g}°, λ = {p.lambda_deg:.4g}°, "
+                f"κ = {p.kappa_deg:.4g}°)")
+
+    # ---- pixel geometry
+    @property
+    def n_px(self) -> int:
+        """Pixels across the frame."""
+        return int(self.image.shape[0])
+
+    @property
+    def shape(self) -> tuple:
+        return self.image.shape
+
+    @property
+    def pixel_mm(self) -> float:
+        """Pixel size p = l/n_px, mm."""
+        return self.camera.frame_mm / self.n_px
+
+    @property
+    def extent_mm(self) -> tuple:
+        """(left, right, bottom, top) in photo mm, for ``imshow(..., extent=...)``."""
+        h = self.camera.half_mm
+        return (-h, h, -h, h)
+
+    def mm_to_pixel(self, xy_mm) -> np.ndarray:
+        """Photo coordinates (…, 2) in mm → (row, col) (…, 2), fractional; integers are pixel centres."""
+        xy = np.asarray(xy_mm, dtype=float)
+        h, p = self.camera.half_mm, self.pixel_mm
+        return np.stack([(h - xy[..., 1]) / p - 0.5, (xy[..., 0] + h) / p - 0.5], axis=-1)
+
+    def pixel_to_mm(self, rowcol) -> np.ndarray:
+        """(row, col) (…, 2) → photo coordinates x, y (…, 2) in mm."""
+        rc = np.asarray(rowcol, dtype=float)
+        h, p = self.camera.half_mm, self.pixel_mm
+        return np.stack([-h + (rc[..., 1] + 0.5) * p, h - (rc[..., 0] + 0.5) * p], axis=-1)
+
+    def pixel_centres_mm(self) -> np.ndarray:
+        """x, y of every pixel centre, shape (n_px, n_px, 2), mm."""
+        return _pixel_grid_mm(self.camera.frame_mm, self.n_px)
+
+    def value_at(self, xy_mm) -> np.ndarray:
+        """Image brightness at photo points (…, 2) mm, bilinear between pixel centres."""
+        from scipy.ndimage import map_coordinates
+
+        rc = self.mm_to_pixel(xy_mm)
+        flat = rc.reshape(-1, 2).T
+        return map_coordinates(self.image, flat, order=1, mode="nearest").reshape(rc.shape[:-1])
+
+    def light_falloff(self) -> np.ndarray:
+        """The factor 1 − v·(r/r_corner)² the texture was multiplied by, shape (n_px, n_px), float32."""
+        return _falloff(self.camera.frame_mm, self.n_px, self.vignetting)
+
+    # ---- ground ↔ photo
+    def project(self, XYZ_m) -> np.ndarray:
+        """Photo coordinates (…, 2) mm of ground points (…, 3) m: :func:`aerophoto.geometry.ground_to_photo`."""
+        return g.ground_to_photo(self.camera, self.pose, XYZ_m)
+
+    def points(self, catalogue: pd.DataFrame | None = None, *, occlusion_tol_m: float = 0.5) -> pd.DataFrame:
+        """Catalogue points as imaged on this photo.
+
+        Returns the catalogue (default ``site.catalogue``) with the extra
+        columns ``x_mm``, ``y_mm`` (exact projection), ``row``, ``col``
+        (fractional pixel position) and ``visible``: inside the frame and
+        not hidden by the terrain (the ray from S through the image point
+        meets the DEM within ``occlusion_tol_m`` of the point).  Points
+        behind the camera get NaN coordinates and ``visible`` False.
+        """
+        cat = self.site.catalogue if catalogue is None else catalogue
+        df = cat.copy()
+        P = df[["X_m", "Y_m", "Z_m"]].to_numpy(dtype=float)
+        xy = np.full((len(df), 2), np.nan)
+        if len(df):
+            R = g.rotation_matrix(self.pose)
+            front = (P - self.pose.centre) @ R[:, 2] < 0  # below the plane of S parallel to the photo
+            if front.any():
+                xy[front] = g.ground_to_photo(self.camera, self.pose, P[front])
+        rc = self.mm_to_pixel(xy)
+        inside = np.all(np.abs(xy) <= self.camera.half_mm, axis=1)
+        visible = inside.copy()
+        if inside.any():
+            back = g.photo_to_dem(self.camera, self.pose, xy[inside], self.site)
+            visible[inside] = np.linalg.norm(back - P[inside], axis=1) <= occlusion_tol_m
+        df["x_mm"] = xy[:, 0]
+        df["y_mm"] = xy[:, 1]
+        df["row"] = rc[:, 0]
+        df["col"] = rc[:, 1]
+        df["visible"] = visible
+        return df
+
+    # ---- drawing
+    def show(self, ax=None, *, points: bool = True, labels: bool = False, title: str | None = None):
+        """Show the photo in photo mm with its visible catalogue points; returns a :class:`PhotoView`."""
+        view = PhotoView(ax, points=points, labels=labels)
+        view.update(self)
+        if title is not None:
+            view.ax.set_title(title)
+        elif self.number is not None:
+            view.ax.set_title(f"photo {self.number}")
+        return view
+
+
+class PhotoView:
+    """A photo in photo millimetres, with points marked by the guide's symbols.
+
+    ``view = PhotoView(ax=None)`` builds the artists once; ``view.update(photo)``
+    replaces the image data and moves the points in place (for live demos).
+    """
+
+    def __init__(self, ax=None, *, points: bool = True, labels: bool = False, cmap: str = "gray"):
+        from . import plots
+
+        self.fig, self.ax = plots.new_axes(ax)
+        self.show_points = points
+        self.labels = labels
+        self.image = self.ax.imshow(np.zeros((2, 2), np.float32), cmap=cmap, vmin=0.0, vmax=1.0,
+                                    extent=(-90, 90, -90, 90), interpolation="antialiased")
+        (self.control,) = self.ax.plot([], [], linestyle="none", marker="^", ms=9, mfc="none",
+                                       mec=plots.COLORS["control"], mew=2.0, label="control points (опознаки)")
+        (self.other,) = self.ax.plot([], [], linestyle="none", marker="o", ms=6, mfc="none",
+                                     mec=plots.COLORS["yellow"], mew=1.5, label="ground points")
+        self.texts = []
+        self.ax.set_xlabel("x, mm")
+        self.ax.set_ylabel("y, mm")
+        self.ax.set_aspect("equal")
+        self.ax.grid(False)
+
+    def update(self, photo: Photo):
+        self.image.set_data(photo.image)
+        self.image.set_extent(photo.extent_mm)
+        h = photo.camera.half_mm
+        self.ax.set_xlim(-h, h)
+        self.ax.set_ylim(-h, h)
+        for t in self.texts:
+            t.remove()
+        self.texts = []
+        if self.show_points:
+            df = photo.points()
+            df = df[df["visible"]]
+            c = df["control"].to_numpy(dtype=bool)
+            self.control.set_data(df["x_mm"].to_numpy()[c], df["y_mm"].to_numpy()[c])
+            self.other.set_data(df["x_mm"].to_numpy()[~c], df["y_mm"].to_numpy()[~c])
+            if self.labels:
+                from . import plots
+
+                for _, r in df[c].iterrows():
+                    self.texts.append(self.ax.annotate(str(r["id"]), (r["x_mm"], r["y_mm"]), xytext=(5, 5),
+                                                       textcoords="offset points", color=plots.COLORS["control"],
+                                                       fontsize=10, fontweight="bold"))
+        else:
+            self.control.set_data([], [])
+            self.other.set_data([], [])
+        return self
+
+
+# --------------------------------------------------------------------------- cached per-camera arrays
+@functools.lru_cache(maxsize=16)
+def _pixel_grid_mm(frame_mm: float, n_px: int) -> np.ndarray:
+    p = frame_mm / n_px
+    h = frame_mm / 2.0
+    x = -h + (np.arange(n_px) + 0.5) * p
+    y = h - (np.arange(n_px) + 0.5) * p
+    out = np.empty((n_px, n_px, 2))
+    out[..., 0] = x[None, :]
+    out[..., 1] = y[:, None]
+    out.flags.writeable = False
+    return out
+
+
+@functools.lru_cache(maxsize=16)
+def _camera_vectors(f_mm: float, frame_mm: float, n_px: int) -> np.ndarray:
+    """(n_px², 3) camera-frame vectors (x, y, −f) of the pixel centres, read-only."""
+    xy = _pixel_grid_mm(frame_mm, n_px).reshape(-1, 2)
+    out = np.empty((len(xy), 3))
+    out[:, :2] = xy
+    out[:, 2] = -f_mm
+    out.flags.writeable = False
+    return out
+
+
+@functools.lru_cache(maxsize=16)
+def _falloff(frame_mm: float, n_px: int, v: float) -> np.ndarray:
+    xy = _pixel_grid_mm(frame_mm, n_px)
+    r2 = (xy[..., 0] ** 2 + xy[..., 1] ** 2) / (2.0 * (frame_mm / 2.0) ** 2)
+    out = (1.0 - v * r2).astype(np.float32)
+    out.flags.writeable = False
+    return out
+
+
+@functools.lru_cache(maxsize=16)
+def _coarse_plan(n_px: int, step: int):
+    """Coarse lattice indices (every ``step``-th pixel, plus the last) and linear interpolation matrix."""
+    idx = np.unique(np.r_[np.arange(0, n_px, step), n_px - 1])
+    A = np.zeros((n_px, len(idx)))
+    pos = np.arange(n_px)
+    k = np.clip(np.searchsorted(idx, pos, side="right") - 1, 0, len(idx) - 2)
+    w = (pos - idx[k]) / (idx[k + 1] - idx[k])
+    A[pos, k] = 1.0 - w
+    A[pos, k + 1] = w
+    A.flags.writeable = False
+    idx.flags.writeable = False
+    return idx, A
+
+
+def _fiducial_mask(n_px: int) -> tuple:
+    """(dark, light) coverage masks of the four fiducial marks at the middles of the frame sides."""
+    return _fiducial_cached(n_px)
+
+
+@functools.lru_cache(maxsize=8)
+def _fiducial_cached(n_px: int):
+    # in units of the frame side: a wedge 4 % deep and 3 % wide at each side's middle, with a thin light axis line
+    c = (np.arange(n_px) + 0.5) / n_px - 0.5  # −0.5 … 0.5 across
+    X, Y = np.meshgrid(c, -c)  # x right, y up (row 0 at the top)
+    depth, half_w, line = 0.04, 0.015, max(0.6 / n_px, 0.002)
+    dark = np.zeros((n_px, n_px), bool)
+    light = np.zeros((n_px, n_px), bool)
+    for along, across in ((X, Y), (-X, Y), (Y, X), (-Y, X)):
+        d = 0.5 - along  # distance from this side
+        wedge = (d <= depth) & (np.abs(across) <= half_w * (1.0 - d / depth) + 0.5 / n_px)
+        dark |= wedge
+        light |= wedge & (np.abs(across) <= line) & (d <= depth * 0.8)
+    dark &= ~light
+    dark.flags.writeable = False
+    light.flags.writeable = False
+    return dark, light
+
+
+# --------------------------------------------------------------------------- rendering
+def _ground_pixel_m(site, camera: g.Camera, pose: g.Pose, n_px: int) -> float:
+    H = max(pose.Z_m - site.mean_height_m, 1e-3)
+    return camera.frame_mm / n_px * H / camera.f_mm
+
+
+def render(
+    site,
+    camera: g.Camera,
+    pose: g.Pose,
+    n_px: int = 512,
+    *,
+    vignetting: float = 0.15,
+    fiducials: bool = True,
+    level: int | None = None,
+    background: float = 0.5,
+    keep_ground: bool = False,
+    tol_m: float = 1e-3,
+    number: int | None = None,
+) -> Photo:
+    """Photograph the site with a frame camera at an exterior orientation, exactly.
+
+    Parameters
+    ----------
+    site : aerophoto.site.Site
+    camera : Camera
+        f and the frame l, mm.
+    pose : Pose
+        Projection centre S (m) and α, λ, κ (degrees); S must be above the
+        highest ground and every pixel's ray must point below the horizon.
+    n_px : int
+        Pixels across the frame, 16 ≤ n_px ≤ 4096 (pixel p = l/n_px mm).
+    vignetting : float
+        Light fall-off v, 0 ≤ v < 1: the brightness is multiplied by
+        1 − v·(r/r_corner)² (0 = none).
+    fiducials : bool
+        Burn in the fiducial marks at the middles of the frame sides.
+    level : int or None
+        Texture-pyramid level; None chooses it from the ground pixel size.
+    background : float
+        Brightness of pixels whose ground point is off the site, 0 ≤ b ≤ 1.
+    keep_ground : bool
+        Keep every pixel's ground point in :attr:`Photo.ground_m`.
+    tol_m : float
+        Largest accepted |Z − h(X, Y)| of a pixel's ground point, metres
+        (1e-6 ≤ tol ≤ 1).
+    number : int or None
+        A photo number to carry along.
+
+    Returns
+    -------
+    Photo
+    """
+    from scipy.ndimage import map_coordinates
+
+    if not isinstance(camera, g.Camera):
+        raise ValueError(f"camera = {camera!r} must be an aerophoto.geometry.Camera")
+    if not isinstance(pose, g.Pose):
+        raise ValueError(f"pose = {pose!r} must be an aerophoto.geometry.Pose")
+    n = check_int_range("n_px", n_px, 16, MAX_PX)
+    v = check_range("vignetting", vignetting, 0.0, 1.0, hi_open=True)
+    bg = check_range("background", background, 0.0, 1.0)
+    tol = check_range("tol_m", tol_m, 1e-6, 1.0, unit="m")
+    if level is None:
+        lev = site.level_for(_ground_pixel_m(site, camera, pose, n))
+    else:
+        lev = check_int_range("level", level, 0, site.n_levels - 1)
+    zmax = float(site.z_max_m)
+    pose.flying_height(zmax)  # S must be above the terrain
+
+    # 1. rays
+    cam = _camera_vectors(camera.f_mm, camera.frame_mm, n)
+    R = g.rotation_matrix(pose)
+    gz = cam @ R[2]
+    if np.any(gz >= 0):
+        raise ValueError(
+            f"some pixels' rays point at or above the horizon (alpha_deg = {pose.alpha_deg:g}, f_mm = "
+            f"{camera.f_mm:g}); the valid range is a tilt with every ray below the horizon, "
+            f"|alpha_deg| < {90.0 - math.degrees(math.atan(camera.half_mm * math.sqrt(2) / camera.f_mm)):.1f}"
+        )
+    s = float(site.dem_spacing_m)
+    ax = (cam @ R[0]) / gz  # dX/dZ along each ray
+    ay = (cam @ R[1]) / gz
+    Sx, Sy, Sz = pose.X_m, pose.Y_m, pose.Z_m
+
+    # 2. coarse: exact, bracketed intersections on a lattice of pixels; interpolate Z; refine
+    idx, A = _coarse_plan(n, COARSE_STEP)
+    grid = _pixel_grid_mm(camera.frame_mm, n)
+    coarse = g.photo_to_dem(camera, pose, grid[np.ix_(idx, idx)], site, tol_m=min(tol, 1e-3) * 0.1)
+    Z = (A @ coarse[..., 2] @ A.T).reshape(-1)
+
+    dem = site.dem
+    coords = np.empty((2, n * n))
+    dz = np.empty(n * n)
+
+    n_eval = [0]
+
+    def height_on_ray(Zv):
+        n_eval[0] += 1
+        np.subtract(Zv, Sz, out=dz)
+        np.multiply(ay, dz, out=coords[0])
+        coords[0] += Sy
+        coords[0] *= 1.0 / s
+        np.multiply(ax, dz, out=coords[1])
+        coords[1] += Sx
+        coords[1] *= 1.0 / s
+        return map_coordinates(dem, coords, order=1, mode="nearest")
+
+    h = height_on_ray(Z)
+    f = Z - h
+    Z_prev = f_prev = None
+    for _ in range(12):
+        if float(np.max(np.abs(f))) <= tol:
+            break
+        if Z_prev is None:
+            Z_new = h  # fixed-point step: move to the height found under the ray
+        else:
+            den = f - f_prev
+            ok = np.abs(den) > 1e-12
+            Z_new = np.where(ok, Z - f * (Z - Z_prev) / np.where(ok, den, 1.0), h)
+        Z_prev, f_prev = Z, f
+        Z = Z_new
+        h = height_on_ray(Z)
+        f = Z - h
+    residual = float(np.max(np.abs(f)))
+    if residual > tol:  # pathological terrain: fall back to the bracketed solver for the stragglers
+        bad = np.abs(f) > tol
+        P = g.photo_to_dem(camera, pose, grid.reshape(-1, 2)[bad], site, tol_m=tol * 0.1)
+        Z[bad] = P[:, 2]
+        h = height_on_ray(Z)
+        f = Z - h
+        residual = float(np.max(np.abs(f)))
+    # ground coordinates of the final heights (coords holds Y/s, X/s of the last evaluation)
+    Xg = coords[1] * s
+    Yg = coords[0] * s
+
+    # 3. brightness
+    t = site.texel_m(lev)
+    tex = site.texture_level(lev)
+    coords[0] = Yg / t - 0.5
+    coords[1] = Xg / t - 0.5
+    img = map_coordinates(tex, coords, order=1, mode="nearest", output=np.float32)
+    img *= np.float32(1.0 / 255.0)
+    x0, x1, y0, y1 = site.extent_m
+    valid = (Xg >= x0) & (Xg <= x1) & (Yg >= y0) & (Yg <= y1)
+    img = img.reshape(n, n)
+    valid = valid.reshape(n, n)
+    if v > 0:
+        img *= _falloff(camera.frame_mm, n, v)
+    if not valid.all():
+        img[~valid] = bg
+    if fiducials:
+        dark, light = _fiducial_mask(n)
+        img[dark] = 0.0
+        img[light] = 1.0
+    ground = None
+    if keep_ground:
+        ground = np.stack([Xg, Yg, Z], axis=-1).reshape(n, n, 3)
+    return Photo(image=img, camera=camera, pose=pose, site=site, valid=valid, level=lev, vignetting=v,
+                 fiducials=bool(fiducials), dem_residual_m=residual, ground_m=ground, number=number,
+                 dem_evaluations=n_eval[0])
+
+
+def render_shot(site, shot, n_px: int = 512, **kwargs) -> Photo:
+    """Render a simulated :class:`aerophoto.simulate.Shot` (its true pose; its number is carried along)."""
+    kwargs.setdefault("number", shot.number)
+    return render(site, shot.camera, shot.pose, n_px, **kwargs)
+
+
+def render_strip(site, strip, n_px: int = 512, **kwargs) -> list:
+    """Render every shot of a strip (or a block's ``shots``), in order; a list of :class:`Photo`."""
+    shots = strip.shots if hasattr(strip, "shots") else list(strip)
+    return [render_shot(site, s, n_px, **kwargs) for s in shots]

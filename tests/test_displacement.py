@@ -1,0 +1,541 @@
+"""Relief and tilt displacement, scales of bases, and the guide's tables 2–7 (guide §4–§5)."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aerophoto import displacement as d
+from aerophoto import geometry as g
+
+S3 = math.sin(math.radians(3.0))
+
+
+# --------------------------------------------------------------------------- formula 5.1 and the scales
+def test_base_scale_formula_5_1():
+    assert d.base_scale(28.0, 18.4) == pytest.approx(28.0 * 10000 / 18.4)  # 15217.39
+    assert d.base_scale(35.3, 26.8) == pytest.approx(13171.64, abs=0.01)  # table 5 prints 13172
+    assert d.base_scale(10.0, 20.0, M=5000) == pytest.approx(2500.0)
+    np.testing.assert_allclose(d.base_scale([28.0, 30.1], [18.4, 19.8]), [15217.391, 15202.020], atol=1e-3)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(l_plan_mm=28.0, l_photo_mm=0.0), "l_photo_mm"),
+    (dict(l_plan_mm=-1.0, l_photo_mm=18.4), "l_plan_mm"),
+    (dict(l_plan_mm=28.0, l_photo_mm=18.4, M=0), "M"),
+])
+def test_base_scale_rejects_bad_input(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        d.base_scale(**kwargs)
+
+
+def test_partial_scales_of_table_2_from_its_inputs():
+    bases = [("I-1", 28.0, 18.4), ("I-2", 30.1, 19.8), ("II-3", 36.0, 24.3), ("II-4", 33.8, 22.9)]
+    t = d.partial_scales(bases)
+    assert t.zones == ("I", "II")
+    m = [28.0e4 / 18.4, 30.1e4 / 19.8, 36.0e4 / 24.3, 33.8e4 / 22.9]
+    np.testing.assert_allclose(t.m_i, m)
+    np.testing.assert_allclose(t.m_part, [(m[0] + m[1]) / 2, (m[2] + m[3]) / 2])
+    assert t.m_mean == pytest.approx((m[0] + m[1] + m[2] + m[3]) / 4)
+    # Δm = m_част − m_cp: zone I (smaller scale, larger m) is positive
+    assert t.dm[0] == pytest.approx(211.19, abs=0.01) and t.dm[1] == pytest.approx(-211.19, abs=0.01)
+    np.testing.assert_allclose(t.ratio_N, [71.02, 71.02], atol=0.01)
+    assert t.spread == pytest.approx(211.19 / 14998.51, rel=1e-4)
+    # rounded like the guide: 15220, 15200, 14810, 14760; 15210, 14790; 15000
+    assert [round(x, -1) for x in t.m_i] == [15220, 15200, 14810, 14760]
+    assert [round(x, -1) for x in t.m_part] == [15210, 14790]
+    assert round(t.m_mean, -1) == 15000
+
+
+def test_scale_table_layout_like_the_guide():
+    t = d.partial_scales([("I-1", 35.3, 26.8), ("I-2", 36.4, 28.2), ("II-3", 40.6, 32.5), ("II-4", 40.1, 31.9),
+                          ("III-5", 29.0, 24.5), ("III-6", 32.1, 27.7)])
+    df = t.table()
+    assert list(df.index) == ["I-1", "I-2", "II-3", "II-4", "III-5", "III-6"]
+    assert list(df.columns) == ["l_пл, mm", "l_сн, mm", "m_i", "m_част", "m_cp", "Δm_i", "Δm_i/m_cp"]
+    # zone values on the zone's last row, m_cp on the middle row (as printed in table 5)
+    assert np.isnan(df.loc["I-1", "m_част"]) and df.loc["I-2", "m_част"] == pytest.approx(t.m_part[0])
+    assert df["m_cp"].notna().sum() == 1 and df.loc["II-3", "m_cp"] == pytest.approx(t.m_mean)
+    assert df.loc["III-6", "Δm_i/m_cp"] == d.ratio_text(t.ratio_N[2]) == "1/17"
+    assert df.loc["I-1", "Δm_i/m_cp"] == ""
+
+
+def test_partial_scales_input_checks():
+    with pytest.raises(ValueError, match="bases"):
+        d.partial_scales([])
+    with pytest.raises(ValueError, match="zone_heights_m"):
+        d.partial_scales([("I-1", 28.0, 18.4)], zone_heights_m=[1, 2])
+    with pytest.raises(ValueError, match="l_photo_mm"):
+        d.Base("I-1", 28.0, -3.0)
+    assert d.Base("III-5", 29.0, 24.5).zone == "III"
+
+
+def test_ratio_text():
+    assert d.ratio_text(71.02) == "1/71"
+    assert d.ratio_text(1482.5) == "1/1500"
+    assert d.ratio_text(math.inf) == "0"
+
+
+# --------------------------------------------------------------------------- relief (formula 4.1)
+def test_mean_object_plane_of_the_guide():
+    zI = d.zone_height([(141, 138), (141, 141)])
+    zII = d.zone_height([(180, 178), (180, 182)])
+    assert zI == pytest.approx(140.25) and zII == pytest.approx(180.0)
+    assert d.mean_object_plane([zI, zII]) == pytest.approx(160.125)
+    with pytest.raises(ValueError, match="base_end_heights_m"):
+        d.zone_height([141, 138])
+    with pytest.raises(ValueError, match="zone_heights_m"):
+        d.mean_object_plane([])
+
+
+def test_flying_height():
+    assert d.flying_height(15000, 100) == pytest.approx(1500.0)
+    with pytest.raises(ValueError, match="m = 0"):
+        d.flying_height(0, 100)
+    with pytest.raises(ValueError, match="f_mm"):
+        d.flying_height(12000, -100)
+
+
+def test_relief_corrections_table_3():
+    r = d.relief_corrections(["I", "1", "2", "II", "3", "4"], [141, 138, 141, 180, 178, 182],
+                             [76, 78, 81, 83, 73, 78], H_m=1500.0, Z_mean_m=160.0)
+    np.testing.assert_allclose(r.h_m, [-19, -22, -19, 20, 18, 22])
+    np.testing.assert_allclose(r.delta_mm, np.array([76 * -19, 78 * -22, 81 * -19, 83 * 20, 73 * 18, 78 * 22]) / 1500)
+    # the guide's printed column, to its 0.1 mm
+    assert list(np.round(r.delta_mm, 1)) == [-1.0, -1.1, -1.0, 1.1, 0.9, 1.1]
+    assert r.n_applied == 6
+    assert r.directions == ("away from n",) * 3 + ("towards n",) * 3
+    df = r.table()
+    assert list(df.columns) == ["Z_i, m", "h, m", "r, mm", "δh, mm", "correction"]
+
+
+def test_relief_threshold_and_zero_height():
+    r = d.relief_corrections(["a", "b", "c"], [100.0, 100.0, 100.2], [80.0, 80.0, 80.0], H_m=1000.0, Z_mean_m=100.0)
+    np.testing.assert_array_equal(r.delta_mm[:2], [0.0, 0.0])  # h = 0 → no displacement
+    assert r.delta_mm[2] == pytest.approx(0.016)
+    assert r.n_applied == 0 and r.directions == ("not applied",) * 3
+    # exactly 0.2 mm is not "more than 0.2 mm"
+    r2 = d.relief_corrections(["a"], [10.0], [20.0], H_m=1000.0, Z_mean_m=0.0)
+    assert r2.delta_mm[0] == pytest.approx(0.2) and not r2.apply[0]
+
+
+def test_relief_corrections_input_checks():
+    with pytest.raises(ValueError, match="r_mm"):
+        d.relief_corrections(["a"], [100], [-5], H_m=1000)
+    with pytest.raises(ValueError, match="lengths"):
+        d.relief_corrections(["a", "b"], [100], [5], H_m=1000)
+    with pytest.raises(ValueError, match="H_m"):
+        d.relief_corrections(["a"], [100], [5], H_m=0)
+
+
+def test_relief_vectors_on_a_vertical_photo_are_exactly_r_h_over_H():
+    cam = g.Camera(150.0)
+    pose = g.Pose.vertical(100.0, -50.0, 1800.0, ground_Z_m=200.0)  # S at 2000 m, mean plane 200 m
+    rng = np.random.default_rng(3)
+    XY = rng.uniform(-700, 700, size=(40, 2)) + [100.0, -50.0]
+    Z = 200.0 + rng.uniform(-150, 250, size=40)
+    P = np.column_stack([XY, Z])
+    xy, xy0 = d.relief_displacement_vectors(cam, pose, P, Z_mean_m=200.0)
+    n = g.nadir_point(cam, pose)
+    r = np.hypot(*(xy - n).T)
+    delta = g.relief_displacement(r, Z - 200.0, 1800.0)
+    np.testing.assert_allclose(np.hypot(*(xy - n).T) - np.hypot(*(xy0 - n).T), delta, atol=1e-9)
+    # correcting the actual images by δh (threshold 0) puts them back on the mean plane's images
+    np.testing.assert_allclose(d.apply_radial_corrections(xy, n, delta, threshold_mm=0.0), xy0, atol=1e-9)
+    # h = 0: no displacement at all
+    xy_a, xy_b = d.relief_displacement_vectors(cam, pose, np.column_stack([XY, np.full(40, 200.0)]), 200.0)
+    np.testing.assert_allclose(xy_a, xy_b, atol=1e-12)
+
+
+def test_relief_vectors_on_a_tilted_photo_are_radial_from_the_nadir():
+    cam = g.Camera(100.0)
+    pose = g.Pose(0, 0, 1200, alpha_deg=6, lambda_deg=-50)
+    f = d.displacement_field(100, 12000, 6, -50, 120)
+    v = f.relief_vectors_mm
+    w = f.grid_mm - g.nadir_point(cam, pose)
+    cross = v[:, 0] * w[:, 1] - v[:, 1] * w[:, 0]
+    assert np.max(np.abs(cross)) < 1e-9 * np.max(np.hypot(*w.T)) * 1e3
+    assert np.max(np.hypot(*v.T)) > 1.0
+    # hills are displaced away from n, the valley towards it
+    outward = np.sum(v * w, axis=1)
+    assert np.all(np.sign(outward[np.abs(f.h_m) > 5]) == np.sign(f.h_m[np.abs(f.h_m) > 5]))
+
+
+# --------------------------------------------------------------------------- tilt (guide §5)
+def test_isocentre_and_nadir_offsets():
+    assert d.isocentre_offset(100, 3) == pytest.approx(-100 * math.tan(math.radians(1.5)))
+    assert round(d.isocentre_offset(100, 3), 1) == -2.6  # the guide's −2.6 mm
+    assert d.nadir_offset(100, 3) == pytest.approx(-100 * math.tan(math.radians(3)))
+    with pytest.raises(ValueError, match="alpha_deg"):
+        d.isocentre_offset(100, 95)
+
+
+def test_tilt_corrections_guide_formula_and_exact():
+    t = d.tilt_corrections(["I", "II", "3"], [67.0, 24.6, 9.5], [7, 186, 135], f_mm=100, alpha_deg=3)
+    cosp = np.cos(np.radians([7, 186, 135]))
+    r = np.array([67.0, 24.6, 9.5])
+    np.testing.assert_allclose(t.delta_approx_mm, -(r**2) * cosp / 100 * S3, rtol=1e-12)
+    np.testing.assert_allclose(t.delta_exact_mm, -(r**2) * cosp * S3 / (100 - r * cosp * S3), rtol=1e-12)
+    assert t.delta_approx_mm[0] == pytest.approx(-2.332, abs=1e-3)
+    assert list(t.apply) == [True, True, False]
+    assert t.directions == ("away from c", "towards c", "not applied")
+    assert t.oc_mm == pytest.approx(-2.6186, abs=1e-4)
+    assert list(t.table().columns) == ["r_c, mm", "φ, °", "cos φ", "δα, mm", "δα exact, mm", "correction"]
+
+
+def test_tilt_corrections_input_checks():
+    with pytest.raises(ValueError, match="r_c_mm"):
+        d.tilt_corrections(["a"], [-1.0], [0.0])
+    with pytest.raises(ValueError, match="f_mm"):
+        d.tilt_corrections(["a"], [10.0], [0.0], f_mm=0)
+    with pytest.raises(ValueError, match="alpha_deg"):
+        d.tilt_corrections(["a"], [10.0], [0.0], alpha_deg=90)
+    with pytest.raises(ValueError, match="lengths"):
+        d.tilt_corrections(["a", "b"], [10.0], [0.0])
+
+
+@settings(max_examples=60, deadline=None)
+@given(r=st.floats(5, 120), phi=st.floats(0, 360), f=st.floats(70, 500))
+def test_exact_tilt_displacement_tends_to_the_guide_formula(r, phi, f):
+    errs = []
+    for a in (1.0, 0.1, 0.01):
+        t = d.tilt_corrections(["p"], [r], [phi], f_mm=f, alpha_deg=a)
+        ex, ap = t.delta_exact_mm[0], t.delta_approx_mm[0]
+        # the two differ by the factor 1/(1 − r·cos φ·sin α/f) only
+        bound = abs(ap) * 2.0 * r * math.sin(math.radians(a)) / f + 1e-15
+        assert abs(ex - ap) <= bound
+        errs.append(abs(ex - ap))
+    assert errs[2] <= errs[1] <= errs[0]
+    t0 = d.tilt_corrections(["p"], [r], [phi], f_mm=f, alpha_deg=0.0)
+    assert t0.delta_exact_mm[0] == 0.0 and t0.delta_approx_mm[0] == 0.0
+
+
+@settings(max_examples=40, deadline=None)
+@given(r=st.floats(0.5, 120), phi=st.floats(0, 359.9), lam=st.floats(-180, 180), a=st.floats(0, 15))
+def test_polar_coordinates_about_c_round_trip(r, phi, lam, a):
+    cam = g.Camera(120.0)
+    pose = g.Pose(alpha_deg=a, lambda_deg=lam)
+    xy = d.point_from_polar(cam, pose, r, phi)
+    r2, phi2 = d.polar_about_isocentre(cam, pose, xy)
+    assert r2 == pytest.approx(r, abs=1e-9)
+    assert ((phi2 - phi + 180) % 360 - 180) == pytest.approx(0.0, abs=1e-7)
+
+
+def test_tilt_vectors_are_radial_from_c_and_match_the_closed_form():
+    f = d.displacement_field(120, 15000, 8, 30, 0.0)
+    v = f.tilt_vectors_mm
+    w = f.grid_mm - f.c_mm
+    cross = v[:, 0] * w[:, 1] - v[:, 1] * w[:, 0]
+    assert np.max(np.abs(cross)) < 1e-8
+    cam, pose = f.camera, f.pose
+    np.testing.assert_allclose(f.tilt_exact_mm, g.tilt_displacement_exact(cam, pose, f.grid_mm), atol=1e-9)
+    np.testing.assert_allclose(f.tilt_approx_mm, g.tilt_displacement_approx(cam, pose, f.grid_mm), atol=1e-12)
+    # far side (cos φ > 0) pulled towards c, near side pushed away
+    _, phi = d.polar_about_isocentre(cam, pose, f.grid_mm)
+    cosp = np.cos(np.radians(phi))
+    big = np.abs(cosp) > 0.2
+    assert np.all(np.sign(f.tilt_exact_mm[big]) == -np.sign(cosp[big]))
+    # correcting the tilted images by the exact δα (threshold 0) gives the vertical photo's images
+    back = d.apply_radial_corrections(f.grid_mm, f.c_mm, f.tilt_exact_mm, threshold_mm=0.0)
+    np.testing.assert_allclose(back, f.xy_vertical_mm, atol=1e-9)
+
+
+def test_apply_radial_corrections_direction_and_threshold():
+    xy = np.array([[10.0, 0.0], [0.0, 20.0], [-30.0, 0.0]])
+    out = d.apply_radial_corrections(xy, [0.0, 0.0], [0.5, -0.3, 0.2])
+    np.testing.assert_allclose(out, [[9.5, 0.0], [0.0, 20.3], [-30.0, 0.0]])  # + towards, − away, 0.2 kept
+    with pytest.raises(ValueError, match="threshold_mm"):
+        d.apply_radial_corrections(xy, [0, 0], [0, 0, 0], threshold_mm=-1)
+
+
+# --------------------------------------------------------------------------- the field of the demo
+def test_field_limiting_cases():
+    flat = d.displacement_field(100, 12000, 4, -60, 0.0)
+    np.testing.assert_allclose(flat.relief_vectors_mm, 0.0, atol=1e-12)
+    vertical = d.displacement_field(100, 12000, 0.0, -60, 80.0)
+    np.testing.assert_allclose(vertical.tilt_vectors_mm, 0.0, atol=1e-12)
+    np.testing.assert_allclose(vertical.n_mm, 0.0, atol=1e-12)
+    np.testing.assert_allclose(vertical.c_mm, 0.0, atol=1e-12)
+    # on a vertical photo r·h/H (r to the actual image) is the exact relief displacement
+    np.testing.assert_allclose(vertical.relief_formula_mm, vertical.relief_exact_mm, atol=1e-9)
+    s = vertical.summary()
+    assert s["max_tilt_exact_mm"] == 0.0 and s["max_tilt_error_percent"] == 0.0
+    assert s["max_relief_error_mm"] < 1e-9 and s["H_m"] == pytest.approx(1200.0)
+
+
+def test_field_summary_numbers():
+    f = d.displacement_field(100, 12000, 3, -60, 60)
+    s = f.summary()
+    assert s["on_mm"] == pytest.approx(100 * math.tan(math.radians(3)))
+    assert s["oc_mm"] == pytest.approx(-100 * math.tan(math.radians(1.5)))
+    # the guide's formula misses the exact tilt displacement by a few per cent at α = 3°
+    assert 0.5 < s["max_tilt_error_percent"] < 15
+    assert s["max_tilt_exact_mm"] > s["max_tilt_approx_mm"] * 0.9
+    assert s["max_relief_exact_mm"] == pytest.approx(np.max(np.abs(f.relief_exact_mm)))
+    assert f.table().shape == (11, 2)
+    bigger = d.displacement_field(100, 12000, 10, -60, 60).summary()
+    assert bigger["max_tilt_error_percent"] > s["max_tilt_error_percent"]
+
+
+def test_field_input_checks():
+    with pytest.raises(ValueError, match="relief_m"):
+        d.displacement_field(100, 12000, 3, 0, 1200.0)  # as high as the camera
+    with pytest.raises(ValueError, match="grid_n"):
+        d.displacement_field(grid_n=1)
+    with pytest.raises(ValueError, match="alpha_deg"):
+        d.displacement_field(alpha_deg=-95)
+
+
+def test_analytic_hills():
+    hills = d.AnalyticHills(relief_m=50.0, half_side_m=900.0, X0_m=100.0, Y0_m=-200.0, Z0_m=150.0)
+    t = np.linspace(-1, 1, 201)
+    U, V = np.meshgrid(t, t)
+    Z = hills.height(100.0 + 900.0 * U, -200.0 + 900.0 * V)
+    assert Z.mean() == pytest.approx(150.0, abs=1e-9)  # the mean object plane of the square
+    assert np.max(np.abs(Z - 150.0)) == pytest.approx(50.0, rel=1e-9)
+    assert hills.z_min_m < Z.min() and hills.z_max_m > Z.max()
+    np.testing.assert_array_equal(Z, d.AnalyticHills(50.0, 900.0, 100.0, -200.0, 150.0).height(
+        100.0 + 900.0 * U, -200.0 + 900.0 * V))  # deterministic
+    flat = d.AnalyticHills(relief_m=0.0)
+    assert np.all(flat.height(U, V) == 0.0)
+    # usable as a DEM by the camera model: photo → terrain → photo round trip
+    cam = g.Camera(100.0)
+    pose = g.Pose(100.0, -200.0, 1500.0, alpha_deg=3, lambda_deg=20)
+    xy = np.array([[10.0, -20.0], [60.0, 55.0], [-70.0, 5.0]])
+    P = g.photo_to_dem(cam, pose, xy, hills, tol_m=1e-7)
+    np.testing.assert_allclose(P[:, 2], hills.height(P[:, 0], P[:, 1]), atol=1e-5)
+    np.testing.assert_allclose(g.ground_to_photo(cam, pose, P), xy, atol=1e-5)
+    with pytest.raises(ValueError, match="relief_m"):
+        d.AnalyticHills(relief_m=-1)
+
+
+# --------------------------------------------------------------------------- the guide's tables 2–7
+#: the cells whose printed value does not follow from the printed inputs (see the module's reasons)
+EXPECTED_DISCREPANCIES = {
+    (2, "I-2", "m_i"), (2, "I", "Δm_i"), (2, "II", "Δm_i"), (2, "I", "Δm_i/m_cp"), (2, "II", "Δm_i/m_cp"),
+    (4, "I-1", "m_i"), (4, "I", "m_част"), (4, "I", "Δm_i"), (4, "II", "Δm_i"), (4, "I", "Δm_i/m_cp"),
+    (4, "II", "Δm_i/m_cp"),
+    (5, "I-2", "m_i"), (5, "III-6", "m_i"), (5, "I", "m_част"), (5, "III", "m_част"), (5, "", "m_cp"),
+    (5, "I", "Δm_i"), (5, "II", "Δm_i"), (5, "III", "Δm_i"),
+    (5, "I", "Δm_i/m_cp"), (5, "II", "Δm_i/m_cp"), (5, "III", "Δm_i/m_cp"),
+    (6, "I", "δα"), (6, "1", "δα"), (6, "2", "δα"), (6, "III", "δα"), (6, "5", "δα"), (6, "6", "δα"),
+    (7, "I", "Δm_i"), (7, "II", "Δm_i"), (7, "III", "Δm_i"), (7, "II", "Δm_i/m_cp"), (7, "III-6", "l_сн"),
+}
+
+
+def test_exactly_the_listed_cells_do_not_follow():
+    flagged = set()
+    for n in range(2, 8):
+        t = d.guide_table(n)
+        for c in t.checks:
+            assert c.tol > 0
+            if c.ok:
+                assert abs(c.printed - c.computed) <= c.tol and c.reason == ""
+            else:
+                flagged.add(c.key)
+                assert abs(c.printed - c.computed) > c.tol
+                assert c.reason and "does not follow from its printed inputs" not in c.reason  # explained
+    assert flagged == EXPECTED_DISCREPANCIES
+    assert set(d._REASONS) == EXPECTED_DISCREPANCIES  # every reason written is for a flagged cell
+    df = d.guide_discrepancies()
+    assert len(df) == len(EXPECTED_DISCREPANCIES)
+    assert set(df.columns) == {"table", "row", "column", "printed", "computed", "reason"}
+
+
+def test_table_3_is_right():
+    t = d.guide_table(3)
+    assert t.discrepancies == ()
+    assert t.result.H_m == pytest.approx(d.guide_table(2).result.m_mean * 0.1)  # H = m_cp·f ≈ 1500 m
+    assert t.result.Z_mean_m == pytest.approx(160.125)
+    np.testing.assert_allclose(t.result.delta_mm, [-0.969, -1.151, -1.033, 1.100, 0.870, 1.138], atol=5e-4)
+    # with the flight's H = 1200 m (§2) the printed column would not follow
+    wrong = d.relief_corrections(t.result.names, t.result.Z_m, t.result.r_mm, 1200.0, 160.125)
+    assert abs(wrong.delta_mm[0] - (-1.0)) > 0.1
+
+
+def test_table_2_and_4_numbers():
+    t2 = d.guide_table(2).result
+    assert t2.m_i[1] == pytest.approx(15202.02, abs=0.01)  # printed 15220
+    t4 = d.guide_table(4).result
+    assert t4.m_i[0] == pytest.approx(14973.26, abs=0.01)  # printed 15010
+    assert t4.m_mean == pytest.approx(14994.75, abs=0.01)
+    assert t4.ratio_N[0] == pytest.approx(888.4, abs=0.1)
+    # the corrected lengths of table 4 do follow from tables 2 and 3 (radial scaling about n)
+    lengths = [c for c in d.guide_table(4).checks if c.column == "l_сн"]
+    assert len(lengths) == 4 and all(c.ok for c in lengths)
+
+
+def test_table_5_and_7_numbers():
+    t5 = d.guide_table(5).result
+    assert t5.m_i[1] == pytest.approx(12907.80, abs=0.01)
+    assert t5.m_i[5] == pytest.approx(11588.45, abs=0.01)
+    assert 32.1e4 / 27.3 == pytest.approx(11758, abs=0.5)  # the printed m_i fits l_сн = 27.3 mm
+    t7 = d.guide_table(7).result
+    assert [round(x) for x in t7.m_i] == [12698, 12595, 12492, 12571, 12393, 12490]
+    assert round(t7.m_mean) == 12540
+    np.testing.assert_allclose(t7.dm, [106.62, -8.46, -98.16], atol=0.01)
+
+
+def test_table_6_and_its_best_reading():
+    t = d.guide_table(6)
+    res = t.result
+    np.testing.assert_allclose(res.delta_approx_mm, -(np.array(res.r_c_mm) ** 2) * res.cos_phi / 100 * S3)
+    assert res.n_applied == 7  # all but 3 and 4
+    fit = d.table6_fit()
+    assert fit.k_lo < fit.k_lsq < fit.k_hi
+    assert not (fit.k_lo <= S3 / 100 <= fit.k_hi)  # the stated f = 100 mm, α = 3° does not reproduce it
+    lo, hi = fit.f_range_mm
+    assert lo < 117 < hi and not (lo <= 100 <= hi) and not (lo <= 120 <= hi)
+    alo, ahi = fit.alpha_range_deg
+    assert alo < 2.57 < ahi and not (alo <= 2.5 <= ahi)
+    cand = fit.candidates
+    assert cand.loc["the guide's inputs: f = 100 mm, α = 3°", "matches (of 9)"] == 3
+    assert cand.loc["f = 117 mm, α = 3°", "matches (of 9)"] == 9
+    assert cand["matches (of 9)"].max() == 9
+    # every k in the range reproduces the printed column after rounding
+    r = np.array(res.r_c_mm)
+    cos_printed = np.array([0.992, 0.987, 0.956, -0.994, -0.707, -0.104, -0.961, -0.990, -0.965])
+    printed = np.array([-2.0, -0.8, -1.5, 0.3, 0.0, 0.0, 0.6, 0.8, 0.4])
+    for k in np.linspace(fit.k_lo, fit.k_hi, 7)[1:-1]:
+        np.testing.assert_allclose(np.round(-k * r**2 * cos_printed, 1), printed, atol=1e-9)
+
+
+def test_guide_table_objects():
+    for n in range(2, 8):
+        t = d.guide_table(n)
+        assert t.number == n and t.title.startswith(f"Table {n}")
+        html = t._repr_html_()
+        assert "computed by aerophoto" in html
+        assert len(t.printed) == len(t.table())
+        disp = t.display_table()
+        assert disp.shape == t.table().shape
+        comp = t.comparison(only_discrepancies=False)
+        assert len(comp) == len(t.checks)
+    assert "Окончание табл. 3" in " ".join(d.guide_table(6).notes)
+    with pytest.raises(ValueError, match="number"):
+        d.guide_table(8)
+
+
+# --------------------------------------------------------------------------- the lab tasks' answers
+def test_relief_lab_for_the_guide_variant():
+    from aerophoto.variants import variant_for_index
+
+    lab = d.relief_lab(variant_for_index(0))
+    assert lab.Z_mean_m == pytest.approx(160.125)
+    assert lab.H_m == pytest.approx(1200.0)
+    n = -100 * math.tan(math.radians(3)) * np.array([math.cos(math.radians(-60)), math.sin(math.radians(-60))])
+    np.testing.assert_allclose(lab.n_mm, n)
+    r1 = math.hypot(-70.0 - n[0], 35.0 - n[1])
+    assert lab.result.r_mm[1] == pytest.approx(r1)
+    assert lab.result.delta_mm[1] == pytest.approx(r1 * (138 - 160.125) / 1200.0)
+    assert lab.result.n_applied == 6
+    assert lab.delta_from_o_mm()[1] == pytest.approx(math.hypot(-70, 35) * (138 - 160.125) / 1200.0)
+    assert list(lab.inputs().columns) == ["x, mm", "y, mm", "Z, m"]
+
+
+def test_relief_lab_depends_on_the_variant():
+    from aerophoto.variants import variant_for_index
+
+    a, b = d.relief_lab(variant_for_index(7)), d.relief_lab(variant_for_index(50))
+    assert a.Z_mean_m == pytest.approx(167.125) and b.Z_mean_m == pytest.approx(210.125)
+    np.testing.assert_allclose(a.result.h_m, b.result.h_m)  # the same relief, shifted
+    assert b.result.n_applied < a.result.n_applied  # higher flight, smaller displacements
+
+
+def test_tilt_lab():
+    from aerophoto.variants import variant_for_index
+
+    v = variant_for_index(23)
+    lab = d.tilt_lab(v)
+    oc = -v.f_mm * math.tan(math.radians(v.alpha_deg / 2))
+    assert lab.oc_mm == pytest.approx(oc)
+    lam = math.radians(v.lambda_deg)
+    c = oc * np.array([math.cos(lam), math.sin(lam)])
+    np.testing.assert_allclose(lab.c_mm, c)
+    dx, dy = 70.0 - c[0], -15.0 - c[1]
+    assert lab.r_c_mm == pytest.approx(math.hypot(dx, dy))
+    phi = (math.degrees(math.atan2(dy, dx)) - v.lambda_deg) % 360
+    assert lab.phi_deg == pytest.approx(phi)
+    expected = -(lab.r_c_mm**2) * math.cos(math.radians(phi)) / v.f_mm * S3
+    assert lab.delta_mm == pytest.approx(expected)
+    assert abs(lab.delta_exact_mm - lab.delta_mm) < 0.05 * abs(lab.delta_mm)
+    assert lab.table6.f_mm == v.f_mm and lab.table6.n_applied == 5
+    # the typical mistakes give different numbers, so the checks can recognise them
+    assert abs(lab.delta_from_o_mm - lab.delta_mm) > 0.05
+    assert abs(lab.delta_phi_from_x_mm - lab.delta_mm) > 0.01
+
+
+def test_angle_answer():
+    assert d.angle_answer(-1.5) == pytest.approx(358.5)
+    assert d.angle_answer(725) == pytest.approx(5.0)
+    assert d.angle_answer(...) is Ellipsis and d.angle_answer(None) is None
+
+
+# --------------------------------------------------------------------------- the notebooks' checks name the mistakes
+def _check_cell(notebook: str, cell_id: str) -> str:
+    from conftest import NOTEBOOKS
+
+    from aerophoto import nbtools
+
+    nb = nbtools.read(NOTEBOOKS / notebook)
+    return nbtools.find_cell(nb, cell_id)[1].source
+
+
+def _run_check(src: str, **namespace):
+    from aerophoto import checks
+
+    ns = {"displacement": d, **namespace}
+    try:
+        exec(compile(src, "<check>", "exec"), ns)
+    except checks.WrongAnswer as exc:
+        return str(exc)
+    return "passed"
+
+
+@pytest.mark.parametrize("i", [0, 23])
+def test_relief_task_checks_recognise_typical_mistakes(i, capsys):
+    from aerophoto.variants import variant_for_index
+
+    v = variant_for_index(i)
+    lab = d.relief_lab(v)
+    src = _check_cell("03_relief_displacement.ipynb", "task-03-2-check")
+    res = lab.result
+    good = dict(v=v, lab=lab, r1_mm=res.r_mm[1], dh1_mm=res.delta_mm[1], n_corr=res.n_applied)
+    assert _run_check(src, **good) == "passed"
+    assert "nadir point n" in _run_check(src, **{**good, "r1_mm": lab.r_from_o_mm[1]})
+    assert "nadir point n" in _run_check(src, **{**good, "dh1_mm": lab.delta_from_o_mm()[1]})
+    assert "sign" in _run_check(src, **{**good, "dh1_mm": -res.delta_mm[1]})
+    assert "mean object plane" in _run_check(src, **{**good, "dh1_mm": lab.delta_absolute_h_mm()[1]})
+    assert "no answer yet" in _run_check(src, **{**good, "r1_mm": ...})
+    assert "n_corr" in _run_check(src, **{**good, "n_corr": res.n_applied + 1})
+    other = d.relief_lab(variant_for_index(i + 5)).result
+    assert "variant" in _run_check(src, **{**good, "r1_mm": other.r_mm[1]})
+
+
+@pytest.mark.parametrize("i", [0, 23])
+def test_tilt_task_checks_recognise_typical_mistakes(i, capsys):
+    from aerophoto.variants import variant_for_index
+
+    v = variant_for_index(i)
+    lab = d.tilt_lab(v)
+    src1 = _check_cell("04_tilt_displacement.ipynb", "task-04-1-check")
+    good1 = dict(v=v, oc_mm=lab.oc_mm, xc_mm=lab.c_mm[0], yc_mm=lab.c_mm[1])
+    assert _run_check(src1, **good1) == "passed"
+    assert "sign" in _run_check(src1, **{**good1, "oc_mm": -lab.oc_mm})
+    assert "α/2" in _run_check(src1, **{**good1, "oc_mm": d.nadir_offset(v.f_mm, v.alpha_deg)})
+    src2 = _check_cell("04_tilt_displacement.ipynb", "task-04-2-check")
+    good2 = dict(v=v, rcA_mm=lab.r_c_mm, phiA_deg=lab.phi_deg, dA_mm=lab.delta_mm)
+    assert _run_check(src2, **good2) == "passed"
+    assert _run_check(src2, **{**good2, "phiA_deg": lab.phi_deg - 360.0}) == "passed"  # any turn of 360°
+    assert "isocentre c" in _run_check(src2, **{**good2, "rcA_mm": lab.r_from_o_mm})
+    assert "x axis" in _run_check(src2, **{**good2, "phiA_deg": lab.phi_from_x_deg})
+    assert "counter-clockwise" in _run_check(src2, **{**good2, "phiA_deg": 360.0 - lab.phi_deg})
+    assert "isocentre c" in _run_check(src2, **{**good2, "dA_mm": lab.delta_from_o_mm})
+    assert "sign" in _run_check(src2, **{**good2, "dA_mm": -lab.delta_mm})
+    src3 = _check_cell("04_tilt_displacement.ipynb", "task-04-3-check")
+    good3 = dict(v=v, dI_mm=lab.table6.delta_approx_mm[0], n_corr=lab.table6.n_applied)
+    assert _run_check(src3, **good3) == "passed"
+    if v.f_mm != 100:
+        assert "f = 100 mm" in _run_check(src3, **{**good3, "dI_mm": d.guide_table(6).result.delta_approx_mm[0]})

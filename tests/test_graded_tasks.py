@@ -1,0 +1,483 @@
+"""The graded-task convention (docs/CONTRIBUTING.md, "Graded tasks") holds in every notebook.
+
+The notebooks in notebooks/ are nbgrader's *source*; these tests read them as nbgrader will and check
+what nbgrader itself does not: ids, metadata, solution and hidden-test markers, template lines, the
+checks used, what the student version looks like, and that it runs for a student who has not answered.
+"""
+
+from __future__ import annotations
+
+import ast
+import io
+import re
+import tokenize
+
+import nbformat
+import pytest
+
+from aerophoto.course import graded_tasks, student_version
+from conftest import all_notebooks
+
+NOTEBOOKS = all_notebooks()
+IDS = [p.stem for p in NOTEBOOKS]
+CHAPTERS = [p for p in NOTEBOOKS if re.match(r"^\d\d_", p.name)]
+
+ANSWER_META = {"grade": False, "locked": False, "schema_version": 3, "solution": True, "task": False}
+TEST_META = {"grade": True, "locked": True, "schema_version": 3, "solution": False, "task": False}
+TEMPLATE = re.compile(r"^([A-Za-z_]\w*)\s*=\s*\.\.\.\s*(#.*)?$")
+CHECK_CALL = re.compile(r"\bchecks\.(check_value|check_values|check_count|check_bool|check_choice)\(")
+
+
+def read(path):
+    return nbformat.read(str(path), as_version=4)
+
+
+def nbg(cell) -> dict:
+    return dict(cell.metadata.get("nbgrader", {}))
+
+
+def number(path) -> str | None:
+    m = re.match(r"^(\d\d)_", path.name)
+    return m.group(1) if m else None
+
+
+def split_answer(src: str):
+    """(lines before BEGIN SOLUTION, solution lines, lines after END SOLUTION) or None if unmarked."""
+    lines = src.splitlines()
+    begins = [i for i, ln in enumerate(lines) if "BEGIN SOLUTION" in ln]
+    ends = [i for i, ln in enumerate(lines) if "END SOLUTION" in ln]
+    if len(begins) != 1 or len(ends) != 1 or ends[0] < begins[0]:
+        return None
+    return lines[: begins[0]], lines[begins[0] + 1: ends[0]], lines[ends[0] + 1:]
+
+
+def split_test(src: str):
+    """(visible lines, hidden lines, lines after END HIDDEN TESTS) or None if unmarked."""
+    lines = src.splitlines()
+    begins = [i for i, ln in enumerate(lines) if "BEGIN HIDDEN TESTS" in ln]
+    ends = [i for i, ln in enumerate(lines) if "END HIDDEN TESTS" in ln]
+    if len(begins) != 1 or len(ends) != 1 or ends[0] < begins[0]:
+        return None
+    return lines[: begins[0]], lines[begins[0] + 1: ends[0]], lines[ends[0] + 1:]
+
+
+def template_names(answer_src: str) -> list[str]:
+    parts = split_answer(answer_src)
+    if parts is None:
+        return []
+    return [m.group(1) for ln in parts[0] if (m := TEMPLATE.match(ln.strip()))]
+
+
+def assigned_names(code: str) -> set[str]:
+    names = set()
+    for node in ast.walk(ast.parse(code)):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            names.add(node.id)
+    return names
+
+
+def loaded_names(code: str) -> set[str]:
+    return {n.id for n in ast.walk(ast.parse(code)) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+
+
+def displays_a_value(code: str) -> bool:
+    """Would IPython show the value of this cell's last statement (nbgrader reads it as partial credit)?"""
+    body = ast.parse(code).body
+    if not body or not isinstance(body[-1], ast.Expr):
+        return False
+    last = body[-1].value
+    if isinstance(last, ast.Call) and isinstance(last.func, ast.Attribute) and last.func.attr == "task_passed":
+        return False  # returns None: nothing is displayed
+    # IPython's rule: a trailing ';' (comments after it do not count) silences the value
+    skip = {tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.ENDMARKER, tokenize.INDENT, tokenize.DEDENT}
+    toks = [t for t in tokenize.generate_tokens(io.StringIO(code).readline) if t.type not in skip]
+    return not (toks and toks[-1].string == ";")
+
+
+def task_cells(nb):
+    """[(answer_index, answer_cell, test_index or None, test_cell or None)] for every answer cell."""
+    out = []
+    for i, c in enumerate(nb.cells):
+        if nbg(c).get("solution"):
+            nxt = nb.cells[i + 1] if i + 1 < len(nb.cells) else None
+            is_test = nxt is not None and nbg(nxt).get("grade") and not nbg(nxt).get("solution")
+            out.append((i, c, i + 1 if is_test else None, nxt if is_test else None))
+    return out
+
+
+# --------------------------------------------------------------------------------------------------
+
+
+def test_there_are_graded_tasks():
+    assert any(graded_tasks(read(p)) for p in NOTEBOOKS)
+    assert [t.check_id for t in graded_tasks(read(next(p for p in NOTEBOOKS if p.stem == "00_start_here")))] == [
+        "task-00-1-check"]
+
+
+def lint_unique(named_notebooks) -> list[str]:
+    """Duplicate grade_ids across the book ([(name, nb)]); the gradebook has one column per grade_id."""
+    seen: dict[str, str] = {}
+    dupes = []
+    for name, nb in named_notebooks:
+        for c in nb.cells:
+            gid = nbg(c).get("grade_id")
+            if gid is None:
+                continue
+            if gid in seen:
+                dupes.append(f"{gid} in {seen[gid]} and {name}")
+            seen[gid] = name
+    return dupes
+
+
+def test_grade_ids_are_unique_across_the_book():
+    dupes = lint_unique([(p.name, read(p)) for p in NOTEBOOKS])
+    assert not dupes, f"duplicate nbgrader grade_ids (the gradebook has one column per grade_id): {dupes}"
+
+
+def lint_setup(nb, path) -> list[str]:
+    code = [c for c in nb.cells if c.cell_type == "code"]
+    if not code or code[0].get("id") != "setup":
+        return ["the first code cell must have id 'setup'"]
+    setup = code[0]
+    problems = []
+    if "nbgrader" in setup.metadata:
+        problems.append("the setup cell must not be an nbgrader cell (students type their number in it)")
+    try:
+        tree = ast.parse(setup.source)
+    except SyntaxError as exc:
+        return problems + [f"the setup cell is not valid Python ({exc.msg})"]
+    decl = [n for n in tree.body if isinstance(n, ast.Assign)
+            and any(isinstance(t, ast.Name) and t.id == "RECORD_BOOK" for t in n.targets)]
+    if not decl:
+        problems.append("the setup cell must declare RECORD_BOOK = None")
+    elif not (isinstance(decl[0].value, ast.Constant) and decl[0].value.value is None):
+        problems.append("the book ships with RECORD_BOOK = None (each student types their own number)")
+    if not re.search(r"\bv\s*=\s*aerophoto\.setup\(RECORD_BOOK\)", setup.source):
+        problems.append("the setup cell must call v = aerophoto.setup(RECORD_BOOK)")
+    return problems
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=[p.stem for p in CHAPTERS])
+def test_setup_cell_declares_record_book_and_is_not_graded(path):
+    problems = lint_setup(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+
+def lint_metadata(nb, path) -> list[str]:
+    nn = number(path)
+    problems = []
+    for c in nb.cells:
+        m = nbg(c)
+        if not m:
+            continue
+        gid = m.get("grade_id", "")
+        base = {k: m.get(k) for k in ANSWER_META}
+        if m.get("solution"):
+            if base != ANSWER_META or "points" in m:
+                problems.append(f"{gid}: answer-cell metadata {m} != {ANSWER_META} + grade_id")
+            if not re.fullmatch(rf"task-{nn}-\d+-answer", gid or ""):
+                problems.append(f"{gid!r}: an answer cell's grade_id is task-{nn}-k-answer")
+        elif m.get("grade"):
+            if base != TEST_META:
+                problems.append(f"{gid}: test-cell metadata {m} != {TEST_META} + grade_id + points")
+            if not re.fullmatch(rf"task-{nn}-\d+-check", gid or ""):
+                problems.append(f"{gid!r}: a test cell's grade_id is task-{nn}-k-check")
+            pts = m.get("points")
+            if not isinstance(pts, (int, float)) or isinstance(pts, bool) or not pts > 0:
+                problems.append(f"{gid}: points = {pts!r}; a test cell is worth a positive number of points")
+        else:
+            problems.append(f"{c.get('id')}: nbgrader cell that is neither an answer nor an autograded test "
+                            f"(the book has no manually graded or task cells): {m}")
+        if c.cell_type != "code":
+            problems.append(f"{gid}: graded cells are code cells")
+        if gid and c.get("id") != gid:
+            problems.append(f"{gid}: the cell id must equal the grade_id (it is {c.get('id')!r})")
+    return problems
+
+
+def lint_pairing(nb, path) -> list[str]:
+    ids = [c.get("id") for c in nb.cells]
+    problems = []
+    for i, ans, _, test in task_cells(nb):
+        task = nbg(ans)["grade_id"].removesuffix("-answer")
+        if test is None:
+            problems.append(f"{task}: the cell after the answer cell must be its test cell")
+        elif nbg(test).get("grade_id") != f"{task}-check":
+            problems.append(f"{task}: the test cell after it is {nbg(test).get('grade_id')!r}, not {task}-check")
+        if task not in ids[:i] or nb.cells[ids.index(task)].cell_type != "markdown":
+            problems.append(f"{task}: a markdown cell with id {task!r} (the task text) must come before the answer")
+    tests = [c for c in nb.cells if nbg(c).get("grade") and not nbg(c).get("solution")]
+    paired = {nbg(t).get("grade_id") for _, _, _, t in task_cells(nb) if t is not None}
+    for t in tests:
+        if nbg(t).get("grade_id") not in paired:
+            problems.append(f"{nbg(t).get('grade_id')}: a test cell without an answer cell just before it")
+    return problems
+
+
+def lint_answers(nb, path) -> list[str]:
+    problems = []
+    for _, ans, _, _ in task_cells(nb):
+        gid = nbg(ans)["grade_id"]
+        parts = split_answer(ans.source)
+        if parts is None:
+            problems.append(f"{gid}: needs exactly one ### BEGIN SOLUTION … ### END SOLUTION block")
+            continue
+        before, solution, after = parts
+        names = template_names(ans.source)
+        if not names:
+            problems.append(f"{gid}: no template line `name = ...` before ### BEGIN SOLUTION")
+        stray = [ln for ln in before if ln.strip() and not ln.strip().startswith("#") and not TEMPLATE.match(ln.strip())]
+        if stray:
+            problems.append(f"{gid}: only template lines and comments may precede the solution: {stray}")
+        if any(ln.strip() and not ln.strip().startswith("#") for ln in after):
+            problems.append(f"{gid}: code after ### END SOLUTION would stay in the student version")
+        if not any(ln.strip() and not ln.strip().startswith("#") for ln in solution):
+            problems.append(f"{gid}: the solution block is empty")
+            continue
+        missing = set(names) - assigned_names("\n".join(solution))
+        if missing:
+            problems.append(f"{gid}: the solution does not set {sorted(missing)}")
+    return problems
+
+
+def lint_tests(nb, path) -> list[str]:
+    problems = []
+    for _, ans, _, test in task_cells(nb):
+        if test is None:
+            continue
+        gid = nbg(test)["grade_id"]
+        task = gid.removesuffix("-check")
+        try:
+            ast.parse(test.source)
+        except SyntaxError as exc:
+            problems.append(f"{gid}: not valid Python ({exc.msg})")
+            continue
+        parts = split_test(test.source)
+        if parts is None:
+            problems.append(f"{gid}: needs exactly one ### BEGIN HIDDEN TESTS … ### END HIDDEN TESTS block")
+            continue
+        visible, hidden, after = parts
+        vis_code, hid_code = "\n".join(visible), "\n".join(hidden)
+        if not CHECK_CALL.search(vis_code):
+            problems.append(f"{gid}: the visible checks must call aerophoto.checks (checks.check_value(...) etc.)")
+        if not re.search(r"from aerophoto import checks|import aerophoto\.checks as checks|aerophoto\.checks", vis_code):
+            problems.append(f"{gid}: import the checks in the cell: `from aerophoto import checks`")
+        if not CHECK_CALL.search(hid_code) and "assert" not in hid_code:
+            problems.append(f"{gid}: the hidden tests block has no check")
+        if re.search(r"^\s*assert\b", vis_code, re.M):
+            problems.append(f"{gid}: visible checks use aerophoto.checks, not bare assert (its message is a traceback)")
+        names = template_names(ans.source)
+        unchecked = [n for n in names if n not in loaded_names(vis_code)]
+        if unchecked:
+            problems.append(f"{gid}: the visible checks never look at {unchecked}")
+        if "v" not in loaded_names(test.source):
+            problems.append(f"{gid}: the expected values must come from the student's variant v")
+        tail = "\n".join(after).strip()
+        if not re.fullmatch(rf"checks\.task_passed\(\s*['\"]{task}['\"]\s*\)\s*;?", tail):
+            problems.append(f"{gid}: the cell must end, after ### END HIDDEN TESTS, with "
+                            f"checks.task_passed(\"{task}\")")
+        for version, code in (("source", test.source), ("student", "\n".join(visible + after))):
+            if displays_a_value(code):
+                problems.append(f"{gid}: the {version} version ends with an expression whose value is "
+                                "displayed (nbgrader reads it as partial credit)")
+    return problems
+
+
+def lint_markers(nb, path) -> list[str]:
+    problems = []
+    for c in nb.cells:
+        m = nbg(c)
+        text = c.source
+        if ("BEGIN SOLUTION" in text or "END SOLUTION" in text) and not m.get("solution"):
+            problems.append(f"{c.get('id')}: the text 'BEGIN/END SOLUTION' outside an answer cell breaks nbgrader")
+        if "HIDDEN TESTS" in text and not (m.get("grade") and not m.get("solution")):
+            problems.append(f"{c.get('id')}: the text 'HIDDEN TESTS' outside a test cell breaks nbgrader")
+    return problems
+
+
+def lint_downstream(nb, path) -> list[str]:
+    """In the student version a task's variables are `...` until answered: later cells must not use them."""
+    problems = []
+    for i, ans, _, _ in task_cells(nb):
+        names = set(template_names(ans.source))
+        redefined: set[str] = set()
+        for c in nb.cells[i + 1:]:
+            if c.cell_type != "code" or nbg(c):
+                continue
+            try:
+                used = loaded_names(c.source) & (names - redefined)
+                redefined |= assigned_names(c.source)
+            except SyntaxError:
+                continue
+            if used:
+                problems.append(f"cell {c.get('id')} uses {sorted(used)} from {nbg(ans)['grade_id']}")
+    return problems
+
+
+def lint_release(nb, path) -> list[str]:
+    try:
+        release = student_version(nb)  # nbgrader's own preprocessors; they raise on broken markers
+    except Exception as exc:
+        return [f"nbgrader cannot make the student version: {type(exc).__name__}: {exc}"]
+    if [c.get("id") for c in release.cells] != [c.get("id") for c in nb.cells]:
+        return ["the student version lost or reordered cells"]
+    by_id = {c.get("id"): c for c in release.cells}
+    problems = []
+    for _, ans, _, test in task_cells(nb):
+        r_ans = by_id[ans.get("id")]
+        if split_answer(ans.source) is None:
+            continue  # lint_answers reports it
+        _, solution, _ = split_answer(ans.source)
+        if "SOLUTION" in r_ans.source:
+            problems.append(f"{ans.get('id')}: solution markers left in the student version")
+        leaked = [ln for ln in solution if ln.strip() and not ln.strip().startswith(("#", "import"))
+                  and ln.strip() in {x.strip() for x in r_ans.source.splitlines()}]
+        if leaked:
+            problems.append(f"{ans.get('id')}: solution lines in the student version: {leaked}")
+        if template_names(ans.source) != [m.group(1) for ln in r_ans.source.splitlines()
+                                          if (m := TEMPLATE.match(ln.strip()))]:
+            problems.append(f"{ans.get('id')}: the template lines must survive into the student version")
+        if test is not None:
+            r_test = by_id[test.get("id")]
+            if split_test(test.source) is None:
+                continue  # lint_tests reports it
+            _, hidden, _ = split_test(test.source)
+            if "HIDDEN TESTS" in r_test.source or any(h.strip() and h in r_test.source.splitlines()
+                                                     for h in hidden if not h.strip().startswith("#")):
+                problems.append(f"{test.get('id')}: hidden tests left in the student version")
+    return problems
+
+
+# one test per rule and notebook
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+def test_nbgrader_cells_are_answer_or_test_cells_with_the_book_metadata(path):
+    problems = lint_metadata(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+def test_each_answer_cell_is_followed_by_its_test_cell_and_has_task_text(path):
+    problems = lint_pairing(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+def test_answer_cells_have_template_lines_outside_the_solution(path):
+    problems = lint_answers(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+def test_test_cells_use_aerophoto_checks_with_hidden_tests(path):
+    problems = lint_tests(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+def test_markers_appear_only_in_their_cells(path):
+    problems = lint_markers(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+def test_later_cells_do_not_depend_on_the_students_answers(path):
+    problems = lint_downstream(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+def test_student_version_has_no_solutions_or_hidden_tests(path):
+    problems = lint_release(read(path), path)
+    assert not problems, f"{path.name}: " + "; ".join(problems)
+
+
+# the rules themselves: each catches the mistake it is for
+
+
+def _broken(mutate):
+    from aerophoto import nbtools
+
+    path = next(p for p in NOTEBOOKS if p.stem == "00_start_here")
+    nb = read(path)
+    mutate(nb, nbtools)
+    return nb, path
+
+
+def _set(nb, nbtools, cell_id, fn):
+    _, c = nbtools.find_cell(nb, cell_id)
+    fn(c)
+
+
+@pytest.mark.parametrize("lint, mutate, expect", [
+    (lint_metadata, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: c.metadata.nbgrader.update(points=0)),
+     "positive number of points"),
+    (lint_metadata, lambda nb, t: _set(nb, t, "task-00-1-answer",
+                                       lambda c: c.metadata.nbgrader.update(grade_id="task-01-1-answer")),
+     "grade_id is task-00-k-answer"),
+    (lint_metadata, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: c.metadata.nbgrader.update(locked=False)),
+     "test-cell metadata"),
+    (lint_pairing, lambda nb, t: t.insert_after(nb, "task-00-1-answer", t.md("hint", id="hint")),
+     "must be its test cell"),
+    (lint_pairing, lambda nb, t: nb.cells.pop(t.find_cell(nb, "task-00-1")[0]), "the task text"),
+    (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer",
+                                      lambda c: setattr(c, "source", c.source.split("### BEGIN")[0])),
+     "exactly one ### BEGIN SOLUTION"),
+    (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer",
+                                      lambda c: setattr(c, "source", "import math\n" + c.source)),
+     "only template lines and comments"),
+    (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer",
+                                      lambda c: setattr(c, "source", c.source.replace("oc_mm = -", "oc = -"))),
+     "does not set ['oc_mm']"),
+    (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
+        c, "source", c.source.replace("### BEGIN HIDDEN TESTS", "").replace("### END HIDDEN TESTS", ""))),
+     "BEGIN HIDDEN TESTS"),
+    (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
+        c, "source", c.source.replace('checks.task_passed("task-00-1")', 'checks.check_value("x", 1, 1)'))),
+     "ends with an expression whose value is displayed"),
+    (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
+        c, "source", c.source.replace('checks.check_value("oc_mm", oc_mm', 'checks.check_value("oc_mm", 0'))),
+     "never look at ['oc_mm']"),
+    (lint_markers, lambda nb, t: _set(nb, t, "summary", lambda c: setattr(c, "source", "see ### BEGIN SOLUTION")),
+     "outside an answer cell"),
+    (lint_downstream, lambda nb, t: t.insert_after(nb, "task-00-1-check", t.code("print(2 * H_m)", id="later")),
+     "cell later uses ['H_m']"),
+    (lint_release, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
+        c, "source", c.source.replace("### END HIDDEN TESTS", ""))), "cannot make the student version"),
+    (lint_setup, lambda nb, t: _set(nb, t, "setup", lambda c: setattr(
+        c, "source", c.source.replace("RECORD_BOOK = None", 'RECORD_BOOK = "19-0457"'))), "ships with RECORD_BOOK = None"),
+    (lint_setup, lambda nb, t: _set(nb, t, "setup", lambda c: c.metadata.update(nbgrader={"grade": False})),
+     "must not be an nbgrader cell"),
+])
+def test_each_rule_catches_its_mistake(lint, mutate, expect):
+    nb, path = _broken(mutate)
+    problems = lint(nb, path)
+    assert any(expect in p for p in problems), problems
+
+
+def test_the_rules_pass_the_reference_chapter_and_catch_duplicates():
+    path = next(p for p in NOTEBOOKS if p.stem == "00_start_here")
+    nb = read(path)
+    for lint in (lint_setup, lint_metadata, lint_pairing, lint_answers, lint_tests, lint_markers,
+                 lint_downstream, lint_release):
+        assert lint(nb, path) == [], lint.__name__
+    assert lint_unique([("a", nb), ("b", read(path))]) == [
+        "task-00-1-answer in a and b", "task-00-1-check in a and b"]
+
+
+# --------------------------------------------------------------------------------------------------
+
+GRADED = [p for p in NOTEBOOKS if graded_tasks(read(p))]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", GRADED, ids=[p.stem for p in GRADED])
+def test_student_version_runs_and_every_unanswered_check_fails_cleanly(path, tmp_path):
+    """A student who has not answered sees one red ✗ line per task (e.g. "no answer yet"), no other error."""
+    from aerophoto.course import check_notebook
+
+    release = student_version(read(path))
+    target = tmp_path / path.name
+    nbformat.write(release, str(target))
+    for extra in path.parent.iterdir():  # pictures or data the chapter reads beside it
+        if extra.is_file() and extra.suffix != ".ipynb":
+            (tmp_path / extra.name).write_bytes(extra.read_bytes())
+    result = check_notebook(target, record_book="19-0457", timeout=300)
+    assert not result.errors, f"{path.name}: errors outside the check cells: {result.errors}"
+    assert [t.task for t in result.tasks] == [t.task for t in graded_tasks(release)]
+    wrong = [(t.task, t.message) for t in result.tasks if t.passed or t.ename != "WrongAnswer"]
+    assert not wrong, f"{path.name}: an unanswered task must fail with a check's message, not an error: {wrong}"

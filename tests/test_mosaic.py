@@ -1,0 +1,419 @@
+"""The single-strip fotoschema (guide §6): plane geometry, seams, mean scale, the sheet and its export."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aerophoto import geometry as g
+from aerophoto import mosaic as mo
+from aerophoto import simulate as sim
+
+
+# --------------------------------------------------------------------------- plane geometry
+@settings(max_examples=40, deadline=None)
+@given(th=st.floats(-180, 180), tx=st.floats(-500, 500), ty=st.floats(-500, 500), s=st.floats(0.5, 2.0))
+def test_similarity_fit_recovers_a_known_motion(th, tx, ty, s):
+    T = mo.Similarity2D.from_angle(th, (tx, ty), s)
+    P = np.array([[0.0, 0.0], [100.0, 10.0], [-40.0, 80.0], [25.0, -60.0]])
+    fit = mo.fit_similarity(P, T.apply(P), scale=True)
+    assert np.allclose(fit.apply(P), T.apply(P), atol=1e-8)
+    assert fit.scale == pytest.approx(s)
+    rigid = mo.fit_similarity(P, mo.Similarity2D.from_angle(th, (tx, ty)).apply(P))
+    assert rigid.scale == pytest.approx(1.0)
+    # composition and inverse
+    assert np.allclose(T.compose(T.inverse()).apply(P), P, atol=1e-8)
+    assert np.allclose(T.inverse().compose(T).matrix(), np.eye(3), atol=1e-9)
+
+
+def test_rigid_fit_to_two_points_splits_the_misfit_equally():
+    # two prints at slightly different scales: a rigid motion cannot make both points coincide
+    src = np.array([[0.0, 70.0], [0.0, -70.0]])
+    dst = np.array([[5.0, 71.0], [5.0, -71.0]])  # 2 mm longer between a and b
+    T = mo.fit_similarity(src, dst)
+    r = np.hypot(*(T.apply(src) - dst).T)
+    assert r == pytest.approx([1.0, 1.0])  # 1 mm left at each point: shared equally
+    assert T.rotation_deg == pytest.approx(0.0, abs=1e-12)
+
+
+def test_fit_rejects_bad_input():
+    with pytest.raises(ValueError, match="at least 2"):
+        mo.fit_similarity([[0, 0]], [[1, 1]])
+    with pytest.raises(ValueError, match="coincide"):
+        mo.fit_similarity([[1, 1], [1, 1]], [[0, 0], [2, 2]])
+
+
+@pytest.mark.parametrize("shape", mo.CUT_SHAPES)
+def test_cut_lines_pass_through_a_and_are_monotone(shape):
+    a, b = np.array([30.0, 70.0]), np.array([34.0, -70.0])
+    cut = mo.cut_line(a, b, (-95.0, 95.0), shape=shape, amplitude_mm=3.0, period_mm=30.0)
+    assert np.all(np.diff(cut[:, 1]) > 0)
+    assert cut[0, 1] == -95.0 and cut[-1, 1] == 95.0
+    x_at_a = np.interp(a[1], cut[:, 1], cut[:, 0])
+    assert x_at_a == pytest.approx(a[0], abs=1e-9)
+    straight = a[0] + (a[0] - b[0]) / (a[1] - b[1]) * (cut[:, 1] - a[1])
+    dev = cut[:, 0] - straight
+    if shape == "straight":
+        assert np.allclose(dev, 0.0)
+        assert np.interp(b[1], cut[:, 1], cut[:, 0]) == pytest.approx(b[0])
+    else:
+        assert np.max(np.abs(dev)) == pytest.approx(3.0, abs=0.02)
+
+
+def test_cut_line_rejects_bad_input():
+    with pytest.raises(ValueError, match="shape"):
+        mo.cut_line([0, 1], [0, -1], (-5, 5), shape="wavy")
+    with pytest.raises(ValueError, match="y_range"):
+        mo.cut_line([0, 1], [0, -1], (5, -5))
+
+
+def test_working_areas_are_counted_from_the_cuts():
+    cuts = [np.array([[10.0, -100.0], [10.0, 100.0]]), np.array([[50.0, -100.0], [60.0, 100.0]])]
+    idx = mo.assign_working_areas([[0.0, 0.0], [20.0, 0.0], [54.0, -10.0], [56.0, 0.0], [100.0, 0.0]], cuts)
+    assert list(idx) == [0, 1, 1, 2, 2]
+
+
+def test_rms_partial_scales_and_signs():
+    # m = √(ΣΔI²/n), guide §6 formula (6.2)
+    assert mo.seam_rms([0.3, -0.4]) == pytest.approx(math.sqrt((0.09 + 0.16) / 2))
+    assert mo.seam_rms([0.2, -0.2, 0.2, -0.2]) == pytest.approx(0.2)
+    with pytest.raises(ValueError, match="dI_mm"):
+        mo.seam_rms([])
+    # formula (6.1): 1/m_i = l_i/(L_i·M): l = 100 mm on the mosaic, L = 130 mm on the 1:10 000 plan → 1:13 000
+    assert mo.partial_scales([100.0, 50.0], [130.0, 60.0], 10000) == pytest.approx([13000.0, 12000.0])
+    with pytest.raises(ValueError, match="l_mm"):
+        mo.partial_scales([0.0], [1.0])
+    assert list(mo.classify_mismatch([-0.3, 0.0, 0.2])) == ["cut-out", "match", "duplicate"]
+
+
+# --------------------------------------------------------------------------- the fotoschema of a strip
+@pytest.mark.parametrize("f_mm, m", [(100.0, 12000.0), (140.0, 12500.0), (200.0, 9000.0)])
+def test_flat_ground_and_vertical_photos_give_a_clean_mosaic_at_scale_f_over_H(f_mm, m):
+    cam = g.Camera(f_mm)
+    strip = sim.fly_strip(cam, m, 60, 5, ground_Z_m=150.0)
+    fs = mo.assemble(strip, g.FlatTerrain(150.0))
+    assert fs.dI_mm.size >= 4 * 5
+    assert np.max(np.abs(fs.dI_mm)) <= 0.05
+    H = f_mm / 1000 * m
+    assert fs.scale.m == pytest.approx(H / (f_mm / 1000), rel=0.005)  # 1/m = f/H
+    assert np.allclose(fs.scale.m_i, m, rtol=1e-9)
+    assert fs.ok and fs.rms_mm <= 0.05
+    # the principal points lie along +x one photo base apart
+    o = fs.principal_points_mm()
+    assert np.allclose(o[:, 1], 0.0, atol=1e-9)
+    assert np.allclose(np.diff(o[:, 0]), 180 * 0.4, atol=1e-9)
+
+
+def test_a_print_moved_along_the_strip_makes_a_duplicate_and_back_a_cut_out():
+    cam = g.Camera(100)
+    strip = sim.fly_strip(cam, 12000, 60, 2)
+    fs = mo.assemble(strip)
+    s = fs.seams[0]
+    flat = g.FlatTerrain(0.0)
+    for shift, expected in ((+1.0, +1.0), (-0.5, -0.5)):
+        moved = mo.Similarity2D(1, 0, shift, 0).compose(fs.to_sheet[1])  # right print moved by `shift` mm
+        dI, _, _ = mo.seam_mismatches(cam, fs.poses[0], fs.poses[1], fs.to_sheet[0], moved, s.points_mm, flat,
+                                      fs.strip_direction, fs.m_design)
+        assert dI == pytest.approx(np.full(len(dI), expected), abs=1e-9)
+    assert list(mo.classify_mismatch([1.0, -0.5])) == ["duplicate", "cut-out"]
+
+
+class Valley:
+    """A valley along the strip (axis Y = 0): ground rising to a plateau 120 m up at |Y| ≥ 800 m."""
+
+    z_min_m, z_max_m = 0.0, 120.0
+
+    def height(self, X, Y):
+        Y = np.asarray(Y, float)
+        return 120.0 * np.minimum(1.0, (Y / 800.0) ** 2) + 0.0 * np.asarray(X, float)
+
+
+def test_matching_on_high_ground_leaves_duplicates_not_cut_outs():
+    # guide §6, step 2: tie points on high ground avoid cut-outs; lower ground along the cut is duplicated
+    cam = g.Camera(100)
+    strip = sim.fly_strip(cam, 12000, 60, 4, ground_Z_m=40.0)
+    fs = mo.assemble(strip, Valley())
+    for s in fs.seams:
+        assert s.ties.ground_m[:, 2].min() > 60.0  # both ties found high up the valley sides
+    assert fs.dI_mm.min() > -0.01
+    assert fs.dI_mm.max() > 0.3
+    # the same valley matched on its floor instead (ties forced low) gives cut-outs
+    low = mo.assemble(strip, Valley(), tie_margin_mm=(80.0, 85.0))
+    assert low.dI_mm.min() < -0.3
+
+
+def _relief_ground(relief_m):
+    from aerophoto import site
+
+    return mo.RescaledRelief(site.get_site(), relief_m)
+
+
+def test_rescaled_relief_keeps_shape_and_bounds():
+    gr = _relief_ground(90.0)
+    s = gr.site
+    assert gr.z_min_m == pytest.approx(s.z_min_m)
+    assert gr.z_max_m == pytest.approx(s.z_min_m + 90.0)
+    X = np.array([100.0, 2500.0, 7000.0])
+    Y = np.array([300.0, 2500.0, 4000.0])
+    k = 90.0 / (s.z_max_m - s.z_min_m)
+    assert np.allclose(gr.height(X, Y) - s.z_min_m, k * (s.height(X, Y) - s.z_min_m))
+    assert gr.dem.max() == pytest.approx(gr.z_max_m)
+    assert np.allclose(gr.points_m()[:, :2], s.catalogue[["X_m", "Y_m"]].to_numpy())
+    with pytest.raises(ValueError, match="relief_m"):
+        mo.RescaledRelief(s, -1.0)
+
+
+def _fotoschema(relief_m=30.0, tilt=0.0, seed=1, f_mm=100.0):
+    gr = _relief_ground(relief_m)
+    strip = sim.strip_over_site(gr, g.Camera(f_mm), 12000, 60, 5,
+                                imperfections=sim.Imperfections(max_tilt_deg=tilt, seed=seed))
+    return mo.assemble(strip, gr, points_m=mo.catalogue_points(gr)), gr
+
+
+def test_mismatches_grow_with_relief():
+    rms = [_fotoschema(relief_m=h)[0].rms_mm for h in (0.0, 25.0, 50.0, 100.0, 150.0)]
+    assert rms[0] <= 0.05
+    assert all(b > a for a, b in zip(rms, rms[1:])), rms
+    assert rms[-1] > 0.3
+
+
+def test_mismatches_grow_with_tilt():
+    rms = [_fotoschema(relief_m=0.0, tilt=t)[0].rms_mm for t in (0.0, 1.0, 2.0, 4.0)]
+    assert all(b > a for a, b in zip(rms, rms[1:])), rms
+    assert rms[0] <= 0.05
+
+
+def test_longer_focal_length_shrinks_relief_mismatches():
+    # same scale, higher flight: relief displacement r·h/H shrinks
+    a = _fotoschema(relief_m=100.0, f_mm=100.0)[0].rms_mm
+    b = _fotoschema(relief_m=100.0, f_mm=300.0)[0].rms_mm
+    assert b < a / 2
+
+
+def test_mean_scale_uses_catalogue_points_in_the_end_working_areas():
+    fs, gr = _fotoschema(relief_m=30.0, tilt=1.0)
+    sc = fs.scale
+    cat = gr.points_m()
+    for P in sc.ground_m:  # every scale point is a catalogue point
+        assert np.min(np.linalg.norm(cat - P, axis=1)) < 1e-6
+    idx = fs.photo_index(sc.sheet_mm)
+    assert list(idx) == [0, 0, 4, 4]
+    assert sc.l_mm == pytest.approx(np.hypot(*(sc.sheet_mm[[2, 3, 3, 2]] - sc.sheet_mm[[0, 1, 0, 1]]).T))
+    assert sc.m_i == pytest.approx(sc.L_mm * 10000 / sc.l_mm)
+    assert abs(sc.m / 12000 - 1) < 0.02  # tilted photos over gentle relief: close to the design scale
+    assert sc.m_rounded % 100 == 0
+    t = sc.table()
+    assert len(t) == 4 and list(t.columns)[:3] == ["l on mosaic, mm", "L on plan, mm", "m_i = L·M/l"]
+
+
+def test_fotoschema_is_deterministic():
+    a, _ = _fotoschema(relief_m=80.0, tilt=2.0, seed=4)
+    b, _ = _fotoschema(relief_m=80.0, tilt=2.0, seed=4)
+    assert np.array_equal(a.dI_mm, b.dI_mm)
+    assert a.table().equals(b.table())
+    assert a.scale.m == b.scale.m
+    c, _ = _fotoschema(relief_m=80.0, tilt=2.0, seed=5)
+    assert not np.array_equal(a.dI_mm, c.dI_mm)
+
+
+def test_tables_and_verdict():
+    fs, _ = _fotoschema(relief_m=150.0)
+    t = fs.table()
+    assert len(t) == fs.dI_mm.size
+    assert set(t["kind"]) <= {"cut-out (вырез)", "duplicate (дублет)", "match"}
+    st_ = fs.seams_table()
+    assert list(st_.index)[-1] == "all"
+    assert st_.loc["all", "m, mm"] == pytest.approx(round(fs.rms_mm, 2))
+    assert fs.ok == (round(fs.dI_mm.min(), 2) >= -0.5)
+
+
+def test_assemble_rejects_bad_input():
+    cam = g.Camera(100)
+    with pytest.raises(ValueError, match="at least 2"):
+        mo.assemble(sim.fly_strip(cam, 12000, 60, 1))
+    with pytest.raises(ValueError, match="cut_shape"):
+        mo.assemble(sim.fly_strip(cam, 12000, 60, 3), cut_shape="wavy")
+
+
+# --------------------------------------------------------------------------- the sheet raster
+def test_sheet_raster_of_flat_ground_shows_the_ground_pattern_seamlessly():
+    cam = g.Camera(100)
+    strip = sim.fly_strip(cam, 12000, 60, 3)
+    fs = mo.assemble(strip)
+    img, ext = mo.sheet_raster(fs, None, 1.0)
+    assert img.shape == (int(math.ceil(ext[3] - ext[2])), int(math.ceil(ext[1] - ext[0])))
+    # each pixel equals the ground pattern at the pixel's true ground point (flat, vertical: sheet = scaled ground)
+    ys, xs = np.mgrid[0:img.shape[0], 0:img.shape[1]]
+    P = np.column_stack([ext[0] + xs.ravel() + 0.5, ext[2] + ys.ravel() + 0.5])
+    G = g.photo_to_plane(cam, strip[0].pose, fs.to_sheet[0].inverse().apply(P), 0.0)
+    inside = np.abs(P[:, 1]) < 85
+    same = np.isclose(img.ravel()[inside], mo._pattern(G[inside, 0], G[inside, 1]))
+    assert same.mean() > 0.995  # (a few pixels on pattern edges differ by rounding)
+    with pytest.raises(ValueError, match="px_per_mm"):
+        mo.sheet_raster(fs, None, 0.0)
+
+
+def test_sheet_raster_from_rendered_prints_matches_direct_sampling():
+    from aerophoto import render
+
+    fs, gr = _fotoschema(relief_m=30.0)
+    strip = sim.strip_over_site(gr, g.Camera(100), 12000, 60, 5, imperfections=sim.Imperfections(seed=1))
+    prints = render.render_strip(gr, strip, 256, vignetting=0.0, fiducials=False)
+    a, _ = mo.sheet_raster(fs, gr, 0.5, photos=prints)
+    b, _ = mo.sheet_raster(fs, gr, 0.5)
+    both = (a < 1.0) & (b < 1.0)
+    assert both.mean() > 0.7
+    assert np.median(np.abs(a[both] - b[both])) < 0.05
+    with pytest.raises(ValueError, match="photos"):
+        mo.sheet_raster(fs, gr, 0.5, photos=prints[:2])
+
+
+# --------------------------------------------------------------------------- the live demo and the sheet
+def test_demo_renders_full_resolution_from_code_and_preview_on_request():
+    from aerophoto.demos.fotoschema import FotoschemaDemo
+
+    d = FotoschemaDemo()
+    assert not d.result.preview and d.result.px_per_mm == d.full_px_per_mm
+    full_shape = d.result.image.shape
+    d.set(preview=True, relief_m=80.0, alpha_max_deg=2.0)
+    assert d.result.preview and d.result.px_per_mm == d.preview_px_per_mm
+    assert d.result.image.shape[1] < full_shape[1] / 2
+    # the artists follow the result
+    fs = d.result.fs
+    assert d.view.points.get_offsets().shape == (fs.dI_mm.size, 2)
+    assert np.allclose(d.view.tops.get_offsets()[:, 1], fs.dI_mm)
+    assert "preview" in d.view.title.get_text()
+    assert d.view.image.get_array().shape == d.result.image.shape
+    d.set(relief_m=80.0)
+    assert not d.result.preview and "full resolution" in d.view.title.get_text()
+    assert "Mismatches by cut" in d.table.value
+    with pytest.raises(ValueError, match="relief_m"):
+        d.set(relief_m=500)
+    # the whole widget: grouped sliders (and the cut dropdown) with a Reset
+    w = d.widget()
+    ctl = d.controls()
+    assert set(ctl) == {p.name for p in d.params}
+    assert ctl["relief_m"].max == 200 and ctl["cut_shape"].value == "straight"
+    assert w is d.widget()
+    d.reset()
+    assert d.values["relief_m"] == 30 and not d.result.preview
+    d.close()
+
+
+def test_demo_sliders_preview_while_moving_and_render_full_when_still():
+    import asyncio
+
+    from aerophoto.demos.fotoschema import FotoschemaDemo
+
+    d = FotoschemaDemo()
+    d.settle_s = 0.05
+    ctl = d.controls()
+    seen = []
+
+    async def drive():
+        ctl["relief_m"].value = 60.0
+        seen.append(d.result.preview)
+        ctl["relief_m"].value = 65.0  # a second event restarts the settle timer
+        seen.append(d.result.preview)
+        seen.append(d._pending is not None)
+        await asyncio.sleep(0.3)
+        seen.append(d.result.preview)
+        seen.append(d._pending is None)
+
+    n0 = d.n_updates
+    asyncio.run(drive())
+    assert seen == [True, True, True, False, True]
+    assert d.n_updates - n0 == 3  # two previews, one full render
+    assert d.values["relief_m"] == 65.0
+    # without an event loop (a plain script) a slider event renders in full at once
+    ctl["px_percent"].value = 65
+    assert not d.result.preview and d.values["px_percent"] == 65
+    d.close()
+
+
+@pytest.mark.parametrize("values", [
+    dict(f_mm=70, m=16000, px_percent=56, alpha_max_deg=5, relief_m=200, seed=20),
+    dict(f_mm=350, m=8000, px_percent=80, alpha_max_deg=5, relief_m=0, seed=0, cut_shape="zigzag"),
+    dict(f_mm=70, m=16000, px_percent=56, alpha_max_deg=5, relief_m=200, seed=7, cut_shape="curved"),
+])
+def test_demo_slider_extremes_work(values):
+    from aerophoto.demos.fotoschema import FotoschemaDemo
+
+    d = FotoschemaDemo()
+    d.set(preview=True, **values)
+    assert d.result.fs.dI_mm.size > 0 and np.isfinite(d.result.fs.scale.m)
+    d.close()
+
+
+def test_correction_sheet_writes_every_mismatch():
+    from aerophoto.demos.fotoschema import correction_sheet
+
+    fs, _ = _fotoschema(relief_m=120.0)
+    ax = correction_sheet(fs)
+    texts = [t.get_text() for t in ax.texts]
+    for d in fs.dI_mm:
+        assert f"{d:+.2f}" in texts
+    assert f"m = {fs.rms_mm:.2f} mm" in ax.get_title()
+
+
+def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
+    import re
+
+    from PIL import Image
+
+    from aerophoto.demos.fotoschema import PAPER_MM, export_sheet, sheet_figure
+
+    fs, gr = _fotoschema(relief_m=30.0)
+    img, ext = mo.sheet_raster(fs, gr, 1.0)
+    fig = sheet_figure(fs, img, ext, made_by="Student S.", checked_by="Teacher T.", year=2025)
+    texts = " ".join(t.get_text() for t in fig.texts)
+    assert "ФОТОСХЕМА" in texts and "Photo mosaic" in texts
+    assert f"М 1:{fs.scale.m_rounded:,}".replace(",", " ") in texts
+    assert "2025" in texts and "Student S." in texts and "Teacher T." in texts
+    paper = fig.aerophoto_paper
+    w_mm, h_mm = PAPER_MM[paper]
+    paths = export_sheet(fig, tmp_path / "out", "sheet", dpi=60)
+    png = paths["png"].read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    with Image.open(paths["png"]) as im:
+        im.load()
+        assert im.size == (round(w_mm / 25.4 * 60), round(h_mm / 25.4 * 60))
+    pdf = paths["pdf"].read_bytes()
+    assert pdf.startswith(b"%PDF-") and pdf.rstrip().endswith(b"%%EOF")
+    box = re.search(rb"/MediaBox \[\s*0 0 ([\d.]+) ([\d.]+)\s*\]", pdf)
+    assert box and float(box.group(1)) == pytest.approx(w_mm / 25.4 * 72, abs=0.5)
+    # the mosaic is drawn at true size: its axes span the sheet's millimetres on the paper
+    ax = fig.axes[0]
+    x0, x1, y0, y1 = fs.extent_mm
+    assert ax.get_position().width * w_mm == pytest.approx(x1 - x0, rel=1e-6)
+    assert ax.get_position().height * h_mm == pytest.approx(y1 - y0, rel=1e-6)
+    # never overwrite silently
+    with pytest.raises(FileExistsError, match="sheet.png"):
+        export_sheet(fig, tmp_path / "out", "sheet")
+    before = paths["png"].stat().st_mtime_ns
+    export_sheet(fig, tmp_path / "out", "sheet", overwrite=True, dpi=60)
+    assert paths["png"].stat().st_mtime_ns >= before
+    with pytest.raises(ValueError, match="stem"):
+        export_sheet(fig, tmp_path, "../evil")
+
+
+def test_variant_task_data_and_answers():
+    from aerophoto.variants import variant_for_index
+
+    v = variant_for_index(3)
+    d = mo.variant_task(v)
+    assert d["dI_mm"] == mo.variant_task(v)["dI_mm"]  # deterministic
+    assert len(d["l_mm"]) == 4 and len(d["L_mm"]) == 4 and d["M"] == 10000.0
+    assert d["relief_m"] == pytest.approx(0.05 * v.f_mm / 1000 * v.m)
+    assert all(x == round(x, 1) and str(x) != "-0.0" for x in d["dI_mm"])
+    a = mo.variant_task_answers(v)
+    dI = np.array(d["dI_mm"])
+    assert a["m_rms_mm"] == pytest.approx(math.sqrt(np.sum(dI**2) / len(dI)))
+    assert a["n_cutouts"] == int(np.sum(dI < 0))
+    assert a["m_mean"] == pytest.approx(np.mean(np.array(d["L_mm"]) * 10000 / np.array(d["l_mm"])))
+    # the mean scale is near the design scale of the photos
+    assert abs(a["m_mean"] / v.m - 1) < 0.05
+    other = mo.variant_task_answers(variant_for_index(40))
+    assert other["m_rms_mm"] != a["m_rms_mm"]

@@ -1,0 +1,234 @@
+"""The virtual test site: deterministic terrain, texture and a catalogue consistent with the texture."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from aerophoto import geometry as g
+from aerophoto import site as S
+
+SMALL = S.SiteParams(width_m=4000, height_m=3000, relief_m=80.0, base_height_m=150.0, seed=7)
+ROAD = (S.COVER_CODES["dirt road"], S.COVER_CODES["paved road"])
+
+
+@pytest.fixture(scope="module")
+def small():
+    return S.get_site(SMALL)
+
+
+@pytest.fixture(scope="module")
+def default():
+    return S.get_site()
+
+
+def test_deterministic_bit_for_bit(small):
+    again = S.build_site(SMALL)  # not from the cache
+    assert again is not small
+    assert np.array_equal(again.dem, small.dem)
+    assert np.array_equal(again.texture, small.texture)
+    assert np.array_equal(again.cover, small.cover)
+    assert again.catalogue.equals(small.catalogue)
+    for k in range(small.n_levels):
+        assert np.array_equal(again.texture_level(k), small.texture_level(k))
+    other = S.get_site(SMALL, seed=8)
+    assert not np.array_equal(other.texture, small.texture)
+    assert not np.array_equal(other.dem, small.dem)
+
+
+def test_cache_returns_the_same_site(small):
+    assert S.get_site(SMALL) is small
+    assert S.get_site(width_m=4000, height_m=3000, relief_m=80.0, base_height_m=150.0, seed=7) is small
+
+
+def test_default_extent_and_guide_heights(default):
+    assert default.extent_m == (0.0, 10000.0, 0.0, 5000.0)
+    assert default.centre_m == (5000.0, 2500.0)
+    assert default.texture.shape == (2500, 5000) and default.texture.dtype == np.uint8
+    # guide §1-§2, variant 0: Z_min = 170 m, Z_max = 200 m
+    assert default.z_min_m == 170.0 and default.z_max_m == pytest.approx(200.0, abs=1e-12)
+    assert 170.0 < default.mean_height_m < 200.0
+
+
+def test_relief_bounds_and_bilinear_height(small):
+    assert small.z_min_m == 150.0 and small.z_max_m == pytest.approx(230.0, abs=1e-12)
+    rng = np.random.default_rng(0)
+    X = rng.uniform(-200, 4200, 5000)
+    Y = rng.uniform(-200, 3200, 5000)
+    Z = small.height(X, Y)
+    assert Z.shape == (5000,)
+    assert np.all((Z >= small.z_min_m - 1e-9) & (Z <= small.z_max_m + 1e-9))
+    # nodes, midpoints and the hand formula of bilinear interpolation
+    d, s = small.dem, small.dem_spacing_m
+    assert small.height(30.0, 50.0) == pytest.approx(d[5, 3])
+    assert small.height(35.0, 50.0) == pytest.approx((d[5, 3] + d[5, 4]) / 2)
+    tx, ty = 0.3, 0.8
+    expect = (d[5, 3] * (1 - tx) + d[5, 4] * tx) * (1 - ty) + (d[6, 3] * (1 - tx) + d[6, 4] * tx) * ty
+    assert small.height(30.0 + tx * s, 50.0 + ty * s) == pytest.approx(expect, rel=1e-13)
+    # broadcasting, and edge clamping outside the site
+    assert small.height(np.array([[1.0], [2.0]]), np.array([3.0, 4.0, 5.0])).shape == (2, 3)
+    assert small.height(-500.0, 1000.0) == pytest.approx(small.height(0.0, 1000.0))
+    # hills in the north, the plain in the south is much flatter
+    north = small.dem[-60:, :]
+    south = small.dem[:40, :]
+    assert np.ptp(north) > 3 * np.ptp(south)
+
+
+def test_zero_relief_is_flat_at_base_height():
+    flat = S.get_site(SMALL, relief_m=0.0, seed=7)
+    assert flat.z_min_m == flat.z_max_m == 150.0
+    assert np.all(flat.dem == 150.0)
+    assert np.all(flat.height([0.0, 1234.5, 3999.0], [10.0, 2000.0, 2999.9]) == 150.0)
+    assert np.all(flat.catalogue["Z_m"] == 150.0)
+    assert flat.mean_height_m == 150.0
+
+
+def test_photo_to_dem_works_with_a_site_directly(small):
+    cam = g.Camera(100.0)
+    pose = g.Pose(2000.0, 1500.0, 1400.0, alpha_deg=4.0, lambda_deg=30.0, kappa_deg=10.0)
+    xy = np.array([[0.0, 0.0], [60.0, -40.0], [-80.0, 85.0]])
+    P = g.photo_to_dem(cam, pose, xy, small)
+    assert np.allclose(P[:, 2], small.height(P[:, 0], P[:, 1]), atol=1e-3)
+    assert np.allclose(g.ground_to_photo(cam, pose, P), xy, atol=1e-6)
+
+
+def test_catalogue_columns_and_kinds(small, default):
+    for s in (small, default):
+        cat = s.catalogue
+        assert list(cat.columns) == ["id", "kind", "X_m", "Y_m", "Z_m", "control"]
+        assert cat["id"].is_unique and cat["id"].min() == 1
+        assert set(cat["kind"]) == set(S.KINDS)
+        assert cat["control"].dtype == bool
+        ctrl = cat[cat["control"]]
+        assert len(ctrl) >= 4
+        assert set(ctrl["kind"]) <= {"road crossing", "field corner"}
+        assert np.allclose(cat["Z_m"], s.height(cat["X_m"], cat["Y_m"]), atol=1e-9)
+        assert s.inside(cat["X_m"], cat["Y_m"]).all()
+    counts = default.catalogue["kind"].value_counts()
+    assert counts["road crossing"] >= 5 and counts["field corner"] >= 30 and counts["tree"] >= 20
+
+
+def _dist_to_segment(p, a, b):
+    d = b - a
+    u = np.clip(np.dot(p - a, d) / np.dot(d, d), 0, 1)
+    return float(np.hypot(*(p - a - u * d)))
+
+
+def test_road_crossings_lie_where_roads_cross_in_the_texture(default):
+    cat = default.catalogue
+    roads = default.features["roads"]
+    for _, r in cat[cat["kind"] == "road crossing"].iterrows():
+        p = np.array([r["X_m"], r["Y_m"]])
+        on = [k for k, rd in enumerate(roads) if _dist_to_segment(p, *rd["xy"]) < 1e-6]
+        assert len(on) >= 2  # the intersection of (at least) two road centre lines
+        assert default.cover_at(p[0], p[1]) in ROAD
+        # 10 m away along each road the texture still shows road
+        for k in on[:2]:
+            a, b = roads[k]["xy"]
+            d = (b - a) / np.hypot(*(b - a))
+            for sgn in (-1, 1):
+                q = p + sgn * 10 * d
+                if default.inside(*q):
+                    assert default.cover_at(*q) in ROAD
+    # a paved road is darker than the fields beside it
+    paved = [rd for rd in roads if rd["kind"] == "paved"][0]["xy"]
+    mid = paved.mean(axis=0)
+    d = (paved[1] - paved[0]) / np.hypot(*(paved[1] - paved[0]))
+    nrm = np.array([-d[1], d[0]])
+    assert default.sample(*mid) < 0.45
+    assert default.cover_at(*(mid + 30 * nrm)) not in ROAD
+
+
+def test_other_points_match_their_texture(default):
+    cat = default.catalogue
+    t = default.params.texture_m
+    trees = cat[cat["kind"] == "tree"]
+    assert (default.cover_at(trees["X_m"], trees["Y_m"]) == S.COVER_CODES["tree"]).all()
+    # a tree is a dark crown: darker than the ground around it (12 m away, off its shadow to the north-east)
+    ring = [default.sample(trees["X_m"] + 12 * np.cos(a), trees["Y_m"] + 12 * np.sin(a))
+            for a in np.radians([90, 135, 180, 225, 270, 315, 0])]
+    assert (default.sample(trees["X_m"], trees["Y_m"]) < np.mean(ring, axis=0) - 0.05).all()
+    corners = cat[cat["kind"] == "field corner"]
+    cc = default.cover_at(corners["X_m"], corners["Y_m"])
+    assert np.isin(cc, [S.COVER_CODES["arable field"], S.COVER_CODES["field boundary"]]).all()
+    b = cat[cat["kind"] == "building corner"]
+    inward = default.cover_at(b["X_m"] + 1.2 * t, b["Y_m"] + 1.2 * t)
+    assert (inward == S.COVER_CODES["building"]).all()
+    # every building corner is a corner of a roof in the vector data
+    roofs = default.features["buildings"].reshape(-1, 2)
+    for x, y in b[["X_m", "Y_m"]].to_numpy():
+        assert np.min(np.hypot(roofs[:, 0] - x, roofs[:, 1] - y)) < 1e-9
+
+
+def test_texture_has_the_land_covers(default):
+    share = np.bincount(default.cover.ravel(), minlength=len(S.COVER)) / default.cover.size
+    assert share[S.COVER_CODES["arable field"]] > 0.3
+    for name in ("forest", "water", "meadow", "dirt road", "paved road", "building", "garden", "sand bank"):
+        assert share[S.COVER_CODES[name]] > 0, name
+    # water is dark, sand banks and roofs bright
+    tex = default.texture
+    assert np.median(tex[default.cover == S.COVER_CODES["water"]]) < 60
+    assert np.median(tex[default.cover == S.COVER_CODES["building"]]) > 150
+    assert np.median(tex[default.cover == S.COVER_CODES["forest"]]) < np.median(tex[default.cover == S.COVER_CODES["arable field"]])
+
+
+def test_sample_and_pyramid(small):
+    t = small.params.texture_m
+    r, c = 123, 456
+    # at a pixel centre bilinear sampling returns that pixel
+    assert small.sample((c + 0.5) * t, (r + 0.5) * t) == pytest.approx(small.texture[r, c] / 255.0, abs=1e-6)
+    mid = small.sample((c + 1.0) * t, (r + 0.5) * t)
+    assert mid == pytest.approx((int(small.texture[r, c]) + int(small.texture[r, c + 1])) / 510.0, abs=1e-6)
+    assert np.isnan(small.sample(-1.0, 10.0))
+    assert small.sample(-1.0, 10.0, outside=0.25) == pytest.approx(0.25)
+    one = small.texture_level(1)
+    blk = small.texture[2 * 10:2 * 10 + 2, 2 * 20:2 * 20 + 2].astype(int)
+    assert one[10, 20] == (blk.sum() + 2) // 4
+    assert small.texel_m(2) == 4 * t
+    assert small.level_for(t * 0.5) == 0 and small.level_for(t * 2.5) == 1 and small.level_for(t * 4) == 2
+    with pytest.raises(ValueError, match="level"):
+        small.texture_level(99)
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(width_m=500), "width_m"),
+        (dict(height_m=2e5), "height_m"),
+        (dict(relief_m=-1), "relief_m"),
+        (dict(seed=-3), "seed"),
+        (dict(texture_m=0.1), "texture_m"),
+        (dict(width_m=100000, height_m=100000, texture_m=2), "texture_m"),
+        (dict(dem_spacing_m=0), "dem_spacing_m"),
+    ],
+)
+def test_bad_parameters(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        S.SiteParams(**kwargs)
+
+
+def test_get_site_rejects_unknown_names():
+    with pytest.raises(ValueError, match="colour"):
+        S.get_site(colour=True)
+
+
+def test_import_builds_nothing():
+    code = (
+        "import aerophoto.site as s, aerophoto.render, aerophoto.simulate;"
+        "assert s._cached.cache_info().currsize == 0 and s._cached.cache_info().misses == 0;"
+        "print('ok')"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "ok"
+
+
+def test_plot_uses_the_guides_symbols(small):
+    art = small.plot(labels=True)
+    ctrl = small.catalogue[small.catalogue["control"]]
+    assert art["points"]["control"].get_marker() == "^"
+    assert art["points"]["other"].get_marker() == "o"
+    assert np.allclose(art["points"]["control"].get_xdata(), ctrl["X_m"])
+    assert len(art["points"]["labels"]) == len(ctrl)
+    assert art["image"].get_array().shape[1] <= 2000

@@ -732,6 +732,23 @@ class _Canvas:
         if cover_code is not None:
             self.cover.reshape(-1)[sel[a >= 0.5]] = cover_code
 
+    def _blend(self, rows, cols, a, value, cover_code) -> None:
+        """Blend shapes' coverage ``a`` (n, k, k) at pixel (rows, cols) with their values; where
+        shapes overlap a pixel, the one covering it most wins (one write per pixel)."""
+        ok = (a > 0) & (rows >= 0) & (rows < self.ny) & (cols >= 0) & (cols < self.nx)
+        idx = (rows * self.nx + cols)[ok]
+        a = a[ok]
+        vals = np.broadcast_to(np.asarray(value, np.float32).reshape(-1, 1, 1), ok.shape)[ok]
+        order = np.lexsort((a, idx))
+        idx, a, vals = idx[order], a[order], vals[order]
+        last = np.ones(len(idx), bool)
+        last[:-1] = idx[1:] != idx[:-1]
+        idx, a, vals = idx[last], a[last], vals[last]
+        flat = self.img.reshape(-1)
+        flat[idx] = flat[idx] * (1 - a) + vals * a
+        if cover_code is not None:
+            self.cover.reshape(-1)[idx[a >= 0.5]] = cover_code
+
     def rects(self, centres, half_sizes, angles, value, cover_code=None, soft=1.0):
         """Paint filled rotated rectangles (centre (n,2) m, half sizes (n,2) m, angle (n,) rad)."""
         centres = np.asarray(centres, float).reshape(-1, 2)
@@ -757,19 +774,7 @@ class _Canvas:
         cu = np.clip((half_sizes[:, 0, None, None] - np.abs(lu)) / (t * soft) + 0.5, 0, 1)
         cv = np.clip((half_sizes[:, 1, None, None] - np.abs(lv)) / (t * soft) + 0.5, 0, 1)
         a = (cu * cv).astype(np.float32)
-        ok = (a > 0) & (rows >= 0) & (rows < self.ny) & (cols >= 0) & (cols < self.nx)
-        idx = (rows * self.nx + cols)[ok]
-        a = a[ok]
-        vals = np.broadcast_to(np.asarray(value, np.float32).reshape(-1, 1, 1), ok.shape)[ok]
-        order = np.lexsort((a, idx))
-        idx, a, vals = idx[order], a[order], vals[order]
-        last = np.ones(len(idx), bool)
-        last[:-1] = idx[1:] != idx[:-1]
-        idx, a, vals = idx[last], a[last], vals[last]
-        flat = self.img.reshape(-1)
-        flat[idx] = flat[idx] * (1 - a) + vals * a
-        if cover_code is not None:
-            self.cover.reshape(-1)[idx[a >= 0.5]] = cover_code
+        self._blend(rows, cols, a, value, cover_code)
 
     def discs(self, centres, radii, value, cover_code=None):
         centres = np.asarray(centres, float).reshape(-1, 2)
@@ -785,19 +790,7 @@ class _Canvas:
         px = (cols + 0.5) * t - centres[:, 0, None, None]
         py = (rows + 0.5) * t - centres[:, 1, None, None]
         a = np.clip((radii[:, None, None] - np.hypot(px, py)) / t + 0.5, 0, 1).astype(np.float32)
-        ok = (a > 0) & (rows >= 0) & (rows < self.ny) & (cols >= 0) & (cols < self.nx)
-        idx = (rows * self.nx + cols)[ok]
-        a = a[ok]
-        vals = np.broadcast_to(np.asarray(value, np.float32).reshape(-1, 1, 1), ok.shape)[ok]
-        order = np.lexsort((a, idx))
-        idx, a, vals = idx[order], a[order], vals[order]
-        last = np.ones(len(idx), bool)
-        last[:-1] = idx[1:] != idx[:-1]
-        idx, a, vals = idx[last], a[last], vals[last]
-        flat = self.img.reshape(-1)
-        flat[idx] = flat[idx] * (1 - a) + vals * a
-        if cover_code is not None:
-            self.cover.reshape(-1)[idx[a >= 0.5]] = cover_code
+        self._blend(rows, cols, a, value, cover_code)
 
 
 def _seg_distance(p, a, b) -> float:

@@ -41,7 +41,14 @@ from dataclasses import dataclass
 
 from ._validate import check_range
 
-__all__ = ["Param", "LiveDemo"]
+__all__ = ["Param", "LiveDemo", "error_html"]
+
+
+def error_html(exc: BaseException) -> str:
+    """A one-line, visible error message for a demo's status line (a callback never fails silently)."""
+    import html
+
+    return f"<span style='color:#D55E00'>⚠ {type(exc).__name__}: {html.escape(str(exc))}</span>"
 
 
 @dataclass(frozen=True)
@@ -236,16 +243,25 @@ class LiveDemo:
         finally:
             self._syncing = False
 
+    def on_slider(self) -> str:
+        """What a slider move does once ``values`` holds the new value.
+
+        By default one full :meth:`update`.  Heavy demos override it (e.g. a
+        preview now, full resolution when the slider rests).  Returns a status
+        line (HTML) to show under the sliders, or ``""``.
+        """
+        self.update()
+        return ""
+
     def _on_change(self, change) -> None:
         if self._syncing:
             return
         name = change["owner"]._aerophoto_name
         try:
             self.values[name] = self._params[name].validate(change["new"])
-            self.update()
-            self.status.value = ""
+            self.status.value = self.on_slider()
         except Exception as exc:  # never let a callback die silently
-            self.status.value = f"<span style='color:#D55E00'>⚠ {type(exc).__name__}: {exc}</span>"
+            self.status.value = error_html(exc)
 
     def controls(self) -> dict:
         """The slider widgets, name → widget (created on first call)."""

@@ -46,7 +46,7 @@ from .. import geometry as g
 from .. import mosaic as mo
 from .. import plots
 from .. import simulate as sim
-from ..widgets import LiveDemo, Param
+from ..widgets import LiveDemo, Param, error_html
 
 __all__ = [
     "FotoschemaResult",
@@ -383,17 +383,12 @@ class FotoschemaDemo(LiveDemo):
             self._pending.cancel()
             self._pending = None
 
-    def _on_change(self, change) -> None:
-        if self._syncing:
-            return
-        name = change["owner"]._aerophoto_name
-        try:
-            self.values[name] = self._params[name].validate(change["new"])
-            self.update(preview=True)
-            self.status.value = "<span style='color:#777777'>preview — full resolution when the slider rests</span>"
-            self._schedule_full()
-        except Exception as exc:  # never let a callback die silently
-            self.status.value = f"<span style='color:#D55E00'>⚠ {type(exc).__name__}: {exc}</span>"
+    def on_slider(self) -> str:
+        """A slider moved: preview now, full resolution once the slider rests."""
+        self.update(preview=True)
+        self.status.value = "<span style='color:#777777'>preview — full resolution when the slider rests</span>"
+        self._schedule_full()  # without an event loop this renders in full at once and clears the status
+        return self.status.value
 
     def _schedule_full(self) -> None:
         import asyncio
@@ -414,7 +409,7 @@ class FotoschemaDemo(LiveDemo):
             self.update(preview=False)
             self.status.value = ""
         except Exception as exc:
-            self.status.value = f"<span style='color:#D55E00'>⚠ {type(exc).__name__}: {exc}</span>"
+            self.status.value = error_html(exc)
 
     def close(self) -> None:
         self._cancel_pending()

@@ -27,6 +27,7 @@ __all__ = [
     "figure",
     "figure_widget",
     "draw",
+    "freeze_layout",
     "html_table",
     "mark_points",
     "photo_frame",
@@ -145,6 +146,26 @@ def draw(fig, *, force: bool = False) -> None:
         fig.canvas.draw_idle()
 
 
+def freeze_layout(fig) -> None:
+    """Keep the layout found at the figure's first draw for every later draw.
+
+    Constrained layout costs a third or more of a redraw; a live demo's axes
+    keep their places while the sliders move, so the layout is computed once,
+    at the first draw, and then replaced by a do-nothing engine.  Figures
+    without a layout engine are left alone.
+    """
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    if fig.get_layout_engine() is None or getattr(fig, "_aerophoto_freeze", None) is not None:
+        return
+
+    def freeze(_event):
+        fig.canvas.mpl_disconnect(fig._aerophoto_freeze)
+        fig.set_layout_engine(PlaceHolderLayoutEngine(adjust_compatible=False, colorbar_gridspec=True))
+
+    fig._aerophoto_freeze = fig.canvas.mpl_connect("draw_event", freeze)
+
+
 def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=None, highlight=None) -> str:
     """Render a DataFrame as compact, projector-friendly HTML for an HTML widget.
 
@@ -174,7 +195,7 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=Non
     if notes:
         foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(f"<li>{_html.escape(n)}</li>" for n in notes) + "</ul>"
     return (
-        "<div class='aerophoto-table' style='font-size:13px'>"
+        "<div class='aerophoto-table' style='font-size:15px'>"
         "<table style='border-collapse:collapse' border='1' cellpadding='3'>"
         f"{cap}<thead><tr><th>{index_name}</th>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{foot}</div>"
     )

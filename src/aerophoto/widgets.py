@@ -112,7 +112,7 @@ class Param:
         import ipywidgets as w
 
         style = {"description_width": "initial"}
-        layout = w.Layout(width="330px")
+        layout = w.Layout(width="340px")
         if self.kind == "choice":
             wid = w.Dropdown(options=list(self.options), value=self.default, description=self.label,
                              style=style, layout=layout)
@@ -126,6 +126,14 @@ class Param:
         if self.help:
             wid.tooltip = self.help
         return wid
+
+
+#: projector-sized text for the demos' labels, readouts and hints (Lab and Voilà)
+_DEMO_CSS = """<style>
+.aerophoto-demo .widget-label, .aerophoto-demo .widget-readout, .aerophoto-demo .widget-html-content,
+.aerophoto-demo .widget-button, .aerophoto-demo select { font-size: 15px; }
+.aerophoto-demo .aerophoto-hint { font-size: 15px; margin-bottom: 4px; max-width: 1200px; }
+</style>"""
 
 
 def _auto_format(step: float) -> str:
@@ -160,6 +168,8 @@ class LiveDemo:
     params: tuple = ()
     #: a short sentence under the title: what to try
     hint: str = ""
+    #: lay the figure out once, at its first draw, and keep that layout (redraws get much cheaper)
+    fixed_layout: bool = True
 
     def __init__(self, **values):
         import ipywidgets as w
@@ -176,6 +186,12 @@ class LiveDemo:
         self._syncing = False
         self._layout = None
         self.build()
+        if self.fixed_layout:
+            from .plots import freeze_layout
+
+            freeze_layout(self.fig)
+        #: where Reset returns: the values the demo was built with (e.g. the student's variant)
+        self.start_values = dict(self.values)
         self.update()
 
     # ----------------------------------------------------------- to override
@@ -210,8 +226,8 @@ class LiveDemo:
         return self
 
     def reset(self):
-        """Back to every parameter's default."""
-        return self.set(**{p.name: p.default for p in self.params})
+        """Back to where the demo started (the values it was built with, else the defaults)."""
+        return self.set(**self.start_values)
 
     def update(self) -> None:
         """Recompute with the current values, move the artists, draw once."""
@@ -280,7 +296,11 @@ class LiveDemo:
         return figure_widget(self.fig)
 
     def widget(self):
-        """The whole demo: title, grouped sliders with a Reset, the figure and the table."""
+        """The whole demo, laid out for a projector (1280×800).
+
+        Title and hint on top; on the left a column with the grouped sliders,
+        Reset, the status line and the table; on the right the figure.
+        """
         if self._layout is not None:
             return self._layout
         import ipywidgets as w
@@ -289,24 +309,22 @@ class LiveDemo:
         groups: dict[str, list] = {}
         for p in self.params:
             groups.setdefault(p.group, []).append(ctls[p.name])
-        boxes = []
+        column = []
         for g, items in groups.items():
             head = [w.HTML(f"<b>{g}</b>")] if g else []
-            boxes.append(w.VBox(head + items, layout=w.Layout(margin="0 12px 6px 0")))
+            column.append(w.VBox(head + items, layout=w.Layout(margin="0 0 6px 0")))
         reset = w.Button(description="Reset", icon="undo", tooltip="Back to the starting values",
                          layout=w.Layout(width="110px"))
         reset.on_click(lambda _b: self.reset())
         self.reset_button = reset
-        parts = []
+        column += [reset, self.status, self.table]
+        left = w.VBox(column, layout=w.Layout(width="350px", min_width="350px", margin="0 12px 0 0"))
+        parts = [w.HTML(_DEMO_CSS)]
         if self.title:
             parts.append(w.HTML(f"<h3 style='margin:4px 0'>{self.title}</h3>"))
         if self.hint:
-            parts.append(w.HTML(f"<div style='margin-bottom:4px'>{self.hint}</div>"))
-        parts.append(w.HBox([w.HBox(boxes, layout=w.Layout(flex_flow="row wrap")), reset],
-                            layout=w.Layout(align_items="flex-start")))
-        parts.append(self.status)
-        parts.append(w.HBox([self.figure_widget(), self.table], layout=w.Layout(align_items="flex-start",
-                                                                                flex_flow="row wrap")))
+            parts.append(w.HTML(f"<div class='aerophoto-hint'>{self.hint}</div>"))
+        parts.append(w.HBox([left, self.figure_widget()], layout=w.Layout(align_items="flex-start")))
         self._layout = w.VBox(parts, layout=w.Layout(max_width="1260px"))
         self._layout.add_class("aerophoto-demo")
         return self._layout

@@ -431,6 +431,9 @@ def run_all_cells(page) -> None:
           const w = window.jupyterapp.shell.currentWidget;
           const k = w.sessionContext.session && w.sessionContext.session.kernel;
           if (!k || k.status !== 'idle') return false;
+          // a failing cell stops "run all": done, and the error output is reported by the caller
+          if (w.content.node.querySelector('.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'))
+            return true;
           return w.content.widgets.every((c) => c.model.type !== 'code'
               || (c.model.executionCount !== null && c.model.executionCount !== undefined
                   && !c.node.querySelector('.jp-InputArea-prompt') ?.textContent.includes('*')));
@@ -453,11 +456,15 @@ def lab_demo_root(page, cell_id: str):
 
 
 def error_outputs(page, scope=None) -> list[str]:
-    """Texts of error and stderr outputs on the page (JupyterLab and Voilà render both alike)."""
+    """Error outputs, and stderr outputs carrying a traceback, an error or a warning, on the page.
+
+    JupyterLab and Voilà render an error (traceback) with the stderr mime type too.  The rule for
+    stderr text is that of tests/test_notebooks.py.
+    """
     root = scope or page
-    sel = ('.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"], '
-           '.jp-RenderedText[data-mime-type="application/vnd.jupyter.stderr"]')
-    texts = [t.strip()[:800] for t in root.locator(sel).all_inner_texts()]
+    sel = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'
+    texts = [t.strip()[:800] for t in root.locator(sel).all_inner_texts()
+             if any(word in t for word in ("Traceback", "Error", "Warning", "error", "warning"))]
     # a widget that failed to render shows this text instead of the widget
     for t in root.locator(".jp-OutputArea-output").all_inner_texts():
         if "Error displaying widget" in t or "Error rendering output" in t:

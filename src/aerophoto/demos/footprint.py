@@ -144,7 +144,7 @@ class FootprintView:
 
     def __init__(self, result: FootprintResult | None = None, ax=None):
         if ax is None:
-            fig = plots.figure(figsize=(10.5, 4.8))
+            fig = plots.figure(figsize=(8.6, 4.2))
             ax_ground, ax_photo = fig.subplots(1, 2)
         else:
             ax_ground, ax_photo = ax

@@ -58,7 +58,6 @@ __all__ = [
     "sheet_figure",
     "export_sheet",
     "PAPER_MM",
-    "freeze_layout_after_first_draw",
 ]
 
 #: ISO A paper sizes, landscape (width, height) in mm
@@ -160,22 +159,6 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
 
 
 # =========================================================================== the view
-def freeze_layout_after_first_draw(fig) -> None:
-    """Keep the constrained layout found at the figure's first draw for every later draw.
-
-    Laying out the axes takes about a third of a redraw; a live demo's axes
-    keep their places while the sliders move, so the layout is computed once
-    (at the first draw) and then replaced by a do-nothing engine.
-    """
-    from matplotlib.layout_engine import PlaceHolderLayoutEngine
-
-    def freeze(_event):
-        fig.canvas.mpl_disconnect(cid)
-        fig.set_layout_engine(PlaceHolderLayoutEngine(adjust_compatible=False, colorbar_gridspec=True))
-
-    cid = fig.canvas.mpl_connect("draw_event", freeze)
-
-
 _CUTOUT = plots.COLORS["vermillion"]
 _DUPLICATE = plots.COLORS["blue"]
 
@@ -187,7 +170,7 @@ class FotoschemaView:
     pair of axes); ``view.update(result)`` moves every artist in place.
     """
 
-    def __init__(self, result: FotoschemaResult | None = None, ax=None, *, figsize=(9.6, 5.9)):
+    def __init__(self, result: FotoschemaResult | None = None, ax=None, *, figsize=(8.8, 5.6)):
         if ax is None:
             fig = plots.figure(figsize=figsize, layout="constrained")
             gs = fig.add_gridspec(2, 1, height_ratios=[3.0, 1.25])
@@ -344,7 +327,6 @@ class FotoschemaDemo(LiveDemo):
     def build(self):
         self.view = FotoschemaView()
         self.fig = self.view.fig
-        freeze_layout_after_first_draw(self.fig)
 
     def compute(self, **v):
         r = self.full_px_per_mm if not self._preview else self.preview_px_per_mm

@@ -305,11 +305,8 @@ class QualityDemo(LiveDemo):
     )
 
     def build(self):
-        from .fotoschema import freeze_layout_after_first_draw
-
         self.view = RoughMosaicView()
         self.fig = self.view.fig
-        freeze_layout_after_first_draw(self.fig)
 
     def compute(self, **v):
         return quality_model(**v)

@@ -656,7 +656,7 @@ class ReductionView:
 
     def __init__(self, result: ReductionResult | None = None, fig=None):
         if fig is None:
-            fig = plots.figure(figsize=(10.0, 5.4))
+            fig = plots.figure(figsize=(8.6, 5.0))
         self.fig = fig
         gs = fig.add_gridspec(1, 2, width_ratios=[3.0, 1.15])
         self.strip = StripView(ax=fig.add_subplot(gs[0, 0]))
@@ -668,23 +668,6 @@ class ReductionView:
         self.strip.update(r.free, r.reduction)
         self.strip.ax.set_title(f"Free strip, {r.params['n_photos']} templates; centre {r.reduction.corrections.centre}")
         self.coef.update(r.reduction.coefficients)
-
-
-def _freeze_layout(fig) -> None:
-    """Lay the figure out once (constrained layout) and then keep that layout.
-
-    Re-running constrained layout on every redraw costs more than the whole
-    model update; the demo's axes keep their size, so one layout is enough.
-    """
-    eng = fig.get_layout_engine()
-    if eng is None or getattr(fig, "_aerophoto_frozen", False):
-        return
-    try:
-        eng.execute(fig)
-        fig.set_layout_engine("none")
-    except Exception:  # a backend without a renderer yet: keep the engine
-        return
-    fig._aerophoto_frozen = True
 
 
 # =========================================================================== demo
@@ -718,7 +701,6 @@ class ReductionDemo(LiveDemo):
 
     def render(self, result: ReductionResult):
         self.view.update(result)
-        _freeze_layout(self.fig)
         notes = [f"{k}: {val:.4g} {u}".strip() if isinstance(val, float) else f"{k}: {val}"
                  for k, (u, val) in result.summary().iterrows()]
         if result.note:

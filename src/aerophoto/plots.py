@@ -29,6 +29,7 @@ __all__ = [
     "draw",
     "freeze_layout",
     "html_table",
+    "legend_html",
     "mark_points",
     "photo_frame",
 ]
@@ -199,6 +200,64 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=Non
         "<table style='border-collapse:collapse' border='1' cellpadding='3'>"
         f"{cap}<thead><tr><th>{index_name}</th>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{foot}</div>"
     )
+
+
+_MARKER_GLYPH = {"o": "●", "s": "■", "^": "▲", "v": "▼", "D": "◆", "+": "+", "x": "×", "*": "★", ".": "•"}
+
+
+def legend_html(ax, *, remove: bool = True) -> str:
+    """The legend(s) of an axes or of a whole figure as a small HTML block (swatch + label per entry).
+
+    Live demos show their legend beside the figure instead of inside it: a
+    legend is redrawn on every update and costs a large share of the draw.
+    With ``remove`` the axes' own legend is taken off the figure.
+    """
+    from matplotlib.colors import to_hex
+    from matplotlib.lines import Line2D
+
+    from matplotlib.figure import Figure
+
+    if isinstance(ax, Figure):
+        legends = [a.get_legend() for a in ax.axes] + list(ax.legends)
+    else:
+        legends = [ax.get_legend()]
+    entries = []
+    for leg in legends:
+        if leg is None:
+            continue
+        entries += list(zip(leg.legend_handles, [t.get_text() for t in leg.get_texts()]))
+        if remove:
+            leg.remove()
+    items = []
+    for h, label in entries:
+        if h is None:
+            continue
+        glyph, colour, style = "▬", "#000000", ""
+        try:
+            if isinstance(h, Line2D):
+                colour = to_hex(h.get_color())
+                marker = h.get_marker()
+                if marker not in (None, "None", "", " ") and h.get_linestyle() in ("None", "none", "", " "):
+                    glyph = _MARKER_GLYPH.get(marker, "●")
+                    if h.get_markerfacecolor() in ("none", "None"):
+                        glyph = {"●": "○", "■": "□", "▲": "△", "▼": "▽", "◆": "◇"}.get(glyph, glyph)
+                elif h.get_linestyle() in ("--", "dashed", ":", "dotted", "-.", "dashdot"):
+                    glyph = "┅" if h.get_linestyle() in (":", "dotted") else "╍"
+            else:
+                for getter in ("get_edgecolor", "get_facecolor", "get_color"):
+                    c = getattr(h, getter, lambda: None)()
+                    c = np.atleast_2d(c) if c is not None else np.zeros((0, 4))
+                    if len(c) and np.asarray(c).shape[-1] in (3, 4) and np.asarray(c)[0][-1] > 0:
+                        colour = to_hex(np.asarray(c)[0])
+                        break
+                glyph = "■"
+        except (TypeError, ValueError):
+            pass
+        items.append(f"<span style='white-space:nowrap;margin-right:12px'><span style='color:{colour};{style}"
+                     f"font-size:17px'>{glyph}</span> {_html.escape(label)}</span> ")
+    if not items:
+        return ""
+    return f"<div class='aerophoto-legend' style='font-size:14px;line-height:1.6;margin:4px 0'>{''.join(items)}</div>"
 
 
 def photo_frame(ax, camera, *, color=None, label="photo frame", lw=1.5):

@@ -170,6 +170,8 @@ class LiveDemo:
     hint: str = ""
     #: lay the figure out once, at its first draw, and keep that layout (redraws get much cheaper)
     fixed_layout: bool = True
+    #: show the figure's legends as HTML under it instead of drawing them on every update
+    legend_beside: bool = True
 
     def __init__(self, **values):
         import ipywidgets as w
@@ -186,9 +188,11 @@ class LiveDemo:
         self._syncing = False
         self._layout = None
         self.build()
-        if self.fixed_layout:
-            from .plots import freeze_layout
+        from .plots import freeze_layout, legend_html
 
+        #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)
+        self.legend = w.HTML(legend_html(self.fig) if self.legend_beside else "")
+        if self.fixed_layout:
             freeze_layout(self.fig)
         #: where Reset returns: the values the demo was built with (e.g. the student's variant)
         self.start_values = dict(self.values)
@@ -324,7 +328,8 @@ class LiveDemo:
             parts.append(w.HTML(f"<h3 style='margin:4px 0'>{self.title}</h3>"))
         if self.hint:
             parts.append(w.HTML(f"<div class='aerophoto-hint'>{self.hint}</div>"))
-        parts.append(w.HBox([left, self.figure_widget()], layout=w.Layout(align_items="flex-start")))
+        right = w.VBox([self.figure_widget(), self.legend], layout=w.Layout(max_width="900px"))
+        parts.append(w.HBox([left, right], layout=w.Layout(align_items="flex-start")))
         self._layout = w.VBox(parts, layout=w.Layout(max_width="1260px"))
         self._layout.add_class("aerophoto-demo")
         return self._layout

@@ -2,6 +2,8 @@
 
     python benchmarks/run.py browser            # ≥ 20 moves per demo
     python benchmarks/run.py browser --quick    # 10 moves per demo
+    AEROPHOTO_BENCH_ONLY=05_fotoschema,06_strip_triangulation python benchmarks/run.py browser   # some chapters
+    AEROPHOTO_BENCH_NAIVE=0 python benchmarks/run.py browser    # without the naive baselines (quicker)
 
 Method (all timestamps are ``performance.now()`` inside the page, so Python and
 Playwright overheads are not counted): a capture-phase ``keydown`` listener
@@ -31,6 +33,7 @@ Targets: ≤ 150 ms median for the displacement and reduction explorers,
 from __future__ import annotations
 
 import importlib.util
+import os
 import shutil
 import sys
 import tempfile
@@ -160,6 +163,11 @@ def run(quick: bool = False) -> dict:
     from playwright.sync_api import sync_playwright
 
     n = 10 if quick else 20
+    only = [c.strip() for c in os.environ.get("AEROPHOTO_BENCH_ONLY", "").split(",") if c.strip()]
+    names = [ch.name for ch in chapters.CHAPTERS]
+    unknown = [c for c in only if c not in names]
+    if unknown:
+        raise ValueError(f"AEROPHOTO_BENCH_ONLY = {','.join(unknown)!r}: no such chapter; valid: {', '.join(names)}")
     result = {"method": __doc__.split("Method")[1].split("The naive")[0].strip().replace("\n", " "),
               "moves_per_demo": n, "jupyterlab": {}, "voila": {}, "targets_ms": TARGETS_MS}
     naive_dir = Path(tempfile.mkdtemp(prefix="aerophoto-naive-"))
@@ -181,6 +189,8 @@ def run(quick: bool = False) -> dict:
                     return page.locator(".aerophoto-naive").first
 
                 for ch in chapters.CHAPTERS:
+                    if only and ch.name not in only:
+                        continue
                     for demo in ch.demos:
                         key = f"{ch.name}/{demo.cell} [{demo.timed_slider}]"
 
@@ -198,7 +208,7 @@ def run(quick: bool = False) -> dict:
                             _measure_lab(h, browser, lab, ch.notebook, lab_root, label, n))
                         result["voila"][key] = _entry(
                             _measure_voila(h, browser, voila, ch.notebook, voila_root, label, n))
-                        if not demo.cls:
+                        if not demo.cls or os.environ.get("AEROPHOTO_BENCH_NAIVE", "1") == "0":
                             continue
                         naive_nb = _write_naive(naive_dir, demo)
                         result["jupyterlab"][key]["naive"] = _entry(

@@ -270,6 +270,23 @@ def test_sheet_raster_from_rendered_prints_matches_direct_sampling():
         mo.sheet_raster(fs, gr, 0.5, photos=prints[:2])
 
 
+def test_sheet_raster_in_bands_fills_the_same_image_a_band_at_a_time():
+    fs, gr = _fotoschema(relief_m=30.0)
+    whole, ext = mo.sheet_raster(fs, gr, 1.0)
+    steps = list(mo.sheet_raster_bands(fs, gr, 1.0, band_px=3_000))
+    ny, nx = whole.shape
+    rows = [done for _img, _ext, done in steps]
+    assert rows == sorted(rows) and rows[-1] == ny and len(steps) == math.ceil(ny / (3_000 // nx))
+    img = steps[-1][0]
+    assert all(s[0] is img for s in steps) and steps[-1][1] == ext  # one array, filled in place
+    assert np.abs(img - whole).max() < 1e-3
+    # a band of one row when band_px is below a row's width; nonsense is refused by name
+    assert sum(1 for _ in mo.sheet_raster_bands(fs, gr, 0.2, band_px=1)) == \
+        int(math.ceil((fs.extent_mm[3] - fs.extent_mm[2]) * 0.2))
+    with pytest.raises(ValueError, match="band_px = 0"):
+        next(mo.sheet_raster_bands(fs, gr, 1.0, band_px=0))
+
+
 # --------------------------------------------------------------------------- the live demo and the sheet
 def test_demo_renders_full_resolution_from_code_and_preview_on_request():
     from aerophoto.demos.fotoschema import FotoschemaDemo
@@ -305,12 +322,18 @@ def test_demo_renders_full_resolution_from_code_and_preview_on_request():
 def test_demo_sliders_preview_while_moving_and_render_full_when_still():
     import asyncio
 
-    from aerophoto.demos.fotoschema import FotoschemaDemo
+    from aerophoto.demos.fotoschema import FotoschemaDemo, fotoschema_model
 
     d = FotoschemaDemo()
     d.settle_s = 0.05
     ctl = d.controls()
     seen = []
+
+    async def until_full(timeout_s=20.0):
+        t0 = asyncio.get_running_loop().time()
+        while d.result.preview or d._pending is not None:
+            assert asyncio.get_running_loop().time() - t0 < timeout_s, "the full render never came"
+            await asyncio.sleep(0.01)
 
     async def drive():
         ctl["relief_m"].value = 60.0
@@ -318,7 +341,7 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
         ctl["relief_m"].value = 65.0  # a second event restarts the settle timer
         seen.append(d.result.preview)
         seen.append(d._pending is not None)
-        await asyncio.sleep(0.3)
+        await until_full()
         seen.append(d.result.preview)
         seen.append(d._pending is None)
 
@@ -327,6 +350,30 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
     assert seen == [True, True, True, False, True]
     assert d.n_updates - n0 == 3  # two previews, one full render
     assert d.values["relief_m"] == 65.0
+    # the banded full render is the full-resolution model, pixel for pixel (to the ray tolerance)
+    ref = fotoschema_model(**{k: d.values[k] for k in ("f_mm", "m", "alpha_max_deg", "relief_m", "px_percent",
+                                                       "cut_shape", "seed")}, px_per_mm=d.full_px_per_mm)
+    assert d.result.image.shape == ref.image.shape and d.result.extent_mm == ref.extent_mm
+    assert np.abs(d.result.image - ref.image).max() < 1e-3
+
+    # a slider moved while the full render is being glued: the rest is dropped, the move is served at once
+    d.band_px = 5_000  # many small bands
+
+    async def interrupt():
+        ctl["relief_m"].value = 70.0
+        while d._pending is None or isinstance(d._pending, asyncio.TimerHandle):
+            await asyncio.sleep(0.001)  # until the settle timer has fired and the glueing has begun
+        await asyncio.sleep(0)  # a band or two more
+        assert d.result.preview and d._pending is not None  # still glueing
+        n = d.n_updates
+        ctl["relief_m"].value = 75.0
+        seen2.append((d.n_updates - n, d.result.preview, d.values["relief_m"]))
+        await until_full()
+        seen2.append((d.n_updates - n, d.result.preview))
+
+    seen2 = []
+    asyncio.run(interrupt())
+    assert seen2 == [(1, True, 75.0), (2, False)]  # one preview for 75, then one full render (70's was dropped)
     # without an event loop (a plain script) a slider event renders in full at once
     ctl["px_percent"].value = 65
     assert not d.result.preview and d.values["px_percent"] == 65

@@ -72,6 +72,7 @@ __all__ = [
     "RescaledRelief",
     "catalogue_points",
     "sheet_raster",
+    "sheet_raster_bands",
     "variant_task",
     "variant_task_answers",
 ]
@@ -893,6 +894,28 @@ def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=
     -------
     image : ndarray (ny, nx) float32 in 0…1, row 0 at y_min (``imshow(origin="lower")``)
     extent : (x_min, x_max, y_min, y_max) in sheet mm
+
+    See :func:`sheet_raster_bands` for the same raster glued a band of rows at a time.
+    """
+    image = extent = None
+    for image, extent, _done in sheet_raster_bands(fs, ground, px_per_mm, photos=photos, extent_mm=extent_mm,
+                                                   background=background, max_pixels=max_pixels, band_px=None):
+        pass
+    return image, extent
+
+
+def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=None, extent_mm=None,
+                       background: float = 1.0, max_pixels: int = 20_000_000, band_px: int | None = 60_000):
+    """:func:`sheet_raster` a band of rows at a time: a generator of ``(image, extent, rows_done)``.
+
+    The image is allocated once (``background`` everywhere) and each step
+    glues the next band of whole rows, about ``band_px`` pixels (at least one
+    row; ``None``: everything in one step), and yields the same array.  After
+    the last step the image is :func:`sheet_raster`'s (to the ray–terrain tolerance,
+    0.1 mm on the ground, far below a pixel).
+    A live demo glues a large sheet this way, one band per turn of the event
+    loop, so that a slider moved meanwhile is served within one band
+    (about 30 ms) and the rest can be abandoned.
     """
     r = check_positive("px_per_mm", px_per_mm, unit="px/mm", hi=20.0)
     x0, x1, y0, y1 = fs.extent_mm if extent_mm is None else extent_mm
@@ -903,40 +926,45 @@ def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=
                          f"(px_per_mm ≤ {math.sqrt(max_pixels / ((x1 - x0) * (y1 - y0))):.2f})")
     if photos is not None and len(photos) != len(fs.poses):
         raise ValueError(f"photos has {len(photos)} prints; the valid input is one per photo ({len(fs.poses)})")
+    if band_px is not None and int(band_px) < 1:
+        raise ValueError(f"band_px = {band_px} is not a pixel count; the valid range is ≥ 1 (or None)")
     x1, y1 = x0 + nx / r, y0 + ny / r
+    extent = (x0, x1, y0, y1)
     xs = x0 + (np.arange(nx) + 0.5) / r
     ys = y0 + (np.arange(ny) + 0.5) / r
-    P = np.empty((ny, nx, 2))
-    P[..., 0] = xs[None, :]
-    P[..., 1] = ys[:, None]
-    P = P.reshape(-1, 2)
-    idx = fs.photo_index(P)
-    out = np.full(P.shape[0], background, dtype=np.float32)
+    image = np.full((ny, nx), background, dtype=np.float32)
     h = fs.camera.half_mm
     sampler = getattr(ground, "sample", None)
     dem = _terrain(ground, 0.0)
     level = 0
     if sampler is not None and hasattr(ground, "level_for"):
         level = ground.level_for(fs.m_design / r / 1000.0)  # ground size of a sheet pixel, m
-    for i, (pose, T) in enumerate(zip(fs.poses, fs.to_sheet)):
-        sel = np.flatnonzero(idx == i)
-        if not sel.size:
-            continue
-        xy = T.inverse().apply(P[sel])
-        ins = np.all(np.abs(xy) <= h, axis=1)
-        sel, xy = sel[ins], xy[ins]
-        if not sel.size:
-            continue
-        if photos is not None:
-            out[sel] = photos[i].value_at(xy)
-            continue
-        G = g.photo_to_dem(fs.camera, pose, xy, dem)
-        if sampler is not None:
-            v = sampler(G[:, 0], G[:, 1], level, outside=background)
-        else:
-            v = _pattern(G[:, 0], G[:, 1])
-        out[sel] = v
-    return out.reshape(ny, nx), (x0, x1, y0, y1)
+    inverse = [T.inverse() for T in fs.to_sheet]
+    rows = ny if band_px is None else max(1, int(band_px) // nx)
+    for r0 in range(0, ny, rows):
+        r1 = min(ny, r0 + rows)
+        P = np.empty((r1 - r0, nx, 2))
+        P[..., 0] = xs[None, :]
+        P[..., 1] = ys[r0:r1, None]
+        P = P.reshape(-1, 2)
+        idx = fs.photo_index(P)
+        out = image[r0:r1].reshape(-1)  # a view: written in place
+        for i, (pose, Tinv) in enumerate(zip(fs.poses, inverse)):
+            sel = np.flatnonzero(idx == i)
+            if not sel.size:
+                continue
+            xy = Tinv.apply(P[sel])
+            ins = np.all(np.abs(xy) <= h, axis=1)
+            sel, xy = sel[ins], xy[ins]
+            if not sel.size:
+                continue
+            if photos is not None:
+                out[sel] = photos[i].value_at(xy)
+                continue
+            G = g.photo_to_dem(fs.camera, pose, xy, dem)
+            out[sel] = sampler(G[:, 0], G[:, 1], level, outside=background) if sampler is not None \
+                else _pattern(G[:, 0], G[:, 1])
+        yield image, extent, r1
 
 
 # =========================================================================== the student's task data

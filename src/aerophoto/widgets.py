@@ -188,12 +188,13 @@ class LiveDemo:
         self._syncing = False
         self._layout = None
         self.build()
-        from .plots import freeze_layout, legend_html
+        from .plots import fast_frames, freeze_layout, legend_html
 
         #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)
         self.legend = w.HTML(legend_html(self.fig) if self.legend_beside else "")
         if self.fixed_layout:
             freeze_layout(self.fig)
+        fast_frames(self.fig)  # cheaper PNG frames to the browser (ipympl only)
         #: where Reset returns: the values the demo was built with (e.g. the student's variant)
         self.start_values = dict(self.values)
         self.update()

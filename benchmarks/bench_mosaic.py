@@ -24,7 +24,6 @@ Target: a preview update ≤ 250 ms at p95.
 
 from __future__ import annotations
 
-import time
 
 from _timing import measure, summarize
 

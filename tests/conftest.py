@@ -5,6 +5,11 @@ import tempfile
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
+
+# property tests draw the same examples on every machine and every run (no example database)
+settings.register_profile("aerophoto", derandomize=True, database=None)
+settings.load_profile("aerophoto")
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = ROOT / "notebooks"

@@ -243,6 +243,9 @@ def test_checks_write_nothing_to_stderr(capsys):
 
 
 def test_tolerance_constants_match_the_docstring():
-    assert checks.TOL_REL == 0.005 and checks.TOL_PHOTO_MM == 0.05 and checks.TOL_COEFF == 0.0005
-    assert "0.5 %" in checks.__doc__ and "0.1 mm" in checks.__doc__
-    assert math.isclose(checks.TOL_PHOTO_MM * 2, 0.1)
+    doc = checks.__doc__
+    # each constant is the value the module's documentation promises
+    assert f"``rel={checks.TOL_REL:g}`` ({checks.TOL_REL * 100:g} %)" in doc
+    assert f"``tol_abs={checks.TOL_PHOTO_MM:g}`` mm" in doc and f"``tol_abs={checks.TOL_COEFF:g}``" in doc
+    # photo distances are printed to 0.1 mm: the tolerance is half the last printed digit
+    assert "printed to 0.1 mm" in doc and math.isclose(checks.TOL_PHOTO_MM * 2, 0.1)

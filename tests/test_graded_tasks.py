@@ -348,42 +348,24 @@ def lint_release(nb, path) -> list[str]:
     return problems
 
 
-# one test per rule and notebook
+# every rule on every notebook
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
-def test_nbgrader_cells_are_answer_or_test_cells_with_the_book_metadata(path):
-    problems = lint_metadata(read(path), path)
-    assert not problems, f"{path.name}: " + "; ".join(problems)
+RULES = {
+    "answer-or-test-cells-with-the-book-metadata": lint_metadata,
+    "answer-cell-followed-by-its-test-cell-with-task-text": lint_pairing,
+    "answer-template-lines-outside-the-solution": lint_answers,
+    "tests-use-aerophoto-checks-with-hidden-tests": lint_tests,
+    "markers-only-in-their-cells": lint_markers,
+    "later-cells-independent-of-the-answers": lint_downstream,
+    "student-version-without-solutions-or-hidden-tests": lint_release,
+}
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
-def test_each_answer_cell_is_followed_by_its_test_cell_and_has_task_text(path):
-    problems = lint_pairing(read(path), path)
-    assert not problems, f"{path.name}: " + "; ".join(problems)
 
+@pytest.mark.parametrize("rule", RULES)
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
-def test_answer_cells_have_template_lines_outside_the_solution(path):
-    problems = lint_answers(read(path), path)
-    assert not problems, f"{path.name}: " + "; ".join(problems)
-
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
-def test_test_cells_use_aerophoto_checks_with_hidden_tests(path):
-    problems = lint_tests(read(path), path)
-    assert not problems, f"{path.name}: " + "; ".join(problems)
-
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
-def test_markers_appear_only_in_their_cells(path):
-    problems = lint_markers(read(path), path)
-    assert not problems, f"{path.name}: " + "; ".join(problems)
-
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
-def test_later_cells_do_not_depend_on_the_students_answers(path):
-    problems = lint_downstream(read(path), path)
-    assert not problems, f"{path.name}: " + "; ".join(problems)
-
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
-def test_student_version_has_no_solutions_or_hidden_tests(path):
-    problems = lint_release(read(path), path)
-    assert not problems, f"{path.name}: " + "; ".join(problems)
+def test_notebook_follows_the_grading_rule(path, rule):
+    problems = RULES[rule](read(path), path)
+    assert not problems, f"{path.name} breaks {rule}: " + "; ".join(problems)
 
 
 # the rules themselves: each catches the mistake it is for

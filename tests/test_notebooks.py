@@ -7,7 +7,7 @@ import nbformat
 import pytest
 from nbclient import NotebookClient
 
-from conftest import ROOT, all_notebooks
+from conftest import all_notebooks
 
 NOTEBOOKS = all_notebooks()
 IDS = [p.stem for p in NOTEBOOKS]

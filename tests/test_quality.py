@@ -1,6 +1,5 @@
 """Photo-quality assessment (guide §3): the formulas, and measurements on simulated flights vs truth."""
 
-import math
 
 import numpy as np
 import pytest

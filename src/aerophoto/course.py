@@ -222,7 +222,6 @@ def graded_tasks(nb) -> list[GradedTask]:
 
 def _course_config(root: Path | None = None, timeout: int | None = None):
     """The nbgrader Config: the course folder's nbgrader_config.py (or the packaged template)."""
-    from traitlets.config import Config
     from traitlets.config.loader import PyFileConfigLoader
 
     path = (root / "nbgrader_config.py") if root is not None else None

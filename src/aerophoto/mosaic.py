@@ -48,6 +48,7 @@ import numpy as np
 import pandas as pd
 
 from . import geometry as g
+from .geometry import Similarity2D, fit_similarity
 from ._validate import check_positive, check_range
 
 __all__ = [
@@ -86,94 +87,8 @@ CUT_SHAPES = ("straight", "zigzag", "curved")
 
 
 # =========================================================================== plane geometry
-@dataclass(frozen=True)
-class Similarity2D:
-    """A 2-D similarity x' = s·R(θ)·x + t, stored as a = s·cos θ, b = s·sin θ, t = (tx, ty).
-
-    With s = 1 it is a rigid motion — how a contact print can be moved on the
-    table (shift and turn, no rescaling).
-    """
-
-    a: float = 1.0
-    b: float = 0.0
-    tx: float = 0.0
-    ty: float = 0.0
-
-    @classmethod
-    def from_angle(cls, theta_deg: float = 0.0, t=(0.0, 0.0), scale: float = 1.0) -> "Similarity2D":
-        th = math.radians(theta_deg)
-        return cls(scale * math.cos(th), scale * math.sin(th), float(t[0]), float(t[1]))
-
-    @property
-    def scale(self) -> float:
-        return math.hypot(self.a, self.b)
-
-    @property
-    def rotation_deg(self) -> float:
-        return math.degrees(math.atan2(self.b, self.a))
-
-    def apply(self, xy) -> np.ndarray:
-        """Transform points, shape (..., 2) → (..., 2)."""
-        p = np.asarray(xy, dtype=float)
-        x, y = p[..., 0], p[..., 1]
-        return np.stack([self.a * x - self.b * y + self.tx, self.b * x + self.a * y + self.ty], axis=-1)
-
-    __call__ = apply
-
-    def inverse(self) -> "Similarity2D":
-        d = self.a * self.a + self.b * self.b
-        if d == 0:
-            raise ValueError("the similarity has scale 0 and no inverse")
-        ia, ib = self.a / d, -self.b / d
-        return Similarity2D(ia, ib, -(ia * self.tx - ib * self.ty), -(ib * self.tx + ia * self.ty))
-
-    def compose(self, other: "Similarity2D") -> "Similarity2D":
-        """``self ∘ other``: apply ``other`` first, then ``self``."""
-        a = self.a * other.a - self.b * other.b
-        b = self.b * other.a + self.a * other.b
-        t = self.apply([other.tx, other.ty])
-        return Similarity2D(a, b, float(t[0]), float(t[1]))
-
-    def matrix(self) -> np.ndarray:
-        """The 3×3 homogeneous matrix."""
-        return np.array([[self.a, -self.b, self.tx], [self.b, self.a, self.ty], [0.0, 0.0, 1.0]])
-
-
-def fit_similarity(src, dst, *, scale: bool = False) -> Similarity2D:
-    """Least-squares 2-D motion taking ``src`` points onto ``dst`` (Umeyama's method).
-
-    Parameters
-    ----------
-    src, dst : array_like, shape (k, 2), k ≥ 2
-        Corresponding points (e.g. the same detail on two prints), any unit.
-    scale : bool
-        False (default): a rigid motion, rotation + shift, as when a print is
-        laid on its neighbour; True: a similarity with a free scale.
-
-    Returns
-    -------
-    Similarity2D minimising Σ|T(src) − dst|².  For a rigid fit to two points
-    the leftover misfit is shared equally between them.
-    """
-    P = np.asarray(src, dtype=float).reshape(-1, 2)
-    Q = np.asarray(dst, dtype=float).reshape(-1, 2)
-    if P.shape != Q.shape:
-        raise ValueError(f"src has shape {P.shape} and dst {Q.shape}; they must match, shape (k, 2)")
-    if len(P) < 2:
-        raise ValueError(f"{len(P)} point pair(s) given; the valid range is at least 2 pairs")
-    mp, mq = P.mean(axis=0), Q.mean(axis=0)
-    p, q = P - mp, Q - mq
-    sxx = float(np.sum(p * p))
-    if sxx == 0:
-        raise ValueError("the source points coincide; at least two distinct points are needed")
-    # for 2-D the optimal rotation comes from the complex cross-correlation
-    c = float(np.sum(p[:, 0] * q[:, 0] + p[:, 1] * q[:, 1]))
-    s_ = float(np.sum(p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]))
-    th = math.atan2(s_, c)
-    k = math.hypot(c, s_) / sxx if scale else 1.0
-    a, b = k * math.cos(th), k * math.sin(th)
-    t = mq - np.array([a * mp[0] - b * mp[1], b * mp[0] + a * mp[1]])
-    return Similarity2D(a, b, float(t[0]), float(t[1]))
+# Similarity2D and fit_similarity live in aerophoto.geometry (shared with the triangulation);
+# they are re-exported here, where the fotoschema uses them.
 
 
 def cut_line(p_top, p_bottom, y_range, *, shape: str = "straight", amplitude_mm: float = 3.0,

@@ -709,37 +709,29 @@ def fit_rigid(src, dst):
     Returns
     -------
     R : ndarray (2, 2), t : ndarray (2,) — ``dst ≈ src @ R.T + t`` in the
-    least-squares sense (Kabsch, reflections excluded).
+    least-squares sense (:func:`aerophoto.geometry.fit_similarity`, reflections excluded).
     """
-    A = np.asarray(src, dtype=float)
-    B = np.asarray(dst, dtype=float)
-    if len(A) < 2 or A.shape != B.shape:
-        raise ValueError(f"fit_rigid needs two matching arrays of at least 2 points; got {A.shape} and {B.shape}")
-    ca, cb = A.mean(axis=0), B.mean(axis=0)
-    H = (A - ca).T @ (B - cb)
-    ang = math.atan2(H[0, 1] - H[1, 0], H[0, 0] + H[1, 1])
-    R = np.array([[math.cos(ang), -math.sin(ang)], [math.sin(ang), math.cos(ang)]])
-    return R, cb - ca @ R.T
+    T = g.fit_similarity(src, dst).matrix()
+    return T[:2, :2], T[:2, 2]
 
 
 def fit_similarity(src, dst):
-    """Best-fit similarity (scale, rotation, translation): ``dst ≈ s · src @ R.T + t``; returns (s, R, t)."""
-    A = np.asarray(src, dtype=float)
-    B = np.asarray(dst, dtype=float)
-    if len(A) < 2 or A.shape != B.shape:
-        raise ValueError(f"fit_similarity needs two matching arrays of at least 2 points; got {A.shape} and {B.shape}")
-    ca, cb = A.mean(axis=0), B.mean(axis=0)
-    a, b = A - ca, B - cb
-    H = a.T @ b
-    p = H[0, 0] + H[1, 1]
-    q = H[0, 1] - H[1, 0]
-    ang = math.atan2(q, p)
-    s = math.hypot(p, q) / float(np.sum(a * a))
-    R = np.array([[math.cos(ang), -math.sin(ang)], [math.sin(ang), math.cos(ang)]])
-    return s, R, cb - s * ca @ R.T
+    """Best-fit similarity (scale, rotation, translation): ``dst ≈ s · src @ R.T + t``; returns (s, R, t).
+
+    The matrix form of :func:`aerophoto.geometry.fit_similarity` with a free scale.
+    """
+    S = g.fit_similarity(src, dst, scale=True)
+    T = S.matrix()
+    return S.scale, T[:2, :2] / S.scale, T[:2, 2]
 
 
 # =========================================================================== free strip
+def _largest_side(sides_mm) -> float:
+    """The largest finite error-triangle side, mm (0 when there is none)."""
+    s = np.asarray(sides_mm, dtype=float)
+    return float(np.nanmax(s)) if np.any(np.isfinite(s)) else 0.0
+
+
 @dataclass(frozen=True)
 class FreeStrip:
     """A free strip (свободный ряд): the templates laid in an arbitrary scale (guide §13 step 6–7).
@@ -784,8 +776,7 @@ class FreeStrip:
 
     @property
     def max_triangle_side_mm(self) -> float:
-        s = self.triangle_sides_mm
-        return float(np.nanmax(s)) if np.any(np.isfinite(s)) else 0.0
+        return _largest_side(self.triangle_sides_mm)
 
     def ray_segments(self, extend: float = 1.15) -> np.ndarray:
         """Segments, shape (k, 2, 2), of every template ray from its centre to (a bit past) its point."""
@@ -1358,8 +1349,7 @@ class EndsStrip:
 
     @property
     def max_triangle_side_mm(self) -> float:
-        s = self.triangle_sides_mm
-        return float(np.nanmax(s)) if np.any(np.isfinite(s)) else 0.0
+        return _largest_side(self.triangle_sides_mm)
 
     @property
     def mid_discrepancy_mm(self) -> float:

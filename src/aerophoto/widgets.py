@@ -236,20 +236,21 @@ class LiveDemo:
 
     def update(self) -> None:
         """Recompute with the current values, move the artists, draw once."""
-        self.result = self.compute(**self.values)
-        self.render(self.result)
+        self.show(self.compute(**self.values))
+
+    def show(self, result) -> None:
+        """Show a computed ``result``: keep it as ``self.result``, move the artists, draw once."""
+        self.result = result
+        self.render(result)
         self.n_updates += 1
         self.draw()
 
     def draw(self, force: bool = False) -> None:
         """Redraw the figure (``force=True`` renders now, e.g. in tests and benchmarks)."""
-        fig = getattr(self, "fig", None)
-        if fig is None:
-            return
-        if force:
-            fig.canvas.draw()
-        else:
-            fig.canvas.draw_idle()
+        from .plots import draw
+
+        if getattr(self, "fig", None) is not None:
+            draw(self.fig, force=force)
 
     # ----------------------------------------------------------- widgets
     def _sync_controls(self, values: dict) -> None:

@@ -8,7 +8,6 @@ side); :class:`FootprintDemo` binds sliders for f, 1:m, α, λ and κ to both.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np

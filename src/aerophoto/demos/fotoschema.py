@@ -290,6 +290,16 @@ class FotoschemaView:
 
 
 # =========================================================================== the live demo
+def _running_loop():
+    """The kernel's running asyncio event loop, or None (a plain script or test)."""
+    import asyncio
+
+    try:
+        return asyncio.get_running_loop()
+    except RuntimeError:
+        return None
+
+
 class FotoschemaDemo(LiveDemo):
     """Live single-strip fotoschema: f, scale, tilt, relief and overlap → sheet, seams, m and mean scale.
 
@@ -378,13 +388,8 @@ class FotoschemaDemo(LiveDemo):
         return self.status.value
 
     def _schedule_full(self) -> None:
-        import asyncio
-
         self._cancel_pending()
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
-            loop = None
+        loop = _running_loop()
         if loop is None:  # no event loop (a script or a test): render in full at once
             self._settle()
             return
@@ -400,16 +405,11 @@ class FotoschemaDemo(LiveDemo):
         so a slider moved meanwhile is served after at most one band and
         cancels the rest; without a loop all bands run at once.
         """
-        import asyncio
-
         self._pending = None
         r = getattr(self, "result", None)
         if r is None or not r.preview:
             return
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
-            loop = None
+        loop = _running_loop()
         steps = mo.sheet_raster_bands(r.fs, r.ground, self.full_px_per_mm,
                                       band_px=self.band_px if loop is not None else None)
         self._glue_step(r, steps, loop, time.perf_counter())
@@ -427,10 +427,7 @@ class FotoschemaDemo(LiveDemo):
                     return
             full = dataclasses.replace(r, image=image, extent_mm=extent, px_per_mm=float(self.full_px_per_mm),
                                        preview=False, timings_s={**r.timings_s, "glue": time.perf_counter() - t0})
-            self.result = full
-            self.render(full)
-            self.n_updates += 1
-            self.draw()
+            self.show(full)
             self.status.value = ""
         except Exception as exc:
             self.status.value = error_html(exc)

@@ -25,7 +25,7 @@ CHAPTERS = [p for p in NOTEBOOKS if re.match(r"^\d\d_", p.name)]
 ANSWER_META = {"grade": False, "locked": False, "schema_version": 3, "solution": True, "task": False}
 TEST_META = {"grade": True, "locked": True, "schema_version": 3, "solution": False, "task": False}
 TEMPLATE = re.compile(r"^([A-Za-z_]\w*)\s*=\s*\.\.\.\s*(#.*)?$")
-CHECK_CALL = re.compile(r"\bchecks\.(check_value|check_values|check_count|check_bool|check_choice)\(")
+CHECK_CALL = re.compile(r"\bchecks\.check_task\(")
 
 
 def read(path):
@@ -46,16 +46,6 @@ def split_answer(src: str):
     lines = src.splitlines()
     begins = [i for i, ln in enumerate(lines) if "BEGIN SOLUTION" in ln]
     ends = [i for i, ln in enumerate(lines) if "END SOLUTION" in ln]
-    if len(begins) != 1 or len(ends) != 1 or ends[0] < begins[0]:
-        return None
-    return lines[: begins[0]], lines[begins[0] + 1: ends[0]], lines[ends[0] + 1:]
-
-
-def split_test(src: str):
-    """(visible lines, hidden lines, lines after END HIDDEN TESTS) or None if unmarked."""
-    lines = src.splitlines()
-    begins = [i for i, ln in enumerate(lines) if "BEGIN HIDDEN TESTS" in ln]
-    ends = [i for i, ln in enumerate(lines) if "END HIDDEN TESTS" in ln]
     if len(begins) != 1 or len(ends) != 1 or ends[0] < begins[0]:
         return None
     return lines[: begins[0]], lines[begins[0] + 1: ends[0]], lines[ends[0] + 1:]
@@ -86,7 +76,8 @@ def displays_a_value(code: str) -> bool:
     if not body or not isinstance(body[-1], ast.Expr):
         return False
     last = body[-1].value
-    if isinstance(last, ast.Call) and isinstance(last.func, ast.Attribute) and last.func.attr == "task_passed":
+    if isinstance(last, ast.Call) and isinstance(last.func, ast.Attribute) and last.func.attr in ("task_passed",
+                                                                                                   "check_task"):
         return False  # returns None: nothing is displayed
     # IPython's rule: a trailing ';' (comments after it do not count) silences the value
     skip = {tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.ENDMARKER, tokenize.INDENT, tokenize.DEDENT}
@@ -240,7 +231,23 @@ def lint_answers(nb, path) -> list[str]:
     return problems
 
 
+def _check_task_call(code: str):
+    """The one ``checks.check_task(...)`` call of a check cell: (task id, positional names, {kw: value name}) or None."""
+    calls = [n for n in ast.walk(ast.parse(code)) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+             and n.func.attr == "check_task"]
+    if len(calls) != 1:
+        return None
+    call = calls[0]
+    tid = call.args[0].value if call.args and isinstance(call.args[0], ast.Constant) else None
+    pos = [a.id if isinstance(a, ast.Name) else None for a in call.args[1:]]
+    kws = {k.arg: (k.value.id if isinstance(k.value, ast.Name) else None) for k in call.keywords}
+    return tid, pos, kws
+
+
 def lint_tests(nb, path) -> list[str]:
+    """A check cell is ``from aerophoto import checks`` and one ``checks.check_task("task-NN-k", v, name=name, …)``."""
+    from aerophoto import tasks
+
     problems = []
     for _, ans, _, test in task_cells(nb):
         if test is None:
@@ -248,39 +255,53 @@ def lint_tests(nb, path) -> list[str]:
         gid = nbg(test)["grade_id"]
         task = gid.removesuffix("-check")
         try:
-            ast.parse(test.source)
+            tree = ast.parse(test.source)
         except SyntaxError as exc:
             problems.append(f"{gid}: not valid Python ({exc.msg})")
             continue
-        parts = split_test(test.source)
-        if parts is None:
-            problems.append(f"{gid}: needs exactly one ### BEGIN HIDDEN TESTS … ### END HIDDEN TESTS block")
-            continue
-        visible, hidden, after = parts
-        vis_code, hid_code = "\n".join(visible), "\n".join(hidden)
-        if not CHECK_CALL.search(vis_code):
-            problems.append(f"{gid}: the visible checks must call aerophoto.checks (checks.check_value(...) etc.)")
-        if not re.search(r"from aerophoto import checks|import aerophoto\.checks as checks|aerophoto\.checks", vis_code):
+        if "HIDDEN TESTS" in test.source:
+            problems.append(f"{gid}: hidden tests live in aerophoto.tasks (Task.hidden), run by the instructor's "
+                            "grader — not in the notebook")
+        if not re.search(r"from aerophoto import checks", test.source):
             problems.append(f"{gid}: import the checks in the cell: `from aerophoto import checks`")
-        if not CHECK_CALL.search(hid_code) and "assert" not in hid_code:
-            problems.append(f"{gid}: the hidden tests block has no check")
-        if re.search(r"^\s*assert\b", vis_code, re.M):
-            problems.append(f"{gid}: visible checks use aerophoto.checks, not bare assert (its message is a traceback)")
+        call = _check_task_call(test.source)
+        if call is None:
+            problems.append(f"{gid}: the cell must call checks.check_task(\"{task}\", v, name=name, ...) exactly once")
+            continue
+        tid, pos, kws = call
+        if tid != task:
+            problems.append(f"{gid}: check_task names {tid!r}; this cell checks {task!r}")
+        if pos != ["v"]:
+            problems.append(f"{gid}: check_task's second argument is the student's variant v")
         names = template_names(ans.source)
-        unchecked = [n for n in names if n not in loaded_names(vis_code)]
-        if unchecked:
-            problems.append(f"{gid}: the visible checks never look at {unchecked}")
-        if "v" not in loaded_names(test.source):
-            problems.append(f"{gid}: the expected values must come from the student's variant v")
-        tail = "\n".join(after).strip()
-        if not re.fullmatch(rf"checks\.task_passed\(\s*['\"]{task}['\"]\s*\)\s*;?", tail):
-            problems.append(f"{gid}: the cell must end, after ### END HIDDEN TESTS, with "
-                            f"checks.task_passed(\"{task}\")")
-        for version, code in (("source", test.source), ("student", "\n".join(visible + after))):
-            if displays_a_value(code):
-                problems.append(f"{gid}: the {version} version ends with an expression whose value is "
-                                "displayed (nbgrader reads it as partial credit)")
+        if set(kws) != set(names) or any(kws[k] != k for k in kws):
+            problems.append(f"{gid}: pass every answer as itself, name=name: {names} (got {kws})")
+        try:
+            spec = list(tasks.get(task).names)
+        except ValueError as exc:
+            problems.append(f"{gid}: {exc}")
+        else:
+            if names != spec:
+                problems.append(f"{gid}: the answer cell's template names {names} differ from the task's "
+                                f"answers {spec} (aerophoto.tasks)")
+        if len(tree.body) != 2 or not isinstance(tree.body[-1], ast.Expr):
+            problems.append(f"{gid}: the check cell is the import and the check_task call, nothing else")
+        if displays_a_value(test.source):
+            problems.append(f"{gid}: the cell ends with an expression whose value is displayed (nbgrader reads "
+                            "it as partial credit)")
     return problems
+
+
+def lint_registry(nb, path) -> list[str]:
+    """Every task of the chapter's module in aerophoto.tasks has its cells in the notebook, and no other."""
+    from aerophoto import tasks
+
+    nn = number(path)
+    in_nb = [nbg(a)["grade_id"].removesuffix("-answer") for _, a, _, _ in task_cells(nb)]
+    if nn not in tasks.CHAPTER_MODULES:
+        return [f"graded cells {in_nb} but no module aerophoto.tasks for chapter {nn}"] if in_nb else []
+    registered = [t.id for t in tasks.chapter_tasks(nn)]
+    return [] if in_nb == registered else [f"the notebook's tasks {in_nb} differ from aerophoto.tasks: {registered}"]
 
 
 def lint_markers(nb, path) -> list[str]:
@@ -337,14 +358,8 @@ def lint_release(nb, path) -> list[str]:
         if template_names(ans.source) != [m.group(1) for ln in r_ans.source.splitlines()
                                           if (m := TEMPLATE.match(ln.strip()))]:
             problems.append(f"{ans.get('id')}: the template lines must survive into the student version")
-        if test is not None:
-            r_test = by_id[test.get("id")]
-            if split_test(test.source) is None:
-                continue  # lint_tests reports it
-            _, hidden, _ = split_test(test.source)
-            if "HIDDEN TESTS" in r_test.source or any(h.strip() and h in r_test.source.splitlines()
-                                                     for h in hidden if not h.strip().startswith("#")):
-                problems.append(f"{test.get('id')}: hidden tests left in the student version")
+        if test is not None and by_id[test.get("id")].source != test.source:
+            problems.append(f"{test.get('id')}: the student version changed the check cell")
     return problems
 
 
@@ -354,7 +369,8 @@ RULES = {
     "answer-or-test-cells-with-the-book-metadata": lint_metadata,
     "answer-cell-followed-by-its-test-cell-with-task-text": lint_pairing,
     "answer-template-lines-outside-the-solution": lint_answers,
-    "tests-use-aerophoto-checks-with-hidden-tests": lint_tests,
+    "tests-call-check-task-of-the-registered-task": lint_tests,
+    "tasks-match-the-registry": lint_registry,
     "markers-only-in-their-cells": lint_markers,
     "later-cells-independent-of-the-answers": lint_downstream,
     "student-version-without-solutions-or-hidden-tests": lint_release,
@@ -406,20 +422,22 @@ def _set(nb, nbtools, cell_id, fn):
                                       lambda c: setattr(c, "source", c.source.replace("oc_mm = -", "oc = -"))),
      "does not set ['oc_mm']"),
     (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
-        c, "source", c.source.replace("### BEGIN HIDDEN TESTS", "").replace("### END HIDDEN TESTS", ""))),
-     "BEGIN HIDDEN TESTS"),
+        c, "source", c.source + "\n### BEGIN HIDDEN TESTS\nchecks.check_value('x', 1, 1)\n### END HIDDEN TESTS")),
+     "hidden tests live in aerophoto.tasks"),
     (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
-        c, "source", c.source.replace('checks.task_passed("task-00-1")', 'checks.check_value("x", 1, 1)'))),
-     "ends with an expression whose value is displayed"),
+        c, "source", c.source + "\n1 + 1")), "ends with an expression whose value is displayed"),
     (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
-        c, "source", c.source.replace('checks.check_value("oc_mm", oc_mm', 'checks.check_value("oc_mm", 0'))),
-     "never look at ['oc_mm']"),
+        c, "source", c.source.replace("oc_mm=oc_mm", "oc_mm=0"))), "pass every answer as itself"),
+    (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
+        c, "source", c.source.replace('"task-00-1"', '"task-00-2"'))), "check_task names 'task-00-2'"),
+    (lint_registry, lambda nb, t: _set(nb, t, "task-00-1-answer", lambda c: c.metadata.nbgrader.update(
+        grade_id="task-00-9-answer")), "differ from aerophoto.tasks"),
     (lint_markers, lambda nb, t: _set(nb, t, "summary", lambda c: setattr(c, "source", "see ### BEGIN SOLUTION")),
      "outside an answer cell"),
     (lint_downstream, lambda nb, t: t.insert_after(nb, "task-00-1-check", t.code("print(2 * H_m)", id="later")),
      "cell later uses ['H_m']"),
-    (lint_release, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
-        c, "source", c.source.replace("### END HIDDEN TESTS", ""))), "cannot make the student version"),
+    (lint_release, lambda nb, t: _set(nb, t, "task-00-1-answer", lambda c: setattr(
+        c, "source", c.source.replace("### END SOLUTION", ""))), "cannot make the student version"),
     (lint_setup, lambda nb, t: _set(nb, t, "setup", lambda c: setattr(
         c, "source", c.source.replace("RECORD_BOOK = None", 'RECORD_BOOK = "19-0457"'))), "ships with RECORD_BOOK = None"),
     (lint_setup, lambda nb, t: _set(nb, t, "setup", lambda c: c.metadata.update(nbgrader={"grade": False})),
@@ -434,7 +452,7 @@ def test_each_rule_catches_its_mistake(lint, mutate, expect):
 def test_the_rules_pass_the_reference_chapter_and_catch_duplicates():
     path = next(p for p in NOTEBOOKS if p.stem == "00_start_here")
     nb = read(path)
-    for lint in (lint_setup, lint_metadata, lint_pairing, lint_answers, lint_tests, lint_markers,
+    for lint in (lint_setup, lint_metadata, lint_pairing, lint_answers, lint_tests, lint_registry, lint_markers,
                  lint_downstream, lint_release):
         assert lint(nb, path) == [], lint.__name__
     assert lint_unique([("a", nb), ("b", read(path))]) == [

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import json
 import os
+from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
 
@@ -28,7 +29,181 @@ from . import __version__
 from .plots import use_style
 from .variants import Variant, variant, variant_for_index
 
-__all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir"]
+__all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
+           "Demo", "Chapter", "CHAPTERS", "chapter", "chapter_table_markdown", "lecture_table_markdown"]
+
+# =========================================================================== the chapter registry
+@dataclass(frozen=True)
+class Demo:
+    """One live demonstration of a chapter (what the lecture index, the browser tests and benchmarks use).
+
+    Attributes
+    ----------
+    cell : str
+        Id of the notebook cell that displays the demo (``demo-…``).
+    cls : str
+        The LiveDemo class, ``module.Class`` relative to ``aerophoto.demos``.
+    name : str
+        Its name in the lecture index ("Camera footprint — o, n, c").
+    move : str
+        What a lecturer moves, in order.
+    sees : str
+        What the class sees.
+    sliders : tuple of (label, key)
+        The headline sliders (their exact labels, "f, mm") and the key that moves
+        each by a visible amount in the browser tests (``ArrowRight`` = one step,
+        ``PageUp`` = five).
+    timed : str
+        The slider the browser benchmark times (default: the first headline slider).
+    nth : int
+        In Voilà (no cell ids): which of the demos carrying these sliders.
+    """
+
+    cell: str
+    cls: str
+    name: str
+    move: str
+    sees: str
+    sliders: tuple = ()
+    timed: str = ""
+    nth: int = 0
+
+    @property
+    def timed_slider(self) -> str:
+        return self.timed or self.sliders[0][0]
+
+    @property
+    def qualname(self) -> str:
+        """The class's full dotted name, ``aerophoto.demos.footprint.FootprintDemo``."""
+        return f"aerophoto.demos.{self.cls}"
+
+
+@dataclass(frozen=True)
+class Chapter:
+    """One notebook of the book.
+
+    Attributes
+    ----------
+    number : str
+        The notebook's number, ``"03"`` (the guide's §4 → 03, leaving room for later chapters).
+    slug : str
+        The rest of the file name, ``"relief_displacement"``.
+    source : str
+        What it is built from: ``"guide §4"``, ``"article 001"``.
+    title, title_ru : str
+        The topic in English and the guide's Russian term.
+    demos : tuple of :class:`Demo`
+    """
+
+    number: str
+    slug: str
+    source: str
+    title: str
+    title_ru: str
+    demos: tuple = ()
+
+    @property
+    def name(self) -> str:
+        return f"{self.number}_{self.slug}"
+
+    @property
+    def notebook(self) -> str:
+        return f"{self.name}.ipynb"
+
+
+_F = ("f, mm", "PageUp")  # focal length: five steps up from the chapter's start
+_M = ("m (scale 1:m)", "PageUp")  # scale denominator: five steps up
+
+CHAPTERS = (
+    Chapter("00", "start_here", "guide §1", "start here: your variant, central projection",
+            "задание; центральная проекция", (
+                Demo("demo-footprint", "footprint.FootprintDemo", "Camera footprint — o, n, c",
+                     "α (tilt), then f and m (scale 1:m)",
+                     "the footprint turns from a square into a trapezoid; n and c leave o along the principal "
+                     "vertical; with the scale fixed, a longer lens flies higher but covers the same ground",
+                     (_F, _M, ("α, °", "ArrowRight")), timed="α, °"),
+            )),
+    Chapter("01", "flight_planning", "guide §2", "planning the aerial survey", "расчёт параметров аэросъёмки", (
+        Demo("demo-flight-plan", "flight_plan.FlightPlanDemo", "Live survey plan", "m, relief h, then f and W",
+             "strips and photos multiply as the scale grows or the relief rises; a faster aircraft shortens the "
+             "flight and the admissible exposure", (_F, _M, ("px, %", "ArrowRight")), timed="f, mm"),
+    )),
+    Chapter("02", "photo_quality", "guide §3", "judging the photos' quality", "оценка качества материалов", (
+        Demo("demo-quality", "quality.QualityDemo", "Rough mosaic you can break", "crab φ, α max, ΔH, bend, overlaps",
+             "an imperfection past its tolerance turns its print, pair or strip vermillion and changes the verdict",
+             (_F, ("α max, °", "ArrowRight"), ("crab φ, °", "ArrowRight")), timed="α max, °"),
+    )),
+    Chapter("03", "relief_displacement", "guide §4", "relief displacement", "смещение точек за рельеф", (
+        Demo("demo-relief", "displacement.ReliefDemo", "Displacement explorer, relief", "relief ±h, then α and f",
+             "arrows radiate from the nadir n — outwards for hills, inwards for the valley; a longer lens at the "
+             "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "ArrowRight")),
+             timed="relief ±h, m"),
+    )),
+    Chapter("04", "tilt_displacement", "guide §5", "tilt displacement", "смещения за угол наклона", (
+        # m is no headline here: over flat ground the tilt displacement on the photo does not depend on m
+        Demo("demo-tilt", "displacement.TiltDemo", "Displacement explorer, tilt", "α, then λ and f",
+             "arrows radiate from the isocentre c; points on the isoline stay put; the guide's approximate "
+             "formula (orange) parts from the exact displacement (blue) as α grows",
+             (_F, ("α, °", "ArrowRight"), ("λ, °", "ArrowRight")), timed="α, °"),
+    )),
+    Chapter("05", "fotoschema", "guide §6", "the single-strip photo mosaic", "одномаршрутная фотосхема", (
+        Demo("demo-fotoschema", "fotoschema.FotoschemaDemo", "Live single-strip mosaic",
+             "relief h, α max, then f and p_x",
+             "cut-outs and duplicates appear along the cuts; a longer lens at the same scale shrinks the mismatches",
+             (_F, _M, ("α max, °", "ArrowRight")), timed="α max, °"),
+    )),
+    Chapter("06", "strip_triangulation", "guide §7", "strip phototriangulation and its reduction",
+            "фототриангуляционный ряд", (
+                Demo("demo-reduction", "reduction.ReductionDemo", "Reduction explorer",
+                     "q (free-strip scale), pricking error, central centre",
+                     "k follows 1/q and the reduction arrows grow while the control residuals stay; pricking errors "
+                     "grow the error triangles",
+                     (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
+            )),
+    Chapter("12", "phototriangulation", "guide §13", "phototriangulation: control spacing and reduction",
+            "фототриангуляция", (
+                Demo("demo-reduction", "reduction.ReductionDemo", "Reduction explorer (tilted photos)",
+                     "α max, q, pricking error",
+                     "the same explorer with tilted photos: the reduced strip against the control points",
+                     (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
+            )),
+)
+"""Every chapter of the book, in order: the one registry (aerophoto.__init__, the lecture index, the README and
+chapter 00's tables, the browser tests and the benchmarks read it)."""
+
+LECTURE_INDEX = "lectures.ipynb"
+
+
+def chapter(name_or_number: str) -> Chapter:
+    """A chapter by number (``"03"``), name (``"03_relief_displacement"``) or notebook file name."""
+    key = str(name_or_number).removesuffix(".ipynb")
+    for c in CHAPTERS:
+        if key in (c.number, c.name):
+            return c
+    raise ValueError(f"no chapter {name_or_number!r}; chapters: {[c.name for c in CHAPTERS]}")
+
+
+def _title(c: Chapter) -> str:
+    return c.title[0].upper() + c.title[1:]
+
+
+def chapter_table_markdown(*, links: bool = False) -> str:
+    """The chapter table of the README and of chapter 00 (generated; a test keeps both current)."""
+    lines = ["| notebook | source | topic |", "|---|---|---|"]
+    for c in CHAPTERS:
+        nb = f"[`{c.name}`](notebooks/{c.notebook})" if links else f"`{c.name}`"
+        lines.append(f"| {nb} | {c.source} | {c.title} ({c.title_ru}) |")
+    return "\n".join(lines)
+
+
+def lecture_table_markdown() -> str:
+    """The lecture index's table of demos (generated; a test keeps ``notebooks/lectures.ipynb`` current)."""
+    lines = ["| chapter | demo | move | what the class sees |", "|---|---|---|---|"]
+    for c in CHAPTERS:
+        for d in c.demos:
+            lines.append(f"| [{c.number} · {_title(c)} ({c.source})]({c.notebook}) | {d.name} | {d.move} | {d.sees} |")
+    return "\n".join(lines)
+
 
 REQUIRED = {  # distribution: (minimum major.minor, why)
     "numpy": ((2, 0), "computing"),

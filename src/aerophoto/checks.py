@@ -16,7 +16,8 @@ check                  for
 :func:`check_values`   a sequence or a table column of numbers
 :func:`check_bool`     a yes/no verdict (``True`` / ``False``)
 :func:`check_choice`   one answer picked from a few named options
-:func:`task_passed`    the last line of a check cell: "✓ Task NN.k passed"
+:func:`check_task`     every answer of a graded task (:mod:`aerophoto.tasks`), then "✓ Task NN.k passed"
+:func:`task_passed`    the last line of a hand-written check cell: "✓ Task NN.k passed"
 :func:`report`         a summary of every check run in this session
 =====================  ==================================================
 
@@ -48,12 +49,21 @@ does.
 
 from __future__ import annotations
 
+import contextlib
+import json
 import math
+import os
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 __all__ = [
     "WrongAnswer",
+    "check_task",
+    "grade_task",
+    "TaskGrade",
+    "encode_answers",
+    "decode_answers",
+    "ANSWERS_MIME",
     "TaskResult",
     "check_value",
     "check_count",
@@ -591,3 +601,239 @@ def _fail(name: str, message: str) -> bool:
     _RESULTS[name] = TaskResult(name, False, message)
     _UNCLAIMED.clear()
     raise WrongAnswer(message)
+
+
+# =========================================================================== graded tasks (aerophoto.tasks)
+ANSWERS_MIME = "application/vnd.aerophoto.answers+json"
+"""The output a check cell adds while the instructor grades (``AEROPHOTO_GRADING`` set): the submitted values."""
+
+_MAX_LIST = 2000
+_MAX_STR = 200
+
+
+def _plain(x, depth: int = 0):
+    """A submitted value as plain JSON data: numbers, strings, booleans, short lists and dicts."""
+    x = _scalar(x)
+    if x is Ellipsis:
+        return {"ellipsis": True}
+    if x is None or isinstance(x, str) and len(x) <= _MAX_STR:
+        return x
+    if _is_bool(x):
+        return bool(x)
+    if isinstance(x, int):
+        return int(x) if abs(x) < 2**63 else float(x)
+    if isinstance(x, float) or type(x).__module__ == "numpy" and hasattr(x, "item") and getattr(x, "size", 0) == 1:
+        f = float(x)
+        return f if math.isfinite(f) else {"float": str(f)}
+    if depth < 2 and isinstance(x, Mapping) and len(x) <= 200:
+        return {"dict": [[_plain(k, depth + 1), _plain(v, depth + 1)] for k, v in x.items()]}
+    seq = _as_sequence(x)
+    if depth < 2 and seq is not None and len(seq) <= _MAX_LIST:
+        return {"list": [_plain(v, depth + 1) for v in seq]}
+    return {"repr": repr(x)[:_MAX_STR]}
+
+
+def _unplain(d):
+    if isinstance(d, dict):
+        if d.get("ellipsis"):
+            return Ellipsis
+        if "float" in d:
+            return float(d["float"])
+        if "list" in d:
+            return [_unplain(v) for v in d["list"]]
+        if "dict" in d:
+            return {_unplain(k): _unplain(v) for k, v in d["dict"]}
+        if "repr" in d:
+            return _Opaque(str(d["repr"]))
+        return _Opaque(str(d)[:_MAX_STR])
+    return d
+
+
+class _Opaque(str):
+    """A submitted value that was not plain data (its repr); every check rejects it as not a number."""
+
+    def __repr__(self):
+        return str.__str__(self)
+
+
+def encode_answers(task_id: str, values: Mapping, variant=None) -> dict:
+    """The submitted answers of one task as plain JSON data (what leaves a sandboxed grading run)."""
+    return {"task": str(task_id), "variant": None if variant is None else int(getattr(variant, "i", -1)),
+            "values": {str(k): _plain(v) for k, v in values.items()}}
+
+
+def decode_answers(record: Mapping) -> tuple[str, dict]:
+    """(task id, {name: value}) from :func:`encode_answers`'s record; values that were not plain data stay opaque."""
+    values = record.get("values") or {}
+    if not isinstance(values, Mapping):
+        values = {}
+    return str(record.get("task", "")), {str(k): _unplain(v) for k, v in values.items()}
+
+
+def _emit(task_id: str, values: Mapping, variant) -> None:
+    """While grading, put the submitted values into the cell's output (plain data) for the instructor's grader."""
+    if not os.environ.get("AEROPHOTO_GRADING"):
+        return
+    try:
+        from IPython.display import display
+
+        display({ANSWERS_MIME: json.loads(json.dumps(encode_answers(task_id, values, variant)))}, raw=True)
+    except Exception:  # outside IPython: nothing to emit to
+        pass
+
+
+def _check_one(task, a, value, expected, slips: Mapping, variant, *, quiet: bool) -> bool:
+    """Run the student-facing check of answer spec ``a`` (raises WrongAnswer on a wrong answer)."""
+    alt = {k: val for k, val in (slips.get(a.name) or {}).items() if val is not None} or None
+    of_variant = None
+    if task.cross_variant and variant is not None:
+        def of_variant(w, _n=a.name):
+            return task.answers(w)[_n]
+    if a.kind == "value":
+        return check_value(a.name, value, expected, tol_abs=a.tol_abs, tol_rel=a.tol_rel, unit=a.unit,
+                           integer=a.integer, of_variant=of_variant, variant=variant, alternatives=alt, quiet=quiet)
+    if a.kind == "count":
+        return check_count(a.name, value, expected, rounding=a.rounding, unit=a.unit, of_variant=of_variant,
+                           variant=variant, alternatives=alt, quiet=quiet)
+    if a.kind == "values":
+        return check_values(a.name, value, expected, tol_abs=a.tol_abs, tol_rel=a.tol_rel, unit=a.unit,
+                            integer=a.integer, labels=list(a.labels) or None, of_variant=of_variant, variant=variant,
+                            quiet=quiet)
+    if a.kind == "bool":
+        return check_bool(a.name, value, expected, hint=a.hint, quiet=quiet)
+    return check_choice(a.name, value, expected, a.options, hint=a.hint, quiet=quiet)
+
+
+def _task_values(task, values: Mapping) -> dict:
+    unknown = [k for k in values if k not in task.names]
+    if unknown:
+        raise TypeError(f"{task.id} has no answer(s) {unknown}; its answers are {list(task.names)}")
+    return {n: values.get(n, Ellipsis) for n in task.names}
+
+
+def check_task(task_id: str, variant, /, **values) -> None:
+    """Check every answer of a graded task for the student's variant; the whole of a check cell.
+
+    ``checks.check_task("task-03-1", v, Zcp_m=Zcp_m, H_m=H_m)`` runs one
+    check per answer of the task (:mod:`aerophoto.tasks`), in order, each
+    printing ✓ or stopping with one red line that names the kind of mistake;
+    when all pass it prints "✓ Task 03.1 passed".  Returns None (nbgrader
+    reads a displayed value as partial credit).
+    """
+    from . import tasks as _tasks
+
+    task = _tasks.get(task_id)
+    got = _task_values(task, values)
+    _emit(task.id, got, variant)
+    expected = task.answers(variant)
+    slips = task.slips(variant)
+    for a in task.spec:
+        _check_one(task, a, got[a.name], expected[a.name], slips, variant, quiet=False)
+    task_passed(task.id)
+
+
+@dataclass(frozen=True)
+class TaskGrade:
+    """The instructor's verdict on one task, computed outside the student's kernel.
+
+    Attributes
+    ----------
+    task : str
+        The task id.
+    points, score : float
+        Points available and awarded.
+    checks : tuple of (name, passed, message, hidden)
+        Every check run, visible and hidden.
+    """
+
+    task: str
+    points: float
+    score: float
+    checks: tuple = field(default_factory=tuple)
+
+    @property
+    def visible_ok(self) -> bool:
+        """Every check the student's notebook runs passed (what nbgrader's in-kernel result should say)."""
+        return all(ok for _, ok, _, hidden in self.checks if not hidden)
+
+    @property
+    def hidden_ok(self) -> bool:
+        return all(ok for _, ok, _, hidden in self.checks if hidden)
+
+    @property
+    def passed(self) -> bool:
+        return self.visible_ok and self.hidden_ok
+
+    @property
+    def first_failure(self) -> str:
+        return next((msg for _, ok, msg, _ in self.checks if not ok), "")
+
+
+@contextlib.contextmanager
+def _isolated():
+    """Run checks without touching this session's record (the instructor's process grades many students)."""
+    saved = (dict(_RESULTS), dict(_TASKS), list(_UNCLAIMED))
+    try:
+        yield
+    finally:
+        _RESULTS.clear()
+        _RESULTS.update(saved[0])
+        _TASKS.clear()
+        _TASKS.update(saved[1])
+        _UNCLAIMED[:] = saved[2]
+
+
+def _hidden_ok(h) -> tuple[bool, str]:
+    if h.answer is None:
+        return False, f"{h.name}: no value to check"
+    try:
+        if h.kind == "bool":
+            return (_is_bool(h.answer) and bool(h.answer) == bool(h.expected)), h.name
+        a, e = float(_scalar(h.answer)), float(h.expected)
+    except (TypeError, ValueError):
+        return False, f"{h.name}: not a number"
+    if not (math.isfinite(a) and math.isfinite(e)):
+        return False, f"{h.name}: not a finite number"
+    if h.kind == "count":
+        return a == e, h.name
+    return _close(a, e, h.tol_abs, h.tol_rel), h.name
+
+
+def grade_task(task_id: str, variant, values: Mapping) -> TaskGrade:
+    """Grade one task on submitted values for ``variant`` — the trusted check, in the instructor's process.
+
+    Runs the visible checks (as the notebook does) and the hidden checks of
+    the task; never raises for a wrong or malformed answer.  All or nothing
+    unless the task scores partially (``Task.partial``).
+    """
+    from . import tasks as _tasks
+
+    task = _tasks.get(task_id)
+    got = {n: values.get(n, Ellipsis) for n in task.names}
+    results = []
+    with _isolated(), contextlib.redirect_stdout(None):
+        expected = task.answers(variant)
+        slips = task.slips(variant)
+        for a in task.spec:
+            try:
+                _check_one(task, a, got[a.name], expected[a.name], slips, variant, quiet=True)
+                results.append((a.name, True, "", False))
+            except WrongAnswer as exc:
+                results.append((a.name, False, str(exc), False))
+            except Exception as exc:  # a malformed answer must never stop the grader
+                results.append((a.name, False, f"{a.name}: could not be checked ({type(exc).__name__})", False))
+        try:
+            hidden = list(task.hidden(variant, got))
+        except Exception as exc:
+            hidden = []
+            results.append(("hidden checks", False, f"could not be derived from the answers ({type(exc).__name__})",
+                            True))
+        for h in hidden:
+            ok, msg = _hidden_ok(h)
+            results.append((h.name, ok, "" if ok else msg, True))
+    n_ok = sum(ok for _, ok, _, _ in results)
+    if task.partial:
+        score = task.points * n_ok / max(len(results), 1)
+    else:
+        score = float(task.points) if n_ok == len(results) else 0.0
+    return TaskGrade(task.id, float(task.points), float(score), tuple(results))

@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Callable
+from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -70,8 +70,9 @@ __all__ = [
     "tilt_displacement_approx",
     "relief_displacement",
     "photo_scale_denominator",
-    "Similarity2D",
-    "fit_similarity",
+    "Terrain",
+    "as_terrain",
+    "flying_height_m",
 ]
 
 MAX_F_MM = 2000.0
@@ -187,6 +188,27 @@ class Pose:
         return H
 
 
+# --------------------------------------------------------------------------- terrain
+@runtime_checkable
+class Terrain(Protocol):
+    """What every terrain offers: heights and their bounds (the one terrain interface).
+
+    ``height(X, Y)`` is vectorised over matching arrays of ground coordinates
+    (metres) and returns Z in metres; ``z_min_m`` ≤ Z ≤ ``z_max_m`` over the
+    whole terrain.  :class:`FlatTerrain`, the virtual site
+    (:class:`aerophoto.site.Site`) and the demo terrains of
+    :mod:`aerophoto.terrain` implement it; :func:`photo_to_dem` needs nothing else.
+    """
+
+    @property
+    def z_min_m(self) -> float: ...
+
+    @property
+    def z_max_m(self) -> float: ...
+
+    def height(self, X, Y) -> np.ndarray: ...
+
+
 @dataclass(frozen=True)
 class FlatTerrain:
     """Horizontal ground at height ``z_m`` (a DEM with no relief)."""
@@ -205,6 +227,35 @@ class FlatTerrain:
         return np.full(np.broadcast(np.asarray(X), np.asarray(Y)).shape, self.z_m, dtype=float)
 
     __call__ = height
+
+
+def as_terrain(terrain=None, ground_Z_m: float = 0.0) -> Terrain:
+    """The one converter to a :class:`Terrain`.
+
+    Parameters
+    ----------
+    terrain : None, a number, or a Terrain
+        None → flat ground at ``ground_Z_m``; a number → flat ground at that
+        height (m); an object with ``height(X, Y)``, ``z_min_m`` and
+        ``z_max_m`` → itself.
+    ground_Z_m : float
+        Height of the flat ground used when ``terrain`` is None, m.
+    """
+    if terrain is None:
+        return FlatTerrain(check_range("ground_Z_m", ground_Z_m, -1e5, 1e5, unit="m"))
+    if isinstance(terrain, (int, float, np.integer, np.floating)) and not isinstance(terrain, bool):
+        return FlatTerrain(check_range("terrain", terrain, -1e5, 1e5, unit="m"))
+    if isinstance(terrain, Terrain):
+        return terrain
+    raise ValueError(
+        f"terrain = {terrain!r:.60} is not a terrain; expected None, a height in metres, or an object with "
+        "height(X, Y), z_min_m and z_max_m"
+    )
+
+
+def flying_height_m(f_mm: float, m: float) -> float:
+    """Flying height H = f·m in metres (guide §2, step 2), with f in mm and the photo scale 1:m."""
+    return check_positive("f_mm", f_mm, unit="mm", hi=MAX_F_MM) / 1000.0 * check_positive("m", m, hi=1e7)
 
 
 # --------------------------------------------------------------------------- rotation
@@ -530,94 +581,3 @@ def relief_displacement(r_mm, h_m, H_m):
     if np.any(h >= H):
         raise ValueError(f"h_m = {float(np.max(h)):g} is at or above the camera; the valid range is h_m < H_m = {H:g} m")
     return np.asarray(r_mm, dtype=float) * h / H
-
-
-# --------------------------------------------------------------------------- plane motions
-@dataclass(frozen=True)
-class Similarity2D:
-    """A 2-D similarity x' = s·R(θ)·x + t, stored as a = s·cos θ, b = s·sin θ, t = (tx, ty).
-
-    With s = 1 it is a rigid motion — how a contact print can be moved on the
-    table (shift and turn, no rescaling).
-    """
-
-    a: float = 1.0
-    b: float = 0.0
-    tx: float = 0.0
-    ty: float = 0.0
-
-    @classmethod
-    def from_angle(cls, theta_deg: float = 0.0, t=(0.0, 0.0), scale: float = 1.0) -> "Similarity2D":
-        th = math.radians(theta_deg)
-        return cls(scale * math.cos(th), scale * math.sin(th), float(t[0]), float(t[1]))
-
-    @property
-    def scale(self) -> float:
-        return math.hypot(self.a, self.b)
-
-    @property
-    def rotation_deg(self) -> float:
-        return math.degrees(math.atan2(self.b, self.a))
-
-    def apply(self, xy) -> np.ndarray:
-        """Transform points, shape (..., 2) → (..., 2)."""
-        p = np.asarray(xy, dtype=float)
-        x, y = p[..., 0], p[..., 1]
-        return np.stack([self.a * x - self.b * y + self.tx, self.b * x + self.a * y + self.ty], axis=-1)
-
-    __call__ = apply
-
-    def inverse(self) -> "Similarity2D":
-        d = self.a * self.a + self.b * self.b
-        if d == 0:
-            raise ValueError("the similarity has scale 0 and no inverse")
-        ia, ib = self.a / d, -self.b / d
-        return Similarity2D(ia, ib, -(ia * self.tx - ib * self.ty), -(ib * self.tx + ia * self.ty))
-
-    def compose(self, other: "Similarity2D") -> "Similarity2D":
-        """``self ∘ other``: apply ``other`` first, then ``self``."""
-        a = self.a * other.a - self.b * other.b
-        b = self.b * other.a + self.a * other.b
-        t = self.apply([other.tx, other.ty])
-        return Similarity2D(a, b, float(t[0]), float(t[1]))
-
-    def matrix(self) -> np.ndarray:
-        """The 3×3 homogeneous matrix."""
-        return np.array([[self.a, -self.b, self.tx], [self.b, self.a, self.ty], [0.0, 0.0, 1.0]])
-
-
-def fit_similarity(src, dst, *, scale: bool = False) -> Similarity2D:
-    """Least-squares 2-D motion taking ``src`` points onto ``dst`` (Umeyama's method).
-
-    Parameters
-    ----------
-    src, dst : array_like, shape (k, 2), k ≥ 2
-        Corresponding points (e.g. the same detail on two prints), any unit.
-    scale : bool
-        False (default): a rigid motion, rotation + shift, as when a print is
-        laid on its neighbour; True: a similarity with a free scale.
-
-    Returns
-    -------
-    Similarity2D minimising Σ|T(src) − dst|².  For a rigid fit to two points
-    the leftover misfit is shared equally between them.
-    """
-    P = np.asarray(src, dtype=float).reshape(-1, 2)
-    Q = np.asarray(dst, dtype=float).reshape(-1, 2)
-    if P.shape != Q.shape:
-        raise ValueError(f"src has shape {P.shape} and dst {Q.shape}; they must match, shape (k, 2)")
-    if len(P) < 2:
-        raise ValueError(f"{len(P)} point pair(s) given; the valid range is at least 2 pairs")
-    mp, mq = P.mean(axis=0), Q.mean(axis=0)
-    p, q = P - mp, Q - mq
-    sxx = float(np.sum(p * p))
-    if sxx == 0:
-        raise ValueError("the source points coincide; at least two distinct points are needed")
-    # for 2-D the optimal rotation comes from the complex cross-correlation
-    c = float(np.sum(p[:, 0] * q[:, 0] + p[:, 1] * q[:, 1]))
-    s_ = float(np.sum(p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]))
-    th = math.atan2(s_, c)
-    k = math.hypot(c, s_) / sxx if scale else 1.0
-    a, b = k * math.cos(th), k * math.sin(th)
-    t = mq - np.array([a * mp[0] - b * mp[1], b * mp[0] + a * mp[1]])
-    return Similarity2D(a, b, float(t[0]), float(t[1]))

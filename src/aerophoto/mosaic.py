@@ -48,7 +48,7 @@ import numpy as np
 import pandas as pd
 
 from . import geometry as g
-from .geometry import Similarity2D, fit_similarity
+from .plane import Similarity2D, fit_similarity
 from ._validate import check_positive, check_range
 
 __all__ = [
@@ -87,7 +87,7 @@ CUT_SHAPES = ("straight", "zigzag", "curved")
 
 
 # =========================================================================== plane geometry
-# Similarity2D and fit_similarity live in aerophoto.geometry (shared with the triangulation);
+# Similarity2D and fit_similarity live in aerophoto.plane (shared with the triangulation);
 # they are re-exported here, where the fotoschema uses them.
 
 

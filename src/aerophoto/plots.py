@@ -26,6 +26,8 @@ __all__ = [
     "new_axes",
     "figure",
     "figure_widget",
+    "static",
+    "StaticFigure",
     "draw",
     "freeze_layout",
     "fast_frames",
@@ -138,6 +140,48 @@ def figure_widget(fig):
 
         display(fig)
     return out
+
+
+class StaticFigure:
+    """A finished figure as a PNG with a text alternative — the book's one way to show a static figure.
+
+    Displays as ``<img alt="…">`` in HTML (JupyterLab, Voilà, nbconvert) and as
+    PNG elsewhere.  Attributes: ``png`` (bytes), ``alt`` (str).
+    """
+
+    def __init__(self, png: bytes, alt: str):
+        self.png = png
+        self.alt = alt
+
+    def _repr_png_(self):
+        return self.png
+
+    def _repr_html_(self) -> str:
+        import base64
+
+        data = base64.b64encode(self.png).decode("ascii")
+        return f"<img src='data:image/png;base64,{data}' alt='{_html.escape(self.alt, quote=True)}' style='max-width:100%'>"
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        return {"text/html": self._repr_html_(), "image/png": self.png, "text/plain": f"[figure: {self.alt}]"}
+
+
+def static(fig, alt: str, *, dpi: int = 100) -> StaticFigure:
+    """Show ``fig`` once as a PNG with the alternative text ``alt`` (say what the figure shows); the figure is closed.
+
+    Use it for every figure that does not move (a theory sketch, a worked
+    example's plot); live figures are the demos' ipympl canvases.
+    """
+    import io
+
+    import matplotlib.pyplot as plt
+
+    if not str(alt).strip():
+        raise ValueError("alt = '' is empty; describe what the figure shows (read aloud by screen readers)")
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi)
+    plt.close(fig)
+    return StaticFigure(buf.getvalue(), str(alt))
 
 
 def draw(fig, *, force: bool = False) -> None:

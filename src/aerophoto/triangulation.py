@@ -54,6 +54,7 @@ import numpy as np
 import pandas as pd
 
 from . import geometry as g
+from . import plane as _plane
 from ._validate import check_int_range, check_positive, check_range
 
 __all__ = [
@@ -709,18 +710,18 @@ def fit_rigid(src, dst):
     Returns
     -------
     R : ndarray (2, 2), t : ndarray (2,) — ``dst ≈ src @ R.T + t`` in the
-    least-squares sense (:func:`aerophoto.geometry.fit_similarity`, reflections excluded).
+    least-squares sense (:func:`aerophoto.plane.fit_similarity`, reflections excluded).
     """
-    T = g.fit_similarity(src, dst).matrix()
+    T = _plane.fit_similarity(src, dst).matrix()
     return T[:2, :2], T[:2, 2]
 
 
 def fit_similarity(src, dst):
     """Best-fit similarity (scale, rotation, translation): ``dst ≈ s · src @ R.T + t``; returns (s, R, t).
 
-    The matrix form of :func:`aerophoto.geometry.fit_similarity` with a free scale.
+    The matrix form of :func:`aerophoto.plane.fit_similarity` with a free scale.
     """
-    S = g.fit_similarity(src, dst, scale=True)
+    S = _plane.fit_similarity(src, dst, scale=True)
     T = S.matrix()
     return S.scale, T[:2, :2] / S.scale, T[:2, 2]
 

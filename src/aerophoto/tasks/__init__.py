@@ -1,0 +1,87 @@
+"""The graded tasks of every chapter: one module per notebook, one frozen dataclass per task.
+
+``aerophoto.tasks.ch03`` holds the tasks of ``notebooks/03_relief_displacement.ipynb``
+(``TASKS = (MeanObjectPlane(), ReliefCorrections())``), each a
+:class:`~aerophoto.tasks.base.Task` with ``inputs(v)``, ``answers(v)``,
+``slips(v)`` and ``hidden(v, got)`` for the variant ``v``.
+
+Look-ups by grade id::
+
+    from aerophoto import tasks
+    t = tasks.get("task-03-1")
+    t.answers(v)            # the reference values for variant v
+    tasks.inputs("task-03-1", v)
+
+The student-facing checks (:func:`aerophoto.checks.check_task`) and the
+instructor's grader (:func:`aerophoto.checks.grade_task`) both read the task
+from here; the notebooks only name the task and pass their variables.
+Submodules load on first use.
+"""
+
+from __future__ import annotations
+
+import importlib
+import re
+
+from .base import KINDS, Answer, Hidden, Task
+
+__all__ = ["Answer", "Hidden", "Task", "KINDS", "get", "all_tasks", "chapter_tasks", "inputs", "answers",
+           "CHAPTER_MODULES"]
+
+#: the chapter modules, by notebook number
+CHAPTER_MODULES = {
+    "00": "ch00",
+    "01": "ch01",
+    "02": "ch02",
+    "03": "ch03",
+    "04": "ch04",
+    "05": "ch05",
+    "06": "ch06",
+    "12": "ch12",
+}
+
+_ID = re.compile(r"^task-(\d\d)-(\d+)$")
+
+
+def chapter_tasks(number: str) -> tuple:
+    """The tasks of notebook ``number`` (``"03"``), in order."""
+    number = f"{int(number):02d}" if str(number).isdigit() else str(number)
+    mod = CHAPTER_MODULES.get(number)
+    if mod is None:
+        raise ValueError(f"chapter {number!r} has no graded tasks; chapters with tasks: {sorted(CHAPTER_MODULES)}")
+    return tuple(importlib.import_module(f".{mod}", __name__).TASKS)
+
+
+def get(task_id: str) -> Task:
+    """The task with grade id stem ``task_id`` (``"task-03-1"``; a ``-answer``/``-check`` suffix is ignored)."""
+    stem = re.sub(r"-(answer|check)$", "", str(task_id))
+    m = _ID.match(stem)
+    if not m:
+        raise ValueError(f"task_id = {task_id!r} is not a task id; expected the form 'task-NN-k', e.g. 'task-03-1'")
+    for t in chapter_tasks(m.group(1)):
+        if t.id == stem:
+            return t
+    raise ValueError(f"task_id = {task_id!r}: chapter {m.group(1)} has no such task")
+
+
+def all_tasks() -> tuple:
+    """Every graded task of the book, chapter by chapter."""
+    return tuple(t for n in CHAPTER_MODULES for t in chapter_tasks(n))
+
+
+def inputs(task_id: str, v):
+    """What the student works from in task ``task_id`` for variant ``v`` (shown in the task's data cell)."""
+    return get(task_id).inputs(v)
+
+
+def answers(task_id: str, v) -> dict:
+    """The reference answers of task ``task_id`` for variant ``v`` (the instructor's side)."""
+    return get(task_id).answers(v)
+
+
+def __getattr__(name: str):
+    if name in CHAPTER_MODULES.values():
+        module = importlib.import_module(f".{name}", __name__)
+        globals()[name] = module
+        return module
+    raise AttributeError(f"module 'aerophoto.tasks' has no attribute {name!r}")

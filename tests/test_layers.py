@@ -1,0 +1,99 @@
+"""The package's layers: imports point downwards only, and no module grows past ~900 lines.
+
+The layers (docs/CONTRIBUTING.md, "The house"):
+
+1. foundation — ``_validate``, ``geometry`` (camera, projection, Terrain), ``plane`` (2-D fits, rays), ``variants``
+2. physics — one module or package per topic, pure functions and frozen dataclasses
+3. the virtual world — ``terrain``, ``site``, ``simulate``, ``render`` (data only)
+4. the course's content — ``guide/`` (printed tables and their audits), ``tasks/`` (graded tasks)
+5. presentation — ``plots``, ``widgets``, ``demos/``, ``i18n``
+6. course — ``checks``, ``book``, ``course``, ``nbtools``, ``report``
+
+A module may import from its own layer or any lower one.  Every import counts, also one inside a function.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PKG = Path(__file__).resolve().parents[1] / "src" / "aerophoto"
+
+LAYERS = {
+    1: ("_validate", "geometry", "plane", "variants"),
+    2: ("flight", "quality", "displacement", "mosaic", "triangulation", "stereo", "projective", "control",
+        "accuracy", "interpretation", "spectral", "bundle", "dem", "budget", "rectify"),
+    3: ("terrain", "site", "simulate", "render"),
+    4: ("guide", "tasks"),
+    5: ("plots", "widgets", "demos", "i18n"),
+    6: ("checks", "book", "course", "nbtools", "report", "lite", "__init__", "__main__"),
+}
+LAYER_OF = {name: layer for layer, names in LAYERS.items() for name in names}
+MAX_LINES = 900
+
+
+def _modules():
+    return sorted(p for p in PKG.rglob("*.py") if "__pycache__" not in p.parts and "course_data" not in p.parts)
+
+
+def _top(path: Path) -> str:
+    rel = path.relative_to(PKG).with_suffix("")
+    return rel.parts[0]
+
+
+def _imported(path: Path) -> set[str]:
+    """The top-level aerophoto modules that ``path`` imports (absolute or relative, anywhere in the file)."""
+    rel = path.relative_to(PKG).with_suffix("")
+    package = list(rel.parts[:-1]) if rel.parts[-1] != "__init__" else list(rel.parts[:-1])
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.startswith("aerophoto."):
+                    out.add(a.name.split(".")[1])
+        elif isinstance(node, ast.ImportFrom):
+            if node.level == 0:
+                mod = node.module or ""
+                if mod == "aerophoto":
+                    out.update(a.name for a in node.names)
+                elif mod.startswith("aerophoto."):
+                    out.add(mod.split(".")[1])
+                continue
+            base = package[: len(package) - (node.level - 1)] if node.level > 1 else package
+            if node.level - 1 > len(package):
+                continue
+            full = base + (node.module.split(".") if node.module else [])
+            if full:
+                out.add(full[0])
+            else:  # "from . import x" at the package's top
+                out.update(a.name for a in node.names)
+    return out
+
+
+def test_every_module_has_a_layer():
+    unknown = sorted({_top(p) for p in _modules()} - set(LAYER_OF) - {"course_data", "data"})
+    assert not unknown, f"modules without a layer in tests/test_layers.py (and docs/CONTRIBUTING.md): {unknown}"
+
+
+@pytest.mark.parametrize("path", _modules(), ids=lambda p: str(p.relative_to(PKG)))
+def test_imports_point_downwards(path):
+    here = _top(path)
+    if here not in LAYER_OF:
+        pytest.fail(f"{path.relative_to(PKG)} has no layer")
+    upward = sorted(m for m in _imported(path) if m in LAYER_OF and LAYER_OF[m] > LAYER_OF[here])
+    assert not upward, (f"{path.relative_to(PKG)} (layer {LAYER_OF[here]}) imports "
+                        f"{[(m, LAYER_OF[m]) for m in upward]} from a higher layer")
+
+
+@pytest.mark.parametrize("path", _modules(), ids=lambda p: str(p.relative_to(PKG)))
+def test_no_module_is_too_big(path):
+    n = sum(1 for _ in path.open(encoding="utf-8"))
+    assert n <= MAX_LINES, f"{path.relative_to(PKG)} has {n} lines; split it by concern (≤ {MAX_LINES})"
+
+
+def test_the_layer_test_sees_relative_and_lazy_imports():
+    # a probe of the reader itself: known imports of known modules
+    assert "geometry" in _imported(PKG / "flight.py")
+    assert "tasks" in _imported(PKG / "checks.py")  # imported inside a function

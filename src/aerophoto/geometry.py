@@ -64,6 +64,7 @@ __all__ = [
     "ground_to_photo",
     "photo_to_plane",
     "photo_to_dem",
+    "transfer_points",
     "footprint",
     "tilt_displacement_exact",
     "tilt_displacement_vectors",
@@ -452,6 +453,29 @@ def photo_to_dem(
             f1 = np.where(upper, np.where(side == 1, f1 * 0.5, f1), ft)
             side = np.where(upper, 1, -1)
     return S + t[..., None] * g
+
+
+def transfer_points(camera: Camera, pose_from: Pose, pose_to: Pose, xy_mm, terrain=None) -> np.ndarray:
+    """Transfer photo points to a neighbouring photo through their ground points (conjugate points).
+
+    This is what pricking a point on one print and finding the same detail on
+    the neighbour does: the ground point seen at ``xy_mm`` on the first photo
+    (its ray cut with the terrain, :func:`photo_to_dem`) is projected into the
+    second (:func:`ground_to_photo`).
+
+    Parameters
+    ----------
+    xy_mm : array_like, shape (..., 2)
+        Points on the photo taken from ``pose_from``, mm.
+    terrain : None, a height in m, or a :class:`Terrain`
+        The ground (see :func:`as_terrain`; None is flat ground at Z = 0).
+
+    Returns
+    -------
+    ndarray, shape (..., 2) : the same ground details on the photo taken from ``pose_to``, mm.
+    """
+    G = photo_to_dem(camera, pose_from, xy_mm, as_terrain(terrain))
+    return ground_to_photo(camera, pose_to, G)
 
 
 def footprint(camera: Camera, pose: Pose, Z_m: float = 0.0, *, samples_per_side: int = 1) -> np.ndarray:

@@ -47,12 +47,11 @@ def _naive_render(values: dict) -> int:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from aerophoto import displacement as d
     from aerophoto import geometry as g
     from aerophoto import plots
-    from aerophoto.demos.displacement import nice_factor
+    from aerophoto.demos.displacement import displacement_field, nice_factor
 
-    field = d.displacement_field(values["f_mm"], values["m"], values["alpha_deg"], values["lambda_deg"],
+    field = displacement_field(values["f_mm"], values["m"], values["alpha_deg"], values["lambda_deg"],
                                  values["relief_m"], grid_n=9)
     fig = plt.figure(figsize=(6.0, 5.9))
     ax = fig.add_subplot(1, 1, 1)

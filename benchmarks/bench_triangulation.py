@@ -12,7 +12,11 @@ Measured (milliseconds, median and p95):
   browser asks for the frame);
 * ``design`` (first move of f or m): flying the strip and choosing the points
   again, uncached;
-* ``accumulation_study``: the Monte Carlo of chapter 12 (n = 2 … 8, 20 seeds).
+* ``accumulation_study``: the Monte Carlo of chapter 12 (n = 2 … 8, 20 seeds);
+* ``grade_lab_task``: the trusted grading of task 06.1 (``checks.grade_task``) on a right answer (the
+  student's lab strip, :func:`aerophoto.tasks.ch06.lab_strip`, is built on its first use and then reused),
+  and ``grade_lab_task_wrong`` on a wrong one, which asks for every other variant's answers to recognise
+  another variant's (the first time: building all 100 lab strips).
 
 Target: demo_kernel_update p95 ≤ 50 ms.
 """
@@ -78,6 +82,16 @@ def run(quick: bool = False) -> dict:
     out["design"] = measure(design, max(8, n // 4))
     out["accumulation_study"] = measure(lambda: T.accumulation_study(n_bases=(2, 4, 6, 8), seeds=range(20)),
                                         2 if quick else 5, warmup=1)
+    from aerophoto import checks, tasks
+    from aerophoto.variants import variant_for_index
+
+    variants = [variant_for_index(i) for i in range(100)]
+    right = {v.i: tasks.answers("task-06-1", v) for v in variants[:20]}
+    out["grade_lab_task"] = measure(lambda i: checks.grade_task("task-06-1", variants[i], right[i]),
+                                    max(5, n // 4), args_for=lambda i: (i % 20,))
+    out["grade_lab_task_wrong"] = measure(
+        lambda i: checks.grade_task("task-06-1", variants[i], {**right[i], "k_mean": right[i]["k_mean"] + 0.01}),
+        2 if quick else 5, args_for=lambda i: (i % 20,), warmup=0)
     out["target"] = {"demo_kernel_update_p95_ms": 50.0,
                      "met": out["demo_kernel_update"]["p95_ms"] <= 50.0}
     demo.close()

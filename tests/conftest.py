@@ -21,7 +21,9 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 
 
 def all_notebooks():
-    return sorted(p for p in NOTEBOOKS.rglob("*.ipynb") if ".ipynb_checkpoints" not in p.parts)
+    """The book's notebooks (the chapter template ``_template.ipynb`` is not part of the book)."""
+    return sorted(p for p in NOTEBOOKS.rglob("*.ipynb")
+                  if ".ipynb_checkpoints" not in p.parts and not p.name.startswith("_"))
 
 
 @pytest.fixture(autouse=True)

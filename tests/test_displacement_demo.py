@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from aerophoto import displacement as d
-from aerophoto.demos.displacement import (DisplacementDemo, DisplacementView, ReliefDemo, TiltDemo, legend_html,
-                                          nice_factor)
+from aerophoto.demos.displacement import (DisplacementDemo, DisplacementView, ReliefDemo, TiltDemo,
+                                          displacement_field, legend_html, nice_factor)
 
 
 def _uv(q):
@@ -157,7 +157,7 @@ def test_static_view_on_given_axes():
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots()
-    field = d.displacement_field(100, 12000, 3, -60, 60)
+    field = displacement_field(100, 12000, 3, -60, 60)
     view = DisplacementView(field, ax=ax)
     assert view.fig is fig and ax.get_legend() is not None
     k = view.update(field, show="tilt", exaggeration=5)
@@ -167,10 +167,11 @@ def test_static_view_on_given_axes():
 
 
 def test_static_section_figures():
-    from aerophoto.demos.displacement import as_png, principal_plane_figure, relief_section_figure
+    from aerophoto import plots
+    from aerophoto.demos.displacement import principal_plane_figure, relief_section_figure
 
     fig = principal_plane_figure(f_mm=100, alpha_deg=12)
     texts = {t.get_text() for t in fig.axes[0].texts}
     assert {"o", "n", "c", "O", "N", "C", "S"} <= texts
-    img = as_png(relief_section_figure())
-    assert img.data[:8] == b"\x89PNG\r\n\x1a\n"
+    img = plots.static(relief_section_figure(), alt="a vertical cross-section")
+    assert img.png[:8] == b"\x89PNG\r\n\x1a\n"

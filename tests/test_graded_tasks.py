@@ -1,8 +1,10 @@
 """The graded-task convention (docs/CONTRIBUTING.md, "Graded tasks") holds in every notebook.
 
-The notebooks in notebooks/ are nbgrader's *source*; these tests read them as nbgrader will and check
-what nbgrader itself does not: ids, metadata, solution and hidden-test markers, template lines, the
-checks used, what the student version looks like, and that it runs for a student who has not answered.
+The notebooks in notebooks/ are the *student book*: answer cells hold only their template lines (the task's
+spec), no solution anywhere, no hidden tests.  The instructor's nbgrader source and the teacher's copy are
+generated from them (aerophoto.course.source_version / teacher_version).  These tests check ids, metadata,
+markers, template lines, the checks used, that the generated source makes nbgrader's student version, and
+that the book runs for a student who has not answered (every check fails with "no answer yet").
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import tokenize
 import nbformat
 import pytest
 
-from aerophoto.course import graded_tasks, student_version
+from aerophoto.course import graded_tasks, source_version, student_version, teacher_version
 from conftest import all_notebooks
 
 NOTEBOOKS = all_notebooks()
@@ -52,10 +54,12 @@ def split_answer(src: str):
 
 
 def template_names(answer_src: str) -> list[str]:
+    """The names of the template lines ``name = ...`` of an answer cell (before any solution block)."""
+    lines = answer_src.splitlines()
     parts = split_answer(answer_src)
-    if parts is None:
-        return []
-    return [m.group(1) for ln in parts[0] if (m := TEMPLATE.match(ln.strip()))]
+    if parts is not None:
+        lines = parts[0]
+    return [m.group(1) for ln in lines if (m := TEMPLATE.match(ln.strip()))]
 
 
 def assigned_names(code: str) -> set[str]:
@@ -206,28 +210,20 @@ def lint_pairing(nb, path) -> list[str]:
 
 
 def lint_answers(nb, path) -> list[str]:
+    """The student book's answer cell: template lines (``name = ...  # text``) and comments, nothing else."""
     problems = []
     for _, ans, _, _ in task_cells(nb):
         gid = nbg(ans)["grade_id"]
-        parts = split_answer(ans.source)
-        if parts is None:
-            problems.append(f"{gid}: needs exactly one ### BEGIN SOLUTION … ### END SOLUTION block")
-            continue
-        before, solution, after = parts
+        if "SOLUTION" in ans.source:
+            problems.append(f"{gid}: solution markers in the student book — run "
+                            "`aerophoto-course strip-solutions notebooks/`; the reference lives in aerophoto.tasks")
         names = template_names(ans.source)
         if not names:
-            problems.append(f"{gid}: no template line `name = ...` before ### BEGIN SOLUTION")
-        stray = [ln for ln in before if ln.strip() and not ln.strip().startswith("#") and not TEMPLATE.match(ln.strip())]
+            problems.append(f"{gid}: no template line `name = ...`")
+        stray = [ln for ln in ans.source.splitlines()
+                 if ln.strip() and not ln.strip().startswith("#") and not TEMPLATE.match(ln.strip())]
         if stray:
-            problems.append(f"{gid}: only template lines and comments may precede the solution: {stray}")
-        if any(ln.strip() and not ln.strip().startswith("#") for ln in after):
-            problems.append(f"{gid}: code after ### END SOLUTION would stay in the student version")
-        if not any(ln.strip() and not ln.strip().startswith("#") for ln in solution):
-            problems.append(f"{gid}: the solution block is empty")
-            continue
-        missing = set(names) - assigned_names("\n".join(solution))
-        if missing:
-            problems.append(f"{gid}: the solution does not set {sorted(missing)}")
+            problems.append(f"{gid}: only template lines and comments in an answer cell (no solution code): {stray}")
     return problems
 
 
@@ -336,27 +332,26 @@ def lint_downstream(nb, path) -> list[str]:
 
 
 def lint_release(nb, path) -> list[str]:
+    """The generated nbgrader source makes nbgrader's student version: template lines kept, no reference."""
     try:
-        release = student_version(nb)  # nbgrader's own preprocessors; they raise on broken markers
+        source = source_version(nb)
+        teacher_version(nb)
+        release = student_version(source)  # nbgrader's own preprocessors; they raise on broken markers
     except Exception as exc:
-        return [f"nbgrader cannot make the student version: {type(exc).__name__}: {exc}"]
+        return [f"the nbgrader source or its student version cannot be made: {type(exc).__name__}: {exc}"]
     if [c.get("id") for c in release.cells] != [c.get("id") for c in nb.cells]:
         return ["the student version lost or reordered cells"]
     by_id = {c.get("id"): c for c in release.cells}
+    src_by_id = {c.get("id"): c for c in source.cells}
     problems = []
     for _, ans, _, test in task_cells(nb):
-        r_ans = by_id[ans.get("id")]
-        if split_answer(ans.source) is None:
-            continue  # lint_answers reports it
-        _, solution, _ = split_answer(ans.source)
-        if "SOLUTION" in r_ans.source:
-            problems.append(f"{ans.get('id')}: solution markers left in the student version")
-        leaked = [ln for ln in solution if ln.strip() and not ln.strip().startswith(("#", "import"))
-                  and ln.strip() in {x.strip() for x in r_ans.source.splitlines()}]
-        if leaked:
-            problems.append(f"{ans.get('id')}: solution lines in the student version: {leaked}")
-        if template_names(ans.source) != [m.group(1) for ln in r_ans.source.splitlines()
-                                          if (m := TEMPLATE.match(ln.strip()))]:
+        r_ans, s_ans = by_id[ans.get("id")], src_by_id[ans.get("id")]
+        parts = split_answer(s_ans.source)
+        if parts is None or not set(template_names(ans.source)) <= assigned_names("\n".join(parts[1])):
+            problems.append(f"{ans.get('id')}: the generated source has no reference solution setting every answer")
+        if "SOLUTION" in r_ans.source or "_ref" in r_ans.source:
+            problems.append(f"{ans.get('id')}: the reference solution leaked into the student version")
+        if template_names(ans.source) != template_names(r_ans.source):
             problems.append(f"{ans.get('id')}: the template lines must survive into the student version")
         if test is not None and by_id[test.get("id")].source != test.source:
             problems.append(f"{test.get('id')}: the student version changed the check cell")
@@ -368,12 +363,12 @@ def lint_release(nb, path) -> list[str]:
 RULES = {
     "answer-or-test-cells-with-the-book-metadata": lint_metadata,
     "answer-cell-followed-by-its-test-cell-with-task-text": lint_pairing,
-    "answer-template-lines-outside-the-solution": lint_answers,
+    "answer-cells-hold-template-lines-only": lint_answers,
     "tests-call-check-task-of-the-registered-task": lint_tests,
     "tasks-match-the-registry": lint_registry,
     "markers-only-in-their-cells": lint_markers,
     "later-cells-independent-of-the-answers": lint_downstream,
-    "student-version-without-solutions-or-hidden-tests": lint_release,
+    "generated-source-and-student-version": lint_release,
 }
 
 
@@ -412,15 +407,17 @@ def _set(nb, nbtools, cell_id, fn):
     (lint_pairing, lambda nb, t: t.insert_after(nb, "task-00-1-answer", t.md("hint", id="hint")),
      "must be its test cell"),
     (lint_pairing, lambda nb, t: nb.cells.pop(t.find_cell(nb, "task-00-1")[0]), "the task text"),
-    (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer",
-                                      lambda c: setattr(c, "source", c.source.split("### BEGIN")[0])),
-     "exactly one ### BEGIN SOLUTION"),
+    (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer", lambda c: setattr(
+        c, "source", c.source + "\n### BEGIN SOLUTION\nH_m = v.f_mm / 1000 * v.m\n### END SOLUTION")),
+     "solution markers in the student book"),
     (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer",
                                       lambda c: setattr(c, "source", "import math\n" + c.source)),
      "only template lines and comments"),
-    (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer",
-                                      lambda c: setattr(c, "source", c.source.replace("oc_mm = -", "oc = -"))),
-     "does not set ['oc_mm']"),
+    (lint_answers, lambda nb, t: _set(nb, t, "task-00-1-answer", lambda c: setattr(c, "source", "# nothing")),
+     "no template line"),
+    (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-answer",
+                                    lambda c: setattr(c, "source", c.source.replace("oc_mm = ...", "oc = ..."))),
+     "differ from the task's answers"),
     (lint_tests, lambda nb, t: _set(nb, t, "task-00-1-check", lambda c: setattr(
         c, "source", c.source + "\n### BEGIN HIDDEN TESTS\nchecks.check_value('x', 1, 1)\n### END HIDDEN TESTS")),
      "hidden tests live in aerophoto.tasks"),
@@ -436,8 +433,8 @@ def _set(nb, nbtools, cell_id, fn):
      "outside an answer cell"),
     (lint_downstream, lambda nb, t: t.insert_after(nb, "task-00-1-check", t.code("print(2 * H_m)", id="later")),
      "cell later uses ['H_m']"),
-    (lint_release, lambda nb, t: _set(nb, t, "task-00-1-answer", lambda c: setattr(
-        c, "source", c.source.replace("### END SOLUTION", ""))), "cannot make the student version"),
+    (lint_release, lambda nb, t: _set(nb, t, "task-00-1-answer", lambda c: c.metadata.nbgrader.update(
+        grade_id="task-00-9-answer")), "cannot be made"),
     (lint_setup, lambda nb, t: _set(nb, t, "setup", lambda c: setattr(
         c, "source", c.source.replace("RECORD_BOOK = None", 'RECORD_BOOK = "19-0457"'))), "ships with RECORD_BOOK = None"),
     (lint_setup, lambda nb, t: _set(nb, t, "setup", lambda c: c.metadata.update(nbgrader={"grade": False})),
@@ -466,11 +463,13 @@ GRADED = [p for p in NOTEBOOKS if graded_tasks(read(p))]
 
 @pytest.mark.slow
 @pytest.mark.parametrize("path", GRADED, ids=[p.stem for p in GRADED])
-def test_student_version_runs_and_every_unanswered_check_fails_cleanly(path, tmp_path):
-    """A student who has not answered sees one red ✗ line per task (e.g. "no answer yet"), no other error."""
+def test_student_book_runs_and_every_unanswered_check_fails_cleanly(path, tmp_path):
+    """A student who has not answered sees one red ✗ line per task (e.g. "no answer yet"), no other error.
+
+    Run as the grader runs it: in the sandbox, each task judged by the trusted check."""
     from aerophoto.course import check_notebook
 
-    release = student_version(read(path))
+    release = read(path)
     target = tmp_path / path.name
     nbformat.write(release, str(target))
     for extra in path.parent.iterdir():  # pictures or data the chapter reads beside it

@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 from aerophoto import geometry as g
 from aerophoto import mosaic as mo
 from aerophoto import simulate as sim
+from aerophoto.terrain import RescaledRelief
 
 
 # --------------------------------------------------------------------------- plane geometry
@@ -88,6 +89,18 @@ def test_rms_partial_scales_and_signs():
     assert list(mo.classify_mismatch([-0.3, 0.0, 0.2])) == ["cut-out", "match", "duplicate"]
 
 
+def test_partial_scales_are_the_base_scales_of_guide_5_1():
+    # one formula m = L·M/l: the fotoschema's (mosaic, plan) order is displacement.base_scale's (plan, photo)
+    from aerophoto import displacement
+
+    l, L = np.array([348.2, 333.4, 358.5, 362.2]), np.array([415.5, 405.0, 432.6, 435.4])
+    assert np.array_equal(mo.partial_scales(l, L, 10000), displacement.base_scale(L, l, 10000))
+    with pytest.raises(ValueError, match="L_mm"):
+        mo.partial_scales([1.0, 2.0], [1.0, -2.0])
+    with pytest.raises(ValueError, match="match"):
+        mo.partial_scales([1.0, 2.0], [1.0])
+
+
 # --------------------------------------------------------------------------- the fotoschema of a strip
 @pytest.mark.parametrize("f_mm, m", [(100.0, 12000.0), (140.0, 12500.0), (200.0, 9000.0)])
 def test_flat_ground_and_vertical_photos_give_a_clean_mosaic_at_scale_f_over_H(f_mm, m):
@@ -147,7 +160,7 @@ def test_matching_on_high_ground_leaves_duplicates_not_cut_outs():
 def _relief_ground(relief_m):
     from aerophoto import site
 
-    return mo.RescaledRelief(site.get_site(), relief_m)
+    return RescaledRelief(site.get_site(), relief_m)
 
 
 def test_rescaled_relief_keeps_shape_and_bounds():
@@ -162,7 +175,7 @@ def test_rescaled_relief_keeps_shape_and_bounds():
     assert gr.dem.max() == pytest.approx(gr.z_max_m)
     assert np.allclose(gr.points_m()[:, :2], s.catalogue[["X_m", "Y_m"]].to_numpy())
     with pytest.raises(ValueError, match="relief_m"):
-        mo.RescaledRelief(s, -1.0)
+        RescaledRelief(s, -1.0)
 
 
 def _fotoschema(relief_m=30.0, tilt=0.0, seed=1, f_mm=100.0):
@@ -445,22 +458,3 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     with pytest.raises(ValueError, match="stem"):
         export_sheet(fig, tmp_path, "../evil")
 
-
-def test_variant_task_data_and_answers():
-    from aerophoto.variants import variant_for_index
-
-    v = variant_for_index(3)
-    d = mo.variant_task(v)
-    assert d["dI_mm"] == mo.variant_task(v)["dI_mm"]  # deterministic
-    assert len(d["l_mm"]) == 4 and len(d["L_mm"]) == 4 and d["M"] == 10000.0
-    assert d["relief_m"] == pytest.approx(0.05 * v.f_mm / 1000 * v.m)
-    assert all(x == round(x, 1) and str(x) != "-0.0" for x in d["dI_mm"])
-    a = mo.variant_task_answers(v)
-    dI = np.array(d["dI_mm"])
-    assert a["m_rms_mm"] == pytest.approx(math.sqrt(np.sum(dI**2) / len(dI)))
-    assert a["n_cutouts"] == int(np.sum(dI < 0))
-    assert a["m_mean"] == pytest.approx(np.mean(np.array(d["L_mm"]) * 10000 / np.array(d["l_mm"])))
-    # the mean scale is near the design scale of the photos
-    assert abs(a["m_mean"] / v.m - 1) < 0.05
-    other = mo.variant_task_answers(variant_for_index(40))
-    assert other["m_rms_mm"] != a["m_rms_mm"]

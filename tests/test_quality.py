@@ -254,23 +254,23 @@ def test_quality_demo_slider_extremes_work(seed, sign):
     assert len(r.report.photos) == 10 and not r.report.ok
 
 
-def test_variant_task_data_and_answers():
-    from aerophoto.variants import variant_for_index
+def test_pairs_table_shows_a_dash_where_a_side_pair_has_no_value():
+    bl = sim.fly_block(CAM, 12000, 60, 30, 4, 2, alternate=True)
+    t = q.assess_flight(bl).pairs_table()
+    side = t[t["kind"] == "side"]
+    fwd = t[t["kind"] == "forward"]
+    assert len(side) == 4 and len(fwd) == 6
+    for col in ("b1, mm", "b2, mm", "Δm/m, %", "Δm/m true, %", "scale"):
+        assert (side[col] == q.NOT_MEASURED).all(), col
+    assert list(fwd["b1, mm"]) == ["72.0"] * 6 and list(fwd["Δm/m, %"]) == ["0.00"] * 6
+    assert list(side["P true, %"]) == ["30.0"] * 4
+    assert "NaN" not in t.to_html() and "nan" not in t.to_string()
 
-    v = variant_for_index(0)
-    d = q.variant_task(v)
-    assert d == q.variant_task(v)  # deterministic
-    assert d["b_mm"] == 180.0 and d["f_mm"] == 100.0 and d["H_m"] == 1200.0
-    for k in ("a_mm", "b1_mm", "b2_mm", "L_mm", "l_mm"):
-        assert d[k] == round(d[k], 1)
-    a = q.variant_task_answers(v)
-    assert a["Px_percent"] == pytest.approx(d["a_mm"] / 180 * 100)
-    assert a["dm_percent"] == pytest.approx((d["b1_mm"] - d["b2_mm"]) / d["b1_mm"] * 100)
-    assert a["n_percent"] == pytest.approx(d["l_mm"] / d["L_mm"] * 100)
-    assert a["crab_limit_deg"] == 5.0
-    assert a["px_ok"] == (a["Px_percent"] >= 56)
-    # the variants differ, and the verdicts are not all the same across the class
-    answers = [q.variant_task_answers(variant_for_index(i)) for i in range(0, 100, 7)]
-    assert len({round(x["Px_percent"], 3) for x in answers}) > 10
-    for key in ("px_ok", "dm_ok", "n_ok", "crab_ok"):
-        assert {x[key] for x in answers} == {True, False}, key
+
+def test_quality_takes_the_terrain_through_geometry():
+    # quality no longer has its own converter or transfer: None → flat ground at the flight's height
+    assert not hasattr(q, "_terrain") and not hasattr(q, "transfer_points")
+    st = sim.fly_strip(CAM, 12000, 60, 3)
+    a = q.assess_flight(st)
+    b = q.assess_flight(st, g.FlatTerrain(st.ground_Z_m))
+    assert a.pairs_table().equals(b.pairs_table())

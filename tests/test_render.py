@@ -220,7 +220,9 @@ def test_bad_input(hilly, kwargs, name):
 def test_photo_view_updates_in_place(hilly):
     a = R.render(hilly, CAM, POSES[0], 64, number=7)
     b = R.render(hilly, CAM, POSES[1], 64)
-    view = a.show(labels=True)
+    from aerophoto.demos.site_views import show_photo
+
+    view = show_photo(a, labels=True)
     assert view.ax.get_title() == "photo 7"
     img_artist = view.image
     xa = view.other.get_xdata().copy()

@@ -1,5 +1,6 @@
 """The virtual test site: deterministic terrain, texture and a catalogue consistent with the texture."""
 
+import hashlib
 import subprocess
 import sys
 
@@ -35,6 +36,63 @@ def test_deterministic_bit_for_bit(small):
     other = S.get_site(SMALL, seed=8)
     assert not np.array_equal(other.texture, small.texture)
     assert not np.array_equal(other.dem, small.dem)
+
+
+def _sha(a) -> str:
+    a = np.ascontiguousarray(a)
+    return hashlib.sha256(a.tobytes() + str(a.dtype).encode() + str(a.shape).encode()).hexdigest()[:16]
+
+
+#: the default site as built before build_site was split into named steps (issue 10): sha256 of each array's
+#: bytes, dtype and shape, and of the catalogue written with 17 significant digits.  The generator is seeded
+#: (numpy's PCG64), so these hold wherever numpy draws the same numbers and float arithmetic is IEEE.
+DEFAULT_SITE_SHA = {"dem": "3c62df9b5b342200", "texture": "9815d26fe9ae9206", "cover": "4fd247b649da3e14",
+                    "catalogue": "b6abd68daa738bec", "level 6": "21aa6e842145d109",
+                    "roads": "6c6f7c3a6318d78f", "buildings": "2e48f5722bd003a3"}
+
+
+def test_the_named_steps_build_the_same_default_site_as_before(default):
+    got = {"dem": _sha(default.dem), "texture": _sha(default.texture), "cover": _sha(default.cover),
+           "catalogue": hashlib.sha256(default.catalogue.to_csv(float_format="%.17g").encode()).hexdigest()[:16],
+           "level 6": _sha(default.texture_level(6)),
+           "roads": _sha(np.array([r["xy"] for r in default.features["roads"]])),
+           "buildings": _sha(default.features["buildings"])}
+    assert got == DEFAULT_SITE_SHA
+
+
+def test_steps_by_hand_give_the_site_and_keep_their_contracts(small):
+    from aerophoto.site import build as B
+
+    b = B.Builder(SMALL)
+    river = B.river_line(b)
+    X = np.linspace(0.0, SMALL.width_m, 101)  # y0 in 0.36…0.42 of the height, meanders ±(0.09 + 0.03)
+    assert np.all((river.y(X) >= 0.24 * SMALL.height_m) & (river.y(X) <= 0.54 * SMALL.height_m))
+    dem = B.relief(b, river)
+    assert dem.min() == SMALL.base_height_m and dem.max() == pytest.approx(SMALL.base_height_m + SMALL.relief_m)
+    systems = B.fields(b, river)
+    B.soil_noise(b)
+    roads, corners, belts = B.field_network(b, river, systems)
+    for p0, p1 in belts:  # belts keep to one side of the river
+        assert np.sign(river.side(p0)) == np.sign(river.side(p1))
+    forest_tex = B.shelter_belts(b, belts)
+    village_c = B.highways(b, river, roads)
+    assert sum(r["kind"] == "paved" for r in roads) == 5  # three legs of the main road, two of the second
+    band = B.floodplain(b, river)
+    B.forest(b, band, village_c, forest_tex)
+    B.river_water(b, band)
+    B.oxbow_lake(b, river, roads)
+    B.paint_roads(b, roads)
+    houses = B.village(b, river, village_c, roads)
+    trees = B.isolated_trees(b)
+    tex = B.texture(b, dem)
+    levels = B.pyramid(tex)
+    assert [lv.shape for lv in levels[:2]] == [(tex.shape[0] // 2, tex.shape[1] // 2),
+                                               (tex.shape[0] // 4, tex.shape[1] // 4)]
+    assert np.array_equal(dem, small.dem) and np.array_equal(tex, small.texture)
+    assert np.array_equal(b.cv.cover, small.cover) and np.array_equal(trees, small.features["trees"])
+    assert len(houses[0]) == len(small.features["buildings"])
+    for k, lv in enumerate(levels, start=1):
+        assert np.array_equal(lv, small.texture_level(k))
 
 
 def test_cache_returns_the_same_site(small):
@@ -225,7 +283,9 @@ def test_import_builds_nothing():
 
 
 def test_plot_uses_the_guides_symbols(small):
-    art = small.plot(labels=True)
+    from aerophoto.demos.site_views import plot_site
+
+    art = plot_site(small, labels=True)
     ctrl = small.catalogue[small.catalogue["control"]]
     assert art["points"]["control"].get_marker() == "^"
     assert art["points"]["other"].get_marker() == "o"

@@ -1,4 +1,4 @@
-"""Radial strip phototriangulation and its reduction (guide §7, §13): aerophoto.triangulation."""
+"""Radial strip phototriangulation and its reduction (guide §7, §13): aerophoto.triangulation, guide.s07, guide.s13."""
 
 import math
 
@@ -8,7 +8,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aerophoto import geometry as g
+from aerophoto import plane
 from aerophoto import triangulation as T
+from aerophoto.guide import s07, s13
 
 CAM = g.Camera(100.0)
 M_PHOTO = 12000.0
@@ -284,7 +286,7 @@ def test_resection_recovers_a_template(cx, cy, th, seed):
         K += 50.0
     d = K - [cx, cy]
     phi = np.arctan2(d[:, 1], d[:, 0]) - th  # directions measured on the template
-    C, theta, r = T.resect(phi, K)
+    C, theta, r = plane.resect_directions(phi, K)
     assert np.hypot(*(C - [cx, cy])) < 1e-6
     assert math.remainder(theta - th, 2 * math.pi) == pytest.approx(0.0, abs=1e-9)
     assert np.max(np.abs(r)) < 1e-6
@@ -294,24 +296,24 @@ def test_resection_with_an_initial_direction_line():
     C0 = np.array([10.0, 5.0])
     K = np.array([[100.0, 80.0], [120.0, -60.0], [-40.0, 0.0]])
     phi = np.arctan2(*(K - C0).T[::-1]) - 0.3
-    C, th, r = T.resect(phi, K, line=(np.array([-40.0, 0.0]), math.atan2(5.0, 50.0)))
+    C, th, r = plane.resect_directions(phi, K, line=(np.array([-40.0, 0.0]), math.atan2(5.0, 50.0)))
     assert np.allclose(C, C0) and th == pytest.approx(0.3) and len(r) == 4
     with pytest.raises(ValueError, match="at least 3"):
-        T.resect(phi[:2], K[:2])
+        plane.resect_directions(phi[:2], K[:2])
 
 
 def test_error_triangle_and_ray_intersection():
     O = np.array([[0.0, 0.0], [100.0, 0.0], [50.0, -80.0]])
     P = np.array([50.0, 60.0])
     ang = np.arctan2(*(P - O).T[::-1])
-    V, sides = T.error_triangle(O, ang)
+    V, sides = plane.error_triangle(O, ang)
     assert np.max(sides) < 1e-9 and np.allclose(V, P)
-    np.testing.assert_allclose(T.intersect_rays(O, ang), P)
+    np.testing.assert_allclose(plane.intersect_rays(O, ang), P)
     # shift the third ray sideways by 0.3 mm: a triangle appears, its side on ray 1 is 0.3/sin of the angle
     O2 = O.copy()
     n = np.array([-math.sin(ang[2]), math.cos(ang[2])])
     O2[2] += 0.3 * n
-    V, sides = T.error_triangle(O2, ang)
+    V, sides = plane.error_triangle(O2, ang)
     assert np.max(sides) > 0.3
     gamma = abs(math.remainder(ang[2] - ang[1], math.pi))
     assert sides[0] == pytest.approx(0.3 / math.sin(gamma), rel=1e-9)
@@ -324,9 +326,11 @@ def test_rigid_and_similarity_fits(a, tx, ty, s):
     A = rng.uniform(-100, 100, size=(5, 2))
     R = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
     Bp = A @ R.T + [tx, ty]
-    R2, t2 = T.fit_rigid(A, Bp)
+    T2 = plane.fit_similarity(A, Bp).matrix()  # rigid: rotation + shift (what reduce_strip lays the strip with)
+    R2, t2 = T2[:2, :2], T2[:2, 2]
     np.testing.assert_allclose(A @ R2.T + t2, Bp, atol=1e-8)
-    s3, R3, t3 = T.fit_similarity(A, s * Bp)
+    S3 = plane.fit_similarity(A, s * Bp, scale=True)  # with a free scale (FreeStrip.similarity_to_truth)
+    s3, R3, t3 = S3.scale, S3.matrix()[:2, :2] / S3.scale, S3.matrix()[:2, 2]
     assert s3 == pytest.approx(s, rel=1e-9)
     np.testing.assert_allclose(s3 * A @ R3.T + t3, s * Bp, atol=1e-7)
 
@@ -394,7 +398,7 @@ def test_zhukov_coefficient_is_the_chain_held_at_both_ends():
     for n in (2, 4, 6, 10, 20):
         assert T.bridge_variance_factor(n) * 48 == pytest.approx(n**3 + 2 * n)  # no n² term, like n³ + 11n + 34
     assert math.sqrt(3.0 / 48.0) == 0.25  # three direction errors per base → the formula's 0.25
-    assert "n³ + 11n + 34" in T.ZHUKOV_READING
+    assert "n³ + 11n + 34" in s13.ZHUKOV_READING
 
 
 def test_zhukov_input_checks():
@@ -408,12 +412,12 @@ def test_zhukov_input_checks():
 
 # ----------------------------------------------------------------------------- the guide's tables
 def test_table9_corrections_follow_from_r_and_k():
-    chk = T.guide_table9()
-    v_checks = [c for c in chk.checks if c.quantity.startswith("v =")]
-    assert len(v_checks) == 12 and all(c.agrees for c in v_checks)
-    computed = chk.table().loc["v, mm"].to_numpy(dtype=float)
-    np.testing.assert_allclose(computed, np.array(T.GUIDE_TABLE9["r_mm"]) * 0.037)
-    np.testing.assert_allclose(np.round(computed, 1), T.GUIDE_TABLE9["v_mm"])
+    chk = s07.table(9)
+    v_checks = [c for c in chk.values if c.quantity.startswith("v =")]
+    assert len(v_checks) == 12 and all(c.follows for c in v_checks)
+    computed = chk.table.loc["v, mm"].to_numpy(dtype=float)
+    np.testing.assert_allclose(computed, np.array(s07.GUIDE_TABLE9["r_mm"]) * 0.037)
+    np.testing.assert_allclose(np.round(computed, 1), s07.GUIDE_TABLE9["v_mm"])
     # what does not follow: the labels (a point twice with two distances) and table 8's template
     bad = {c.where for c in chk.discrepancies}
     assert "table 9, label 498/1" in bad
@@ -421,31 +425,64 @@ def test_table9_corrections_follow_from_r_and_k():
 
 
 def test_table8_from_the_coordinates():
-    chk = T.guide_table8()
-    t = chk.table()
+    chk = s07.table(8)
+    t = chk.table
     l = t["l_осн from coordinates, mm"].to_numpy()
     np.testing.assert_allclose(l, [196.81, 144.84, 223.15, 129.65], atol=0.01)
-    by = {(c.where, c.quantity): c for c in chk.checks}
+    by = {(c.where, c.quantity): c for c in chk.values}
     # rows 1 and 2 are consistent: l_осн rounds to the printed 197 and 145, K to 1.037 and 1.036
     for row in ("496/1 – 498/1", "498/1 – 498/2"):
-        assert by[(f"table 8, {row}", "l_осн, mm")].agrees
-        assert by[(f"table 8, {row}", "K = l_осн/l_воск (printed l_осн)")].agrees
+        assert by[(f"table 8, {row}", "l_осн, mm")].follows
+        assert by[(f"table 8, {row}", "K = l_осн/l_воск (printed l_осн)")].follows
     # rows 3 and 4 are not: 223 and 130 mm, and 222/217 = 1.023, 131/126 = 1.040
     for row in ("498/2 – 496/2", "496/2 – 496/1"):
-        assert not by[(f"table 8, {row}", "l_осн, mm")].agrees
-        assert not by[(f"table 8, {row}", "K = l_осн/l_воск (printed l_осн)")].agrees
+        assert not by[(f"table 8, {row}", "l_осн, mm")].follows
+        assert not by[(f"table 8, {row}", "K = l_осн/l_воск (printed l_осн)")].follows
     assert by[("table 8, 498/2 – 496/2", "K = l_осн/l_воск (printed l_осн)")].computed == pytest.approx(1.0230, abs=1e-4)
     # the spread: recomputed it breaks the 0.003 rule either way
-    assert not by[("table 8, spread", "largest |ΔK| (printed l_осн) ≤ 0.003?")].agrees
-    assert not by[("table 8, spread", "largest |ΔK| (l_осн from coordinates) ≤ 0.003?")].agrees
+    assert not by[("table 8, spread", "largest |ΔK| (printed l_осн) ≤ 0.003?")].follows
+    assert not by[("table 8, spread", "largest |ΔK| (l_осн from coordinates) ≤ 0.003?")].follows
     # the printed K themselves do average 1.037
-    assert by[("table 8, mean", "mean of the printed K")].agrees
+    assert by[("table 8, mean", "mean of the printed K")].follows
     assert len(chk.comparison(only_discrepancies=True)) == len(chk.discrepancies)
+
+
+def test_guide_tables_7_audits_give_a_reason_exactly_where_a_value_does_not_follow():
+    from aerophoto.guide import audit
+
+    for a in (s07.table8(), s07.table9()):
+        assert a.source == "guide §7" and a.title.startswith(("Table 8.", "Table 9."))
+        for p in a.values:
+            assert bool(p.reason) == (not p.follows), p
+            assert p.reason != audit.GENERIC_REASON
+        assert len(a.comparison()) == len(a.discrepancies)
+        assert len(a.comparison(only_discrepancies=False)) == len(a.values)
+    assert [len(s07.table8().discrepancies), len(s07.table9().discrepancies)] == [11, 4]
+    assert len(s07.discrepancies()) == 15 and set(s07.discrepancies()["table"]) == {"Table 8", "Table 9"}
+    with pytest.raises(ValueError, match="number"):
+        s07.table(7)
+
+
+def test_guide_tables_7_verdicts_are_the_same_under_the_half_unit_rule():
+    """The one rule (0.6 of a unit) and the tables' earlier rule (0.5·10⁻ᵈ) agree on every printed value."""
+    for a in (s07.table8(), s07.table9()):
+        for p in a.values:
+            lo, hi = p.bounds if p.bounds is not None else (p.computed, p.computed)
+            half = lo - 0.5 * p.unit - 1e-9 <= p.printed <= hi + 0.5 * p.unit + 1e-9
+            assert half == p.follows, p
+
+
+def test_zhukov_readings_with_the_guides_inputs():
+    t = s13.zhukov_readings()
+    assert list(t.columns) == ["n for m_ε = 4′", "n for m_ε = 4.5′", "n for m_ε = 5′"]
+    np.testing.assert_allclose(t.round(2).to_numpy(), [[6.66, 6.01, 5.47], [14.46, 12.22, 10.43],
+                                                       [33.38, 25.70, 20.22]])
+    assert s13.GUIDE_ZHUKOV_INPUTS["m_mm"] == 0.35
 
 
 def test_table8_reproduced_by_reduction_coefficients():
     names = ["496/1", "498/1", "498/2", "496/2"]
-    base = np.array([[T.GUIDE_S7_CONTROL[n][1], T.GUIDE_S7_CONTROL[n][0]] for n in names]) / 10.0  # m → mm at 1:10000
+    base = np.array([[s07.GUIDE_S7_CONTROL[n][1], s07.GUIDE_S7_CONTROL[n][0]] for n in names]) / 10.0  # m → mm at 1:10000
     # a template whose sides are the printed l_воск cannot be checked without its diagonals; use the ratio form
     c = T.reduction_coefficients(names, base, base / 1.037, pairs="perimeter")
     np.testing.assert_allclose(c.k, 1.037)
@@ -487,6 +524,13 @@ def test_importing_has_no_side_effects():
     import matplotlib as mpl
 
     before = dict(mpl.rcParams)
-    sys.modules.pop("aerophoto.triangulation", None)
-    importlib.import_module("aerophoto.triangulation")
-    assert dict(mpl.rcParams) == before
+    names = [n for n in sys.modules if n == "aerophoto.triangulation" or n.startswith("aerophoto.triangulation.")]
+    saved = {n: sys.modules.pop(n) for n in names}
+    try:
+        importlib.import_module("aerophoto.triangulation")  # the package and every submodule, afresh
+        assert dict(mpl.rcParams) == before
+    finally:
+        sys.modules.update(saved)  # the other tests keep the classes they were collected with
+        import aerophoto
+
+        aerophoto.triangulation = saved["aerophoto.triangulation"]

@@ -2,27 +2,21 @@
 
 The package does the computing, plotting and widget wiring for the notebooks in
 ``notebooks/``; the notebooks tell the story.  One module per topic of the
-course-design guide (Presnyakov & Tyuklenkova, Penza 2014):
+course-design guide (Presnyakov & Tyuklenkova, Penza 2014), in six layers
+(imports point downwards only; ``tests/test_layers.py`` checks it):
 
-=================  ==========================================================
-``geometry``       the frame camera and exact central projection (§4–§5)
-``variants``       the student's variant from the record-book number (§1)
-``flight``         aerial-survey planning (§2)
-``site``           the virtual test site: terrain, texture, ground points
-``render``         exact photographs of the virtual site
-``simulate``       simulated flights (strips, blocks) with imperfections
-``quality``        photo-quality assessment of a flight (§3)
-``displacement``   relief and tilt displacement, corrected scales (§4–§5)
-``mosaic``         the single-strip fotoschema (§6)
-``triangulation``  radial strip phototriangulation and reduction (§7, §13)
-``plots``          figure builders shared by the chapters (``ax=None``)
-``widgets``        the live-demo base: bounded, labelled sliders with a Reset
-``demos``          the chapters' live demos and their figure builders
-``checks``         answer checks for the lab tasks
-``book``           the notebooks' one setup call
-``nbtools``        notebook maintenance: build, find cells by id, strip outputs
-``course``         the instructor's command line over nbgrader
-=================  ==========================================================
+===  ====================  =====================================================
+1    foundation            ``geometry`` (camera, central projection, terrain),
+                           ``plane`` (2-D fits, rays), ``variants`` (§1)
+2    physics               ``flight`` (§2), ``quality`` (§3), ``displacement``
+                           (§4–§5), ``mosaic`` (§6), ``triangulation`` (§7, §13)
+3    the virtual world     ``terrain``, ``site``, ``simulate``, ``render``
+4    the course's content  ``guide`` (printed tables and their audits),
+                           ``tasks`` (graded tasks per chapter)
+5    presentation          ``plots``, ``widgets``, ``demos``
+6    course                ``checks``, ``book`` (setup, chapter registry),
+                           ``nbtools``, ``course`` (the instructor's CLI)
+===  ====================  =====================================================
 
 Importing aerophoto has no side effects: submodules load on first use, and
 nothing changes matplotlib's style until a notebook calls :func:`setup`.
@@ -36,6 +30,7 @@ __version__ = "0.1.0"
 
 _SUBMODULES = (
     "geometry",
+    "plane",
     "variants",
     "flight",
     "site",
@@ -45,6 +40,16 @@ _SUBMODULES = (
     "displacement",
     "mosaic",
     "triangulation",
+    "projective",
+    "control",
+    "rectify",
+    "dem",
+    "budget",
+    "bundle",
+    "accuracy",
+    "terrain",
+    "guide",
+    "tasks",
     "plots",
     "widgets",
     "demos",
@@ -54,7 +59,7 @@ _SUBMODULES = (
     "course",
 )
 
-__all__ = ["__version__", "setup", *_SUBMODULES]
+__all__ = ["__version__", "setup", "chapters", *_SUBMODULES]
 
 
 def setup(*args, **kwargs):
@@ -65,6 +70,13 @@ def setup(*args, **kwargs):
     from .book import setup as _setup
 
     return _setup(*args, **kwargs)
+
+
+def chapters() -> tuple:
+    """The book's chapters, in order (the one registry, :data:`aerophoto.book.CHAPTERS`)."""
+    from .book import CHAPTERS
+
+    return CHAPTERS
 
 
 def __getattr__(name: str):

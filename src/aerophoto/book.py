@@ -30,7 +30,8 @@ from .plots import use_style
 from .variants import Variant, variant, variant_for_index
 
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
-           "Demo", "Chapter", "CHAPTERS", "chapter", "chapter_table_markdown", "lecture_table_markdown"]
+           "Demo", "Chapter", "CHAPTERS", "LECTURE_INDEX", "chapter", "chapter_table_markdown",
+           "lecture_table_markdown", "sync_generated"]
 
 # =========================================================================== the chapter registry
 @dataclass(frozen=True)
@@ -42,7 +43,7 @@ class Demo:
     cell : str
         Id of the notebook cell that displays the demo (``demo-…``).
     cls : str
-        The LiveDemo class, ``module.Class`` relative to ``aerophoto.demos``.
+        The LiveDemo class, ``aerophoto.demos.<module>.<Class>``.
     name : str
         Its name in the lecture index ("Camera footprint — o, n, c").
     move : str
@@ -71,11 +72,6 @@ class Demo:
     @property
     def timed_slider(self) -> str:
         return self.timed or self.sliders[0][0]
-
-    @property
-    def qualname(self) -> str:
-        """The class's full dotted name, ``aerophoto.demos.footprint.FootprintDemo``."""
-        return f"aerophoto.demos.{self.cls}"
 
 
 @dataclass(frozen=True)
@@ -117,44 +113,44 @@ _M = ("m (scale 1:m)", "PageUp")  # scale denominator: five steps up
 CHAPTERS = (
     Chapter("00", "start_here", "guide §1", "start here: your variant, central projection",
             "задание; центральная проекция", (
-                Demo("demo-footprint", "footprint.FootprintDemo", "Camera footprint — o, n, c",
+                Demo("demo-footprint", "aerophoto.demos.footprint.FootprintDemo", "Camera footprint — o, n, c",
                      "α (tilt), then f and m (scale 1:m)",
                      "the footprint turns from a square into a trapezoid; n and c leave o along the principal "
                      "vertical; with the scale fixed, a longer lens flies higher but covers the same ground",
                      (_F, _M, ("α, °", "ArrowRight")), timed="α, °"),
             )),
     Chapter("01", "flight_planning", "guide §2", "planning the aerial survey", "расчёт параметров аэросъёмки", (
-        Demo("demo-flight-plan", "flight_plan.FlightPlanDemo", "Live survey plan", "m, relief h, then f and W",
+        Demo("demo-flight-plan", "aerophoto.demos.flight_plan.FlightPlanDemo", "Live survey plan", "m, relief h, then f and W",
              "strips and photos multiply as the scale grows or the relief rises; a faster aircraft shortens the "
              "flight and the admissible exposure", (_F, _M, ("px, %", "ArrowRight")), timed="f, mm"),
     )),
     Chapter("02", "photo_quality", "guide §3", "judging the photos' quality", "оценка качества материалов", (
-        Demo("demo-quality", "quality.QualityDemo", "Rough mosaic you can break", "crab φ, α max, ΔH, bend, overlaps",
+        Demo("demo-quality", "aerophoto.demos.quality.QualityDemo", "Rough mosaic you can break", "crab φ, α max, ΔH, bend, overlaps",
              "an imperfection past its tolerance turns its print, pair or strip vermillion and changes the verdict",
              (_F, ("α max, °", "ArrowRight"), ("crab φ, °", "ArrowRight")), timed="α max, °"),
     )),
     Chapter("03", "relief_displacement", "guide §4", "relief displacement", "смещение точек за рельеф", (
-        Demo("demo-relief", "displacement.ReliefDemo", "Displacement explorer, relief", "relief ±h, then α and f",
+        Demo("demo-relief", "aerophoto.demos.displacement.ReliefDemo", "Displacement explorer, relief", "relief ±h, then α and f",
              "arrows radiate from the nadir n — outwards for hills, inwards for the valley; a longer lens at the "
              "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "ArrowRight")),
              timed="relief ±h, m"),
     )),
     Chapter("04", "tilt_displacement", "guide §5", "tilt displacement", "смещения за угол наклона", (
         # m is no headline here: over flat ground the tilt displacement on the photo does not depend on m
-        Demo("demo-tilt", "displacement.TiltDemo", "Displacement explorer, tilt", "α, then λ and f",
+        Demo("demo-tilt", "aerophoto.demos.displacement.TiltDemo", "Displacement explorer, tilt", "α, then λ and f",
              "arrows radiate from the isocentre c; points on the isoline stay put; the guide's approximate "
              "formula (orange) parts from the exact displacement (blue) as α grows",
              (_F, ("α, °", "ArrowRight"), ("λ, °", "ArrowRight")), timed="α, °"),
     )),
     Chapter("05", "fotoschema", "guide §6", "the single-strip photo mosaic", "одномаршрутная фотосхема", (
-        Demo("demo-fotoschema", "fotoschema.FotoschemaDemo", "Live single-strip mosaic",
+        Demo("demo-fotoschema", "aerophoto.demos.fotoschema.FotoschemaDemo", "Live single-strip mosaic",
              "relief h, α max, then f and p_x",
              "cut-outs and duplicates appear along the cuts; a longer lens at the same scale shrinks the mismatches",
              (_F, _M, ("α max, °", "ArrowRight")), timed="α max, °"),
     )),
     Chapter("06", "strip_triangulation", "guide §7", "strip phototriangulation and its reduction",
             "фототриангуляционный ряд", (
-                Demo("demo-reduction", "reduction.ReductionDemo", "Reduction explorer",
+                Demo("demo-reduction", "aerophoto.demos.reduction.ReductionDemo", "Reduction explorer",
                      "q (free-strip scale), pricking error, central centre",
                      "k follows 1/q and the reduction arrows grow while the control residuals stay; pricking errors "
                      "grow the error triangles",
@@ -162,7 +158,7 @@ CHAPTERS = (
             )),
     Chapter("12", "phototriangulation", "guide §13", "phototriangulation: control spacing and reduction",
             "фототриангуляция", (
-                Demo("demo-reduction", "reduction.ReductionDemo", "Reduction explorer (tilted photos)",
+                Demo("demo-reduction", "aerophoto.demos.reduction.ReductionDemo", "Reduction explorer (tilted photos)",
                      "α max, q, pricking error",
                      "the same explorer with tilted photos: the reduced strip against the control points",
                      (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
@@ -187,12 +183,12 @@ def _title(c: Chapter) -> str:
     return c.title[0].upper() + c.title[1:]
 
 
-def chapter_table_markdown(*, links: bool = False) -> str:
-    """The chapter table of the README and of chapter 00 (generated; a test keeps both current)."""
-    lines = ["| notebook | source | topic |", "|---|---|---|"]
+def chapter_table_markdown(*, prefix: str = "") -> str:
+    """The chapter table of the README (``prefix="notebooks/"``) and of chapter 00 (generated; a test keeps both current)."""
+    lines = ["| notebook | source | topic | live demos |", "|---|---|---|---|"]
     for c in CHAPTERS:
-        nb = f"[`{c.name}`](notebooks/{c.notebook})" if links else f"`{c.name}`"
-        lines.append(f"| {nb} | {c.source} | {c.title} ({c.title_ru}) |")
+        demos = "; ".join(d.name for d in c.demos) or "—"
+        lines.append(f"| [`{c.name}`]({prefix}{c.notebook}) | {c.source} | {c.title} ({c.title_ru}) | {demos} |")
     return "\n".join(lines)
 
 
@@ -203,6 +199,56 @@ def lecture_table_markdown() -> str:
         for d in c.demos:
             lines.append(f"| [{c.number} · {_title(c)} ({c.source})]({c.notebook}) | {d.name} | {d.move} | {d.sees} |")
     return "\n".join(lines)
+
+
+#: where the generated tables live: (file relative to the repository, how to find the place, generator)
+_README_MARK = ("<!-- BEGIN chapters (generated from aerophoto.book.CHAPTERS: python -m aerophoto.book) -->",
+                "<!-- END chapters -->")
+
+
+def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
+    """[(file, kind, place, text)]: kind "markdown-section" (between markers) or "cell" (a notebook cell by id)."""
+    return [
+        (root / "README.md", "markdown-section", "chapters", chapter_table_markdown(prefix="notebooks/")),
+        (root / "notebooks" / LECTURE_INDEX, "cell", "demos",
+         "## The demonstrations\n\n" + lecture_table_markdown()),
+        (root / "notebooks" / CHAPTERS[0].notebook, "cell", "chapters",
+         "## The chapters\n\n" + chapter_table_markdown()),
+    ]
+
+
+def sync_generated(root=None, *, write: bool = False) -> list[str]:
+    """Check (or with ``write=True`` rewrite) the tables generated from :data:`CHAPTERS`; returns the stale places.
+
+    README.md's chapter table (between the ``BEGIN chapters``/``END chapters`` markers), the lecture index's
+    ``demos`` cell and chapter 00's ``chapters`` cell.  Safe to re-run: cells are found by id.
+    """
+    from . import nbtools
+
+    root = Path(root) if root is not None else Path(__file__).resolve().parents[2]
+    stale = []
+    for path, kind, place, text in _generated(root):
+        if kind == "markdown-section":
+            doc = path.read_text(encoding="utf-8")
+            begin, end = _README_MARK
+            if begin not in doc or end not in doc:
+                raise ValueError(f"{path.name} has no generated-table markers {begin!r} … {end!r}")
+            head, rest = doc.split(begin, 1)
+            _, tail = rest.split(end, 1)
+            new = f"{head}{begin}\n{text}\n{end}{tail}"
+            if new != doc:
+                stale.append(f"{path.name} [{place}]")
+                if write:
+                    path.write_text(new, encoding="utf-8")
+        else:
+            nb = nbtools.read(path)
+            _, cell = nbtools.find_cell(nb, place)
+            if cell.source != text:
+                stale.append(f"{path.name} [{place}]")
+                if write:
+                    nbtools.set_cell(nb, place, text)
+                    nbtools.write(nb, path)
+    return stale
 
 
 REQUIRED = {  # distribution: (minimum major.minor, why)
@@ -324,3 +370,8 @@ def _banner(v: Variant, note: str, ip) -> None:
 
     line1, line2 = text.split("\n")
     display(HTML(f"<div style='border-left:4px solid #0072B2;padding:4px 8px'><b>{line1}</b><br>{line2}</div>"))
+
+
+if __name__ == "__main__":  # python -m aerophoto.book: rewrite the generated chapter tables
+    for place in sync_generated(write=True) or ["(all current)"]:
+        print("updated", place)

@@ -55,6 +55,7 @@ import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from numbers import Real
 
 __all__ = [
     "WrongAnswer",
@@ -670,14 +671,24 @@ def decode_answers(record: Mapping) -> tuple[str, dict]:
     return str(record.get("task", "")), {str(k): _unplain(v) for k, v in values.items()}
 
 
-def _emit(task_id: str, values: Mapping, variant) -> None:
-    """While grading, put the submitted values into the cell's output (plain data) for the instructor's grader."""
+def _emit(task_id: str, values: Mapping, variant, task=None) -> None:
+    """While grading, put the submitted values into the cell's output (plain data) for the instructor's grader.
+
+    The record also carries what the check saw of the kernel (:func:`aerophoto.course.probe.evidence`).
+    """
     if not os.environ.get("AEROPHOTO_GRADING"):
         return
+    record = encode_answers(task_id, values, variant)
+    try:
+        from .course.probe import evidence
+
+        record["evidence"] = evidence(task)
+    except Exception as exc:  # evidence is a courtesy; the values are what counts
+        record["evidence"] = {"error": type(exc).__name__}
     try:
         from IPython.display import display
 
-        display({ANSWERS_MIME: json.loads(json.dumps(encode_answers(task_id, values, variant)))}, raw=True)
+        display({ANSWERS_MIME: json.loads(json.dumps(record, default=str))}, raw=True)
     except Exception:  # outside IPython: nothing to emit to
         pass
 
@@ -685,6 +696,10 @@ def _emit(task_id: str, values: Mapping, variant) -> None:
 def _check_one(task, a, value, expected, slips: Mapping, variant, *, quiet: bool) -> bool:
     """Run the student-facing check of answer spec ``a`` (raises WrongAnswer on a wrong answer)."""
     alt = {k: val for k, val in (slips.get(a.name) or {}).items() if val is not None} or None
+    if a.period:  # an angle: any whole turn is the same answer (brought into 0 ≤ value < period)
+        v = _scalar(value)
+        if isinstance(v, Real) and not _is_bool(v) and math.isfinite(v):
+            value = float(v) % a.period
     of_variant = None
     if task.cross_variant and variant is not None:
         def of_variant(w, _n=a.name):
@@ -724,7 +739,7 @@ def check_task(task_id: str, variant, /, **values) -> None:
 
     task = _tasks.get(task_id)
     got = _task_values(task, values)
-    _emit(task.id, got, variant)
+    _emit(task.id, got, variant, task)
     expected = task.answers(variant)
     slips = task.slips(variant)
     for a in task.spec:

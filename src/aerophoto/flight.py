@@ -39,8 +39,16 @@ and K = 21: the "+ 1" only, no further rounding.  Ratios within 1e−9
 floating point (18/0.9 = 20.000000000000004 in some orders of operation) does
 not add a strip.  See :func:`count_up`.
 
-The guide's worked example (variant i = 0) has slips; :func:`guide_example_audit`
-lists, line by line, what is printed and what follows from the inputs.
+Relief allowance (guide §2, step 3)
+-----------------------------------
+The guide raises both overlaps by 40·h/H.  The allowance that keeps an
+overlap p on the highest ground is (100 − p)·h/H (:func:`exact_allowance_percent`,
+:func:`overlaps_at`): the guide's 40 is exact for p_x = 60 %, while for
+p_y = 30 % it would be 70.  :func:`plan` follows the guide (the graded tasks
+do too); :func:`side_spacing` gives P_y, b_y, B_y and K with either allowance.
+
+The guide's worked example (variant i = 0) is :func:`guide_example`; its
+printed lines and their audit are :mod:`aerophoto.guide.s02`.
 """
 
 from __future__ import annotations
@@ -62,8 +70,8 @@ __all__ = [
     "layout",
     "overlaps_at",
     "guide_example",
-    "guide_example_audit",
-    "typical_slips",
+    "exact_allowance_percent",
+    "side_spacing",
     "ROUTE_FACTOR",
     "RELIEF_FACTOR",
     "BLUR_MM",
@@ -306,7 +314,7 @@ def plan(variant=None, *, f_mm=None, m=None, px_percent=None, py_percent=None, L
     blur = check_positive("blur_mm", values["blur_mm"], unit="mm")
 
     S = Lx * Ly                                          # 1
-    H = f / 1000.0 * m_                                  # 2
+    H = g.flying_height_m(f, m_)                         # 2
     h = zmax - zmin                                      # 3
     _checked("h_m", h, 0.0, H, hi_open=True, unit="m",
              why=f"the relief h = Zmax − Zmin must be below the flying height H = f·m = {H:g} m")
@@ -337,6 +345,52 @@ def plan(variant=None, *, f_mm=None, m=None, px_percent=None, py_percent=None, L
 def guide_example() -> FlightPlan:
     """The guide's worked example (§2, variant i = 0) computed from its printed inputs."""
     return plan(**_GUIDE_INPUTS)
+
+
+def exact_allowance_percent(p_percent: float, h_m: float, H_m: float) -> float:
+    """The relief allowance that keeps an overlap p on the highest ground: (100 − p)·h/H, in %.
+
+    Photos taken at H above the lowest ground overlap by P there and by
+    100 − (100 − P)·H/(H − h) on ground h higher (:func:`overlaps_at`); asking
+    for p on the highest ground gives P = p + (100 − p)·h/H.  For the forward
+    overlap p_x = 60 % the coefficient 100 − p_x is the guide's 40 (§2, step 3);
+    for the side overlap p_y = 30 % it is 70, where the guide keeps 40.
+
+    Parameters
+    ----------
+    p_percent : normative overlap p, %, 0 ≤ p < 100
+    h_m : relief h = Zmax − Zmin, m, 0 ≤ h < H
+    H_m : flying height H above the lowest ground, m, > 0
+    """
+    p = check_percent("p_percent", p_percent)
+    H = check_positive("H_m", H_m, unit="m")
+    h = _checked("h_m", h_m, 0.0, H, hi_open=True, unit="m", why="the relief must be below the flying height")
+    return (100.0 - p) * h / H
+
+
+def side_spacing(p: FlightPlan, *, exact: bool = False) -> dict:
+    """The side overlap and what follows from it for plan ``p``, with the guide's or the exact allowance.
+
+    ``exact=False`` repeats the plan's own steps 3–6 (P_y = p_y + 40·h/H, the
+    guide); ``exact=True`` uses (100 − p_y)·h/H (:func:`exact_allowance_percent`),
+    which keeps p_y on the highest ground.
+
+    Returns
+    -------
+    dict with ``allowance_percent``, ``Py_percent`` (%), ``by_cm`` (cm on the
+    photo), ``By_km`` (km), ``K_ratio`` (L_y/B_y) and ``K`` (strips, rounded up
+    with :func:`count_up`).
+    """
+    if exact:
+        allowance = exact_allowance_percent(p.py_percent, p.h_m, p.H_m)
+    else:
+        allowance = RELIEF_FACTOR * p.h_m / p.H_m
+    Py = p.py_percent + allowance
+    by = p.l_cm * (100.0 - Py) / 100.0
+    By = by * p.m / 1e5
+    ratio = p.Ly_km / By
+    return {"allowance_percent": allowance, "Py_percent": Py, "by_cm": by, "By_km": By, "K_ratio": ratio,
+            "K": count_up(ratio)}
 
 
 # --------------------------------------------------------------------------- layout
@@ -475,196 +529,3 @@ def overlaps_at(p: FlightPlan, Z_m: float) -> tuple[float, float]:
     forward = (a[:, 0].max() - b[:, 0].min()) / side_x * 100.0
     across = (a[:, 1].max() - c[:, 1].min()) / side_y * 100.0
     return float(forward), float(across)
-
-
-# --------------------------------------------------------------------------- the guide's example
-# Each printed line of §2 (variant 0): the line as printed (OCR cleaned), the printed
-# factors with the plan attribute each should equal and the decimals it was printed with
-# one line earlier, the printed value, and how the line's formula evaluates its factors.
-_GUIDE_LINES = (
-    dict(step="1", attr="S_km2", quantity="S", printed="S = 25·30 = 750 km²",
-         factors=((25, "Lx_km", 0), (30, "Ly_km", 0)), value=750, unit="km²",
-         formula=lambda a, b: a * b,
-         note="The scan prints the multiplication dot as a decimal point: '25.30 = 750'."),
-    dict(step="2", attr="H_m", quantity="H", printed="H = 0.100·12000 = 1200 m",
-         factors=((0.100, "f_m", 3), (12000, "m", 0)), value=1200, unit="m",
-         formula=lambda a, b: a * b, note="f is entered in metres (0.100 m) so that H comes out in metres."),
-    dict(step="3", attr="h_m", quantity="h", printed="h = 200 − 170 = 30 m",
-         factors=((200, "Zmax_m", 0), (170, "Zmin_m", 0)), value=30, unit="m",
-         formula=lambda a, b: a - b, note=""),
-    dict(step="3", attr="Px_percent", quantity="Px", printed="Px = 60 + 40(30/1200) = 61.0 %",
-         factors=((60, "px_percent", 0), (30, "h_m", 0), (1200, "H_m", 0)), value=61.0, unit="%",
-         formula=lambda p, h, H: p + 40 * h / H, note=""),
-    dict(step="3", attr="Py_percent", quantity="Py", printed="Py = 30 + 40(30/1200) = 31.0 %",
-         factors=((30, "py_percent", 0), (30, "h_m", 0), (1200, "H_m", 0)), value=31.0, unit="%",
-         formula=lambda p, h, H: p + 40 * h / H, note=""),
-    dict(step="4", attr="bx_cm", quantity="bx", printed="bx = 18(100 − 61.0)/100 = 7.0 cm",
-         factors=((18, "l_cm", 0), (61.0, "Px_percent", 1)), value=7.0, unit="cm",
-         formula=lambda l, P: l * (100 - P) / 100,
-         note="The scan prints the symbol as 'b_r'; the exact value is 7.02 cm."),
-    dict(step="4", attr="by_cm", quantity="by", printed="by = 18(100 − 31.0)/100 = 12.4 cm",
-         factors=((18, "l_cm", 0), (31.0, "Py_percent", 1)), value=12.4, unit="cm",
-         formula=lambda l, P: l * (100 - P) / 100,
-         note="The scan prints the symbol as 'b_ν'; the exact value is 12.42 cm."),
-    dict(step="5", attr="Bx_km", quantity="Bx", printed="Bx = 7.2·12000 = 0.84 km",
-         factors=((7.2, "bx_cm", 1), (12000, "m", 0)), value=0.84, unit="km",
-         formula=lambda b, m: b * m / 1e5,
-         note="cm × m gives cm on the ground; the line converts 84 000 cm to 0.84 km silently.",
-         reason=("The factor 7.2 cm is 18·(100 − 60)/100, the working-area side for the normative "
-                 "px = 60 % without the relief allowance of step 3; the printed 0.84 km does follow "
-                 "from bx = 7.0 cm (7.02·12000 cm = 0.842 km), whereas 7.2·12000 cm would be 0.864 km.")),
-    dict(step="5", attr="By_km", quantity="By", printed="By = 12.6·12000 = 1.49 km",
-         factors=((12.6, "by_cm", 1), (12000, "m", 0)), value=1.49, unit="km",
-         formula=lambda b, m: b * m / 1e5, note="",
-         reason=("The factor 12.6 cm is 18·(100 − 30)/100, the side for the normative py = 30 % without "
-                 "the relief allowance; the printed 1.49 km follows from by = 12.4 cm "
-                 "(12.42·12000 cm = 1.490 km), whereas 12.6·12000 cm would be 1.512 km.")),
-    dict(step="6", attr="K", quantity="K", printed="K = 30/1.51 + 1 = 22",
-         factors=((30, "Ly_km", 0), (1.51, "By_km", 2)), value=22, unit="—",
-         formula=lambda L, B: L / B + 1, count=True, note="",
-         reason=("The divisor 1.51 km is 12.6·12000 cm, the misprinted factor of step 5, not the "
-                 "By = 1.49 km computed there; 30/1.51 + 1 = 20.87 would round up to 21, while the "
-                 "correct 30/1.490 + 1 = 21.13 rounds up to the printed 22.")),
-    dict(step="7", attr="n", quantity="n", printed="n = 25/0.84 + 1 = 31",
-         factors=((25, "Lx_km", 0), (0.84, "Bx_km", 2)), value=31, unit="—",
-         formula=lambda L, B: L / B + 1, count=True,
-         note="The scan reads '= 31' as '+ 31': 'n = 25/0.84 + 1 + 31'; 25/0.842 + 1 = 30.68, rounded up 31."),
-    dict(step="8", attr="N", quantity="N", printed="N = 31·22 = 682",
-         factors=((31, "n", 0), (22, "K", 0)), value=682, unit="—",
-         formula=lambda a, b: a * b, note=""),
-    dict(step="9", attr="LS_km", quantity="LS", printed="LS = (1.2·750)/1.49 = 604 km",
-         factors=((750, "S_km2", 0), (1.49, "By_km", 2)), value=604, unit="km",
-         formula=lambda S, B: 1.2 * S / B, note="The scan prints '1.2·750' as '1.2.750'; exactly 603.9 km."),
-    dict(step="10", attr="TS_h", quantity="TS", printed="TS = 604/200 = 3.0 h",
-         factors=((604, "LS_km", 0), (200, "W_kmh", 0)), value=3.0, unit="h",
-         formula=lambda L, W: L / W,
-         note="The scan reads the unit '(ч)' (hours) as '(4)': 'TS = 604/200 = 3.0 (4)'; exactly 3.02 h."),
-    dict(step="11", attr="tmax_s", quantity="tmax", printed="tmax = (0.0001·10000)/55.6 = 0.018 s",
-         factors=((0.0001, "blur_m", 4), (10000, "M", 0), (55.6, "W_ms", 1)), value=0.018, unit="s",
-         formula=lambda d, M, W: d * M / W,
-         note="δ = 0.1 mm is entered in metres and W = 200 km/h as 55.6 m/s, so tmax comes out in seconds."),
-    dict(step="12", attr="tau_s", quantity="τ", printed="τ = 0.86·3600/200 = 15.4 s",
-         factors=((0.86, "Bx_km", 2), (200, "W_kmh", 0)), value=15.4, unit="s",
-         formula=lambda B, W: B * 3600 / W, note="",
-         reason=("The base 0.86 km is 7.2·12000 cm from the misprinted factor of step 5, not "
-                 "Bx = 0.84 km, and even 0.86·3600/200 = 15.48 s would round to 15.5 s, not 15.4 s; "
-                 "the correct τ = 0.842·3600/200 = 15.2 s.")),
-)
-
-
-def _attr(p: FlightPlan, name: str) -> float:
-    extra = {"f_m": p.f_mm / 1000.0, "l_cm": p.l_cm, "blur_m": p.blur_mm / 1000.0}
-    return extra[name] if name in extra else getattr(p, name)
-
-
-def _fmt_num(x: float, decimals: int) -> str:
-    return f"{x:.{decimals}f}"
-
-
-def guide_example_audit() -> pd.DataFrame:
-    """Every printed line of the guide's §2 worked example against the correct calculation.
-
-    For each line: the line as printed (OCR garbling cleaned, see ``note``),
-    the printed factors and the values they should have (the quantities
-    computed one line earlier, at the precision the guide printed them), the
-    printed result, what the printed factors actually give, the correct value
-    computed from the example's inputs (:func:`guide_example`, full
-    precision) and rounded to the guide's printed precision, flags, and a
-    one-sentence reason where they differ.
-
-    Columns
-    -------
-    step, quantity, printed, unit : str — ``printed`` is the line as printed
-    attr : str — the :class:`FlightPlan` attribute of the line's result
-    printed_factors, correct_factors : str — comma-separated
-    printed_value : float
-    printed_factors_give : float — the line's formula on its printed factors
-    computed : float — the correct value (counts rounded up)
-    computed_as_printed : float — ``computed`` at the guide's printed precision
-    factor_slip : bool — a printed factor differs from the value computed earlier
-    arithmetic_slip : bool — the printed result does not follow from the printed factors
-    value_slip : bool — the printed result differs from ``computed_as_printed``
-    differs : bool — any of the three
-    reason : str — why, where the line differs ("" otherwise)
-    note : str — OCR garbling and unit remarks that do not make the line wrong
-    """
-    p = guide_example()
-    rows = []
-    for line in _GUIDE_LINES:
-        dec = GUIDE_DECIMALS[line["attr"]]
-        count = line.get("count", False)
-        printed_f = [f for f, _, _ in line["factors"]]
-        correct_f = [round(float(_attr(p, a)), d) for _, a, d in line["factors"]]
-        factor_slip = any(abs(a - b) > 1e-9 for a, b in zip(printed_f, correct_f))
-        give = float(line["formula"](*printed_f))
-        give_as_printed = math.ceil(give - 1e-9) if count else round(give, dec)
-        arithmetic_slip = abs(give_as_printed - line["value"]) > 1e-9
-        computed = _attr(p, line["attr"])
-        as_printed = computed if count or isinstance(computed, int) else round(float(computed), dec)
-        value_slip = abs(as_printed - line["value"]) > 1e-9
-        differs = factor_slip or arithmetic_slip or value_slip
-        reason = ""
-        if differs:
-            reason = line.get("reason") or "The printed line does not follow from the values computed before it."
-        rows.append(dict(
-            step=line["step"], quantity=line["quantity"], attr=line["attr"], printed=line["printed"],
-            unit=line["unit"],
-            printed_factors=", ".join(_fmt_num(f, d) for f, (_, _, d) in zip(printed_f, line["factors"])),
-            correct_factors=", ".join(_fmt_num(f, d) for f, (_, _, d) in zip(correct_f, line["factors"])),
-            printed_value=float(line["value"]), printed_factors_give=give,
-            computed=float(computed), computed_as_printed=float(as_printed),
-            factor_slip=factor_slip, arithmetic_slip=arithmetic_slip, value_slip=value_slip,
-            differs=differs, reason=reason, note=line["note"],
-        ))
-    return pd.DataFrame(rows)
-
-
-# --------------------------------------------------------------------------- answer checks
-def typical_slips(p: FlightPlan) -> dict:
-    """Values that typical mistakes give for plan ``p``: quantity → {hint: wrong value}.
-
-    Meant for ``aerophoto.checks.check_value(..., alternatives=typical_slips(p)["Bx_km"])``.
-    Factor-of-1000/3600/3.6 unit slips are recognised by ``check_value`` itself.
-    The guide's own misprinted factors (7.2 and 12.6 cm, step 5) are the
-    working-area sides for the normative overlaps, i.e. the relief allowance
-    left out, so the "no relief allowance" entries also catch the guide's slip.
-    """
-    flat = p.replace(Zmax_m=p.Zmin_m)   # the same plan without the relief allowance
-    no_relief = "that is what you get without the relief allowance 40·h/H (as in the guide's misprinted 7.2 and 12.6 cm)"
-    frame_km = p.footprint_side_km
-    slips = {
-        "H_m": {"that is f·M — use the photo scale 1:m, not the photoplan scale 1:M": p.f_mm / 1000 * p.M},
-        "Px_percent": {"that is the normative px — add the relief allowance 40·h/H": p.px_percent,
-                       "the relief allowance uses h = Zmax − Zmin, not Zmax": p.px_percent + 40 * p.Zmax_m / p.H_m},
-        "Py_percent": {"that is the normative py — add the relief allowance 40·h/H": p.py_percent,
-                       "the relief allowance uses h = Zmax − Zmin, not Zmax": p.py_percent + 40 * p.Zmax_m / p.H_m},
-        "Bx_km": {no_relief: flat.Bx_km,
-                  "that is the whole frame on the ground (l·m), not the working area bx·m": frame_km,
-                  "that is the overlap itself (l·Px/100·m) — the base is the part that does not overlap":
-                      p.l_cm * p.Px_percent / 100 * p.m / 1e5,
-                  "that is By, the strip spacing — Bx uses the forward overlap Px": p.By_km},
-        "By_km": {no_relief: flat.By_km,
-                  "that is the whole frame on the ground (l·m), not the working area by·m": frame_km,
-                  "that is the overlap itself (l·Py/100·m) — the spacing is the part that does not overlap":
-                      p.l_cm * p.Py_percent / 100 * p.m / 1e5,
-                  "that is Bx, the photo base — By uses the side overlap Py": p.Bx_km},
-        "K": {f"{no_relief}; like the guide's '30/1.51 + 1'": flat.K,
-              "rounded to the nearest whole number — the guide rounds K up": round(p.K_ratio + 1),
-              "that uses Lx/Bx — strips are counted across the area: Ly/By": p.n},
-        "n": {no_relief: flat.n,
-              "rounded to the nearest whole number — the guide rounds n up": round(p.n_ratio + 1),
-              "that uses Ly/By — photos are counted along a strip: Lx/Bx": p.K},
-        "N": {"K and n without the '+ 1'": math.ceil(p.K_ratio) * math.ceil(p.n_ratio),
-              "K and n rounded down — the guide rounds both up": (math.floor(p.K_ratio) + 1) * (math.floor(p.n_ratio) + 1),
-              "K and n rounded to the nearest — the guide rounds both up": round(p.K_ratio + 1) * round(p.n_ratio + 1),
-              no_relief: flat.N},
-        "LS_km": {"without the factor 1.2 for turns and approaches": p.LS_km / ROUTE_FACTOR,
-                  "divided by Bx — the route length is S/By (strips × strip length)": ROUTE_FACTOR * p.S_km2 / p.Bx_km,
-                  no_relief: flat.LS_km},
-        "TS_h": {"without the factor 1.2 in LS": p.TS_h / ROUTE_FACTOR, no_relief: flat.TS_h},
-        "tau_s": {f"{no_relief}; like the guide's '0.86·3600/200'": flat.tau_s,
-                  "that uses By — the interval is the photo base Bx over W": p.By_km / p.W_kmh * 3600,
-                  "that is in minutes — τ is asked in seconds": p.tau_s / 60},
-        "tmax_s": {"that uses the photo scale m — the blur δ is on the photoplan at 1:M": p.blur_mm / 1000 * p.m / p.W_ms},
-    }
-    return slips

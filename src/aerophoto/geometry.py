@@ -65,6 +65,7 @@ __all__ = [
     "photo_to_plane",
     "photo_to_dem",
     "transfer_points",
+    "photo_axis_towards",
     "footprint",
     "tilt_displacement_exact",
     "tilt_displacement_vectors",
@@ -476,6 +477,18 @@ def transfer_points(camera: Camera, pose_from: Pose, pose_to: Pose, xy_mm, terra
     """
     G = photo_to_dem(camera, pose_from, xy_mm, as_terrain(terrain))
     return ground_to_photo(camera, pose_to, G)
+
+
+def photo_axis_towards(xy_mm) -> tuple[int, float]:
+    """The photo axis (0 = x, 1 = y) and its sign (+1.0 or −1.0) pointing most nearly along the vector ``xy_mm``.
+
+    E.g. the neighbour's principal point transferred onto this photo at
+    (71.8, −2.1) mm lies along +x: ``(0, 1.0)``.  Used to tell "towards the
+    next photo" from "across the strip" whatever the photos' numbering.
+    """
+    xy = np.asarray(xy_mm, dtype=float)
+    k = int(np.argmax(np.abs(xy)))
+    return k, (1.0 if xy[k] >= 0 else -1.0)
 
 
 def footprint(camera: Camera, pose: Pose, Z_m: float = 0.0, *, samples_per_side: int = 1) -> np.ndarray:

@@ -37,6 +37,13 @@ Coordinates: the *sheet* is in millimetres, x along the strip (the first
 photo's principal point at the origin, the last one on the +x axis), y across
 it (to the left of the direction of flight).  Ground is in metres (X east,
 Y north, Z up), photos in mm as in :mod:`aerophoto.geometry`.
+
+This is physics (layer 2): the strip (:class:`aerophoto.simulate.Strip` or
+anything with ``shots``), the terrain (:class:`aerophoto.geometry.Terrain`,
+e.g. the virtual site or :class:`aerophoto.terrain.RescaledRelief`) and the
+rendered prints are taken as arguments, never imported.  The student's
+fotoschema for a variant is built in :mod:`aerophoto.tasks.ch05`; the live
+demo and the finished sheet are in :mod:`aerophoto.demos.fotoschema`.
 """
 
 from __future__ import annotations
@@ -48,8 +55,9 @@ import numpy as np
 import pandas as pd
 
 from . import geometry as g
-from .plane import Similarity2D, fit_similarity
 from ._validate import check_positive, check_range
+from .displacement import base_scale
+from .plane import Similarity2D, fit_similarity
 
 __all__ = [
     "ALLOWED_CUTOUT_MM",
@@ -70,12 +78,9 @@ __all__ = [
     "seam_mismatches",
     "mean_scale",
     "assign_working_areas",
-    "RescaledRelief",
     "catalogue_points",
     "sheet_raster",
     "sheet_raster_bands",
-    "variant_task",
-    "variant_task_answers",
 ]
 
 #: guide §6, step 8: the largest cut-out (вырез) allowed on a seam, mm
@@ -183,6 +188,11 @@ def partial_scales(l_mm, L_mm, M: float = 10000.0) -> np.ndarray:
     -------
     ndarray, shape (k,) : the denominators m_i.  The mean scale is 1/m with
     m the mean of the m_i (as the guide averages denominators in §4).
+
+    It is formula (5.1) of guide §5, m = l_пл·M/l_сн, with the plan's base L_i
+    for l_пл and the fotoschema's l_i for l_сн, computed by the one
+    implementation :func:`aerophoto.displacement.base_scale`; this function
+    keeps the fotoschema's order of arguments (mosaic first, plan second).
     """
     M = check_positive("M", M)
     l = np.asarray(l_mm, dtype=float)
@@ -192,7 +202,7 @@ def partial_scales(l_mm, L_mm, M: float = 10000.0) -> np.ndarray:
     for name, v in (("l_mm", l), ("L_mm", L)):
         if np.any(~np.isfinite(v)) or np.any(v <= 0):
             raise ValueError(f"{name} = {np.ravel(v)[np.argmin(np.ravel(v))]:g} is outside the valid range 0 < {name} (mm)")
-    return L * M / l
+    return np.asarray(base_scale(L, l, M), dtype=float)
 
 
 def classify_mismatch(dI_mm):
@@ -202,19 +212,6 @@ def classify_mismatch(dI_mm):
 
 
 # =========================================================================== matching neighbours
-def _terrain(dem, ground_Z_m: float = 0.0):
-    return g.FlatTerrain(float(ground_Z_m)) if dem is None else dem
-
-
-def _transfer(camera, pose_from, pose_to, xy, dem):
-    return g.ground_to_photo(camera, pose_to, g.photo_to_dem(camera, pose_from, xy, dem))
-
-
-def _axis_towards(xy):
-    k = int(np.argmax(np.abs(xy)))
-    return k, (1.0 if xy[k] >= 0 else -1.0)
-
-
 @dataclass(frozen=True)
 class TiePoints:
     """The two conjugate points a (upper) and b (lower) of a pair (guide §6, step 2).
@@ -248,8 +245,8 @@ def choose_tie_points(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *,
     TiePoints
     """
     h = camera.half_mm
-    ob = _transfer(camera, pose_b, pose_a, np.zeros(2), dem)
-    k, s = _axis_towards(ob)
+    ob = g.transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
+    k, s = g.photo_axis_towards(ob)
     mid = ob[k] / 2.0
     lo, hi = (float(v) for v in margin_mm)
     along = mid + np.linspace(-half_width_mm, half_width_mm, samples)
@@ -535,8 +532,8 @@ def mean_scale(camera: g.Camera, poses, to_sheet, cuts, dem, *, M: float = 10000
     numbers = tuple(numbers) if numbers is not None else tuple(range(1, n + 1))
     spots = []
     for i, j in ((0, 1), (n - 1, n - 2)):
-        towards = _transfer(camera, poses[j], poses[i], np.zeros(2), dem)
-        k, s = _axis_towards(towards)
+        towards = g.transfer_points(camera, poses[j], poses[i], np.zeros(2), dem)
+        k, s = g.photo_axis_towards(towards)
         for side in (1.0, -1.0):
             xy = np.empty(2)
             xy[k] = -s * (h - edge_mm)
@@ -604,7 +601,7 @@ def assemble(strip, dem=None, *, cut_shape: str = "straight", amplitude_mm: floa
         raise ValueError(f"cut_shape = {cut_shape!r} is not one of the valid choices {list(CUT_SHAPES)}")
     spacing = check_range("spacing_mm", spacing_mm, 1.0, 200.0, unit="mm")
     cam = shots[0].camera
-    dem = _terrain(dem, getattr(strip, "ground_Z_m", 0.0))
+    dem = g.as_terrain(dem, getattr(strip, "ground_Z_m", 0.0))
     poses = tuple(s.pose for s in shots)
     numbers = tuple(s.number for s in shots)
     m = float(getattr(strip, "m", shots[0].m))
@@ -652,111 +649,7 @@ def assemble(strip, dem=None, *, cut_shape: str = "straight", amplitude_mm: floa
     return Fotoschema(cam, poses, numbers, T, tuple(seams), sc, m, extent, cut_shape, dir_m)
 
 
-# =========================================================================== terrain with adjustable relief
-class RescaledRelief:
-    """The virtual site with its relief stretched to ``relief_m`` about its lowest ground.
-
-        Z' = z₀ + k·(Z − z₀),  k = relief_m / site.relief_m,  z₀ = the site's lowest height
-
-    so the hills keep their shape and the lowest ground its height while the
-    height difference becomes ``relief_m`` (0 = flat).  The ground texture and
-    the catalogue's X, Y are the site's; the catalogue's Z is rescaled the
-    same way.  This lets a slider change the relief without rebuilding the
-    site.  It offers what :func:`aerophoto.geometry.photo_to_dem`,
-    :func:`aerophoto.simulate.strip_over_site` and :func:`sheet_raster` need.
-
-    Parameters
-    ----------
-    site : aerophoto.site.Site, with relief > 0
-    relief_m : float, 0 ≤ relief_m ≤ 3000, metres
-    """
-
-    def __init__(self, site, relief_m: float):
-        self.site = site
-        self.relief_m = check_range("relief_m", relief_m, 0.0, 3000.0, unit="m")
-        r0 = float(site.z_max_m - site.z_min_m)
-        if r0 <= 0:
-            raise ValueError("the site is flat (relief 0 m); RescaledRelief needs a site with relief > 0 m")
-        self.z0 = float(site.z_min_m)
-        self.k = self.relief_m / r0
-        self._dem = None
-
-    def _scale(self, Z):
-        return self.z0 + self.k * (np.asarray(Z, dtype=float) - self.z0)
-
-    def height(self, X, Y) -> np.ndarray:
-        """Terrain height Z', metres (vectorised over X, Y)."""
-        return self._scale(self.site.height(X, Y))
-
-    __call__ = height
-
-    @property
-    def z_min_m(self) -> float:
-        return self.z0
-
-    @property
-    def z_max_m(self) -> float:
-        return self.z0 + self.relief_m
-
-    @property
-    def mean_height_m(self) -> float:
-        return float(self._scale(self.site.mean_height_m))
-
-    @property
-    def centre_m(self):
-        return self.site.centre_m
-
-    @property
-    def extent_m(self):
-        return self.site.extent_m
-
-    def inside(self, X, Y):
-        return self.site.inside(X, Y)
-
-    def sample(self, X, Y, level: int = 0, **kw):
-        return self.site.sample(X, Y, level, **kw)
-
-    def level_for(self, ground_pixel_m: float) -> int:
-        return self.site.level_for(ground_pixel_m)
-
-    # what aerophoto.render needs besides: the DEM grid and the texture pyramid
-    @property
-    def dem(self) -> np.ndarray:
-        """The rescaled DEM grid (same nodes as the site's), metres."""
-        if getattr(self, "_dem", None) is None:
-            self._dem = self._scale(self.site.dem)
-            self._dem.flags.writeable = False
-        return self._dem
-
-    @property
-    def dem_spacing_m(self) -> float:
-        return self.site.dem_spacing_m
-
-    @property
-    def texture(self) -> np.ndarray:
-        return self.site.texture
-
-    @property
-    def n_levels(self) -> int:
-        return self.site.n_levels
-
-    def texture_level(self, level: int = 0) -> np.ndarray:
-        return self.site.texture_level(level)
-
-    def texel_m(self, level: int = 0) -> float:
-        return self.site.texel_m(level)
-
-    @property
-    def catalogue(self) -> pd.DataFrame:
-        cat = self.site.catalogue.copy()
-        cat["Z_m"] = self._scale(cat["Z_m"].to_numpy())
-        return cat
-
-    def points_m(self) -> np.ndarray:
-        """The catalogue as an array of X, Y, Z (rescaled), shape (k, 3), metres."""
-        return self.catalogue[["X_m", "Y_m", "Z_m"]].to_numpy(dtype=float)
-
-
+# =========================================================================== catalogue
 def catalogue_points(ground) -> np.ndarray | None:
     """The ground points of a site's catalogue as an (k, 3) array in metres, or None if it has none."""
     if hasattr(ground, "points_m") and callable(ground.points_m):
@@ -799,7 +692,7 @@ def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=
 
     Parameters
     ----------
-    ground : the virtual site (or :class:`RescaledRelief`); a terrain without
+    ground : the virtual site (or :class:`aerophoto.terrain.RescaledRelief`); a terrain without
         ``sample`` (e.g. FlatTerrain) gets a plain chequer pattern.
     px_per_mm : float
         Resolution, pixels per sheet millimetre, 0 < r ≤ 20 (1 for a preview,
@@ -850,7 +743,7 @@ def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, p
     image = np.full((ny, nx), background, dtype=np.float32)
     h = fs.camera.half_mm
     sampler = getattr(ground, "sample", None)
-    dem = _terrain(ground, 0.0)
+    dem = g.as_terrain(ground, 0.0)
     level = 0
     if sampler is not None and hasattr(ground, "level_for"):
         level = ground.level_for(fs.m_design / r / 1000.0)  # ground size of a sheet pixel, m
@@ -880,49 +773,3 @@ def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, p
             out[sel] = sampler(G[:, 0], G[:, 1], level, outside=background) if sampler is not None \
                 else _pattern(G[:, 0], G[:, 1])
         yield image, extent, r1
-
-
-# =========================================================================== the student's task data
-def variant_task(variant, *, site=None) -> dict:
-    """Data "measured" on the student's own fotoschema, for the graded tasks of chapter 05.
-
-    A strip of three photos is flown over the virtual site with the variant's
-    camera f, scale 1/m and overlap p_x, tilts up to 2° (less for long-focus
-    cameras, so that f·tan α stays within 6 mm) drawn from the seed i, and
-    assembled (:func:`assemble`).  The site's relief is rescaled to 5 % of the
-    flying height H = f·m, so that every variant — short or long focus — shows
-    mismatches of comparable size (relief displacement grows with h/H).
-    The values are rounded as a technician reads them: ΔI and the bases to
-    0.1 mm.
-
-    Returns
-    -------
-    dict with ``dI_mm`` (list of ΔI along both cuts, mm), ``l_mm`` and ``L_mm``
-    (the four bases on the fotoschema and on the 1:M plan, mm), ``M``,
-    ``relief_m``, ``H_m``, ``fotoschema`` (the :class:`Fotoschema`) and
-    ``ground`` (the terrain).
-    """
-    from . import simulate as sim
-
-    if site is None:
-        from . import site as site_mod
-
-        site = site_mod.get_site()
-    H = variant.f_mm / 1000.0 * variant.m
-    gr = RescaledRelief(site, 0.05 * H)
-    tilt = min(2.0, math.degrees(math.atan(6.0 / variant.f_mm)))
-    strip = sim.strip_over_site(gr, variant.camera, variant.m, variant.px_percent, 3,
-                                imperfections=sim.Imperfections(max_tilt_deg=tilt, seed=int(variant.i)))
-    fs = assemble(strip, gr, points_m=catalogue_points(gr), M=variant.M)
-    r1 = lambda x: [float(v) + 0.0 for v in np.round(np.asarray(x, dtype=float), 1)]  # noqa: E731  (no −0.0)
-    return {"dI_mm": r1(fs.dI_mm), "l_mm": r1(fs.scale.l_mm), "L_mm": r1(fs.scale.L_mm), "M": float(variant.M),
-            "relief_m": gr.relief_m, "H_m": H, "fotoschema": fs, "ground": gr}
-
-
-def variant_task_answers(variant, *, site=None) -> dict:
-    """The correct answers to chapter 05's graded tasks, from the rounded data of :func:`variant_task`."""
-    d = variant_task(variant, site=site)
-    dI = np.asarray(d["dI_mm"])
-    mi = partial_scales(d["l_mm"], d["L_mm"], d["M"])
-    return {"m_rms_mm": seam_rms(dI), "n_cutouts": int(np.sum(dI < 0)),
-            "seams_ok": bool(dI.min() >= -ALLOWED_CUTOUT_MM), "m_i": mi, "m_mean": float(np.mean(mi))}

@@ -66,7 +66,6 @@ __all__ = [
     "level_reading_deg",
     "scale_difference_percent",
     "height_deviation_percent",
-    "transfer_points",
     "measure_overlap",
     "measure_base",
     "measure_crab_deg",
@@ -78,9 +77,7 @@ __all__ = [
     "QualityReport",
     "assess_flight",
     "NA_SIMULATED",
-    "guide_table_1",
-    "variant_task",
-    "variant_task_answers",
+    "NOT_MEASURED",
 ]
 
 #: guide §3, item 3.1: negatives with a forward overlap below this are rejected (брак), %
@@ -252,39 +249,6 @@ def height_deviation_percent(H_m, H_design_m: float):
 
 
 # =========================================================================== measuring on the photos
-def _terrain(dem, ground_Z_m: float):
-    return g.FlatTerrain(float(ground_Z_m)) if dem is None else dem
-
-
-def transfer_points(camera: g.Camera, pose_from: g.Pose, pose_to: g.Pose, xy_mm, dem) -> np.ndarray:
-    """Transfer photo points to a neighbouring photo through their ground points (conjugate points).
-
-    This is what pricking a point on one print and finding the same detail on
-    the neighbour does: the ground point seen at ``xy_mm`` on the first photo
-    (its ray cut with the terrain, :func:`aerophoto.geometry.photo_to_dem`) is
-    projected into the second (:func:`aerophoto.geometry.ground_to_photo`).
-
-    Parameters
-    ----------
-    xy_mm : array_like, shape (..., 2)
-        Points on the photo taken from ``pose_from``, mm.
-    dem : terrain with ``height(X, Y)``, ``z_min_m``, ``z_max_m``
-        (:class:`aerophoto.geometry.FlatTerrain` or the virtual site).
-
-    Returns
-    -------
-    ndarray, shape (..., 2) : the same ground details on the photo taken from ``pose_to``, mm.
-    """
-    G = g.photo_to_dem(camera, pose_from, xy_mm, dem)
-    return g.ground_to_photo(camera, pose_to, G)
-
-
-def _axis_towards(xy) -> tuple[int, float]:
-    """The photo axis (0 = x, 1 = y) and sign pointing most nearly along the vector xy."""
-    k = int(np.argmax(np.abs(xy)))
-    return k, (1.0 if xy[k] >= 0 else -1.0)
-
-
 def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, samples: int = 41) -> float:
     """Width of the overlap of photo A with its neighbour B, measured on A as on a rough mosaic, mm.
 
@@ -292,7 +256,7 @@ def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, sa
     principal points, the distance between the edge of A nearest to B and
     the edge of B nearest to A (guide §3, item 3.1, figure 3).  Here the edge
     of B is transferred onto A point by point through the terrain
-    (:func:`transfer_points`); the overlap a is the distance, along A's axis
+    (:func:`aerophoto.geometry.transfer_points`); the overlap a is the distance, along A's axis
     that points at B, from B's transferred edge to A's own edge, read on the
     line through A's principal point.  Works for the forward overlap (a) and
     for the side overlap between strips (c) alike.
@@ -302,15 +266,15 @@ def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, sa
     float : a (or c) in mm; negative if the photos leave a gap.
     """
     h = camera.half_mm
-    ob_in_a = transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
-    oa_in_b = transfer_points(camera, pose_a, pose_b, np.zeros(2), dem)
-    k, s = _axis_towards(ob_in_a)
-    kb, sb = _axis_towards(oa_in_b)
+    ob_in_a = g.transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
+    oa_in_b = g.transfer_points(camera, pose_a, pose_b, np.zeros(2), dem)
+    k, s = g.photo_axis_towards(ob_in_a)
+    kb, sb = g.photo_axis_towards(oa_in_b)
     t = np.linspace(-h, h, int(samples))
     edge_b = np.empty((t.size, 2))
     edge_b[:, kb] = sb * h
     edge_b[:, 1 - kb] = t
-    edge_in_a = transfer_points(camera, pose_b, pose_a, edge_b, dem)
+    edge_in_a = g.transfer_points(camera, pose_b, pose_a, edge_b, dem)
     across = edge_in_a[:, 1 - k]
     along = edge_in_a[:, k]
     order = np.argsort(across)
@@ -330,8 +294,8 @@ def measure_base(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem) -> tuple
     линейная засечка); b1 is the distance on A from o_A to the transferred
     o_B, b2 the distance on B from o_B to the transferred o_A.
     """
-    ob_in_a = transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
-    oa_in_b = transfer_points(camera, pose_a, pose_b, np.zeros(2), dem)
+    ob_in_a = g.transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
+    oa_in_b = g.transfer_points(camera, pose_a, pose_b, np.zeros(2), dem)
     return float(np.hypot(*ob_in_a)), float(np.hypot(*oa_in_b))
 
 
@@ -347,8 +311,8 @@ def measure_crab_deg(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem) -> f
     it.  Sign: positive when the photo's side is turned counter-clockwise
     from the base (the sign of :attr:`aerophoto.simulate.Shot.crab_deg`).
     """
-    u = transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
-    k, s = _axis_towards(u)
+    u = g.transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
+    k, s = g.photo_axis_towards(u)
     # the base's direction in A's photo frame, measured from the side's direction (axis k, sign s)
     side_angle = math.degrees(math.atan2(s if k == 1 else 0.0, s if k == 0 else 0.0))
     base_angle = math.degrees(math.atan2(u[1], u[0]))
@@ -437,6 +401,8 @@ def measure_flying_height(camera: g.Camera, pose: g.Pose, dem, *, points_m=None,
 
 # =========================================================================== the assessment
 NA_SIMULATED = "n/a (simulated)"
+#: shown in a table cell for a quantity a row does not have (the bases and scale difference of a side pair)
+NOT_MEASURED = "—"
 
 
 def _verdict(ok: bool, near: bool = False) -> str:
@@ -625,7 +591,14 @@ class QualityReport:
         return pd.DataFrame(rows).set_index("photo")
 
     def pairs_table(self) -> pd.DataFrame:
-        """Overlaps (3.1, 3.2) and scale differences (3.4) of neighbouring photos."""
+        """Overlaps (3.1, 3.2) and scale differences (3.4) of neighbouring photos.
+
+        One row per pair, forward pairs first.  The columns that a pair may
+        lack — the bases b1, b2 and the scale differences of a side pair (they
+        are measured along a strip only), a true overlap the flight does not
+        know — are text at the precision shown (0.1 mm, 0.01 %, 0.1 %) with
+        "—" where the pair has no such value.
+        """
         rows = []
         for p in self.pairs:
             fwd = p.kind == "forward"
@@ -634,14 +607,14 @@ class QualityReport:
                 "kind": p.kind,
                 "a (c), mm": round(p.a_mm, 1),
                 "P, %": round(p.P_percent, 1),
-                "P true, %": round(p.P_true_percent, 1),
+                "P true, %": _text(p.P_true_percent, 1),
                 "P limit, %": f"≥ {p.overlap_limit_percent:g}",
                 "overlap": _verdict(p.overlap_ok),
-                "b1, mm": round(p.b1_mm, 1) if fwd else float("nan"),
-                "b2, mm": round(p.b2_mm, 1) if fwd else float("nan"),
-                "Δm/m, %": round(p.dm_percent, 2) if fwd else float("nan"),
-                "Δm/m true, %": round(p.dm_true_percent, 2) if fwd else float("nan"),
-                "scale": _verdict(p.scale_ok, p.scale_near_limit) if fwd else "—",
+                "b1, mm": _text(p.b1_mm, 1) if fwd else NOT_MEASURED,
+                "b2, mm": _text(p.b2_mm, 1) if fwd else NOT_MEASURED,
+                "Δm/m, %": _text(p.dm_percent, 2) if fwd else NOT_MEASURED,
+                "Δm/m true, %": _text(p.dm_true_percent, 2) if fwd else NOT_MEASURED,
+                "scale": _verdict(p.scale_ok, p.scale_near_limit) if fwd else NOT_MEASURED,
             })
         return pd.DataFrame(rows).set_index("pair")
 
@@ -733,6 +706,12 @@ class QualityReport:
         return "\n".join(text)
 
 
+def _text(x: float, decimals: int) -> str:
+    """A value of a table column that some rows lack: fixed decimals, or "—" when there is no value (NaN)."""
+    x = float(x)
+    return NOT_MEASURED if math.isnan(x) else f"{x:.{decimals}f}"
+
+
 def _dm(deg: float) -> str:
     """Degrees as d°mm′ (for level readings)."""
     total = int(round(abs(deg) * 60.0))
@@ -782,7 +761,7 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
     st0 = strips[0]
     cam = st0.camera
     z0 = st0.ground_Z_m
-    dem = _terrain(dem, z0)
+    dem = g.as_terrain(dem, z0)
     H0 = st0.H_m
     m = st0.m
     lim_crab = crab_limit_deg(cam.f_mm)
@@ -834,80 +813,3 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
             P_true = (1.0 - across / side) * 100.0 if py_design is not None else float("nan")
             pairs.append(PairCheck("side", (a.number, b.number), c_mm, c_mm / cam.frame_mm * 100.0, P_true))
     return QualityReport(tuple(photos), tuple(pairs), tuple(strip_checks), cam.f_mm, H0, m, dict(photographic or {}))
-
-
-# =========================================================================== the student's task data
-def variant_task(variant) -> dict:
-    """Measurements "taken on the rough mosaic" of the student's own strip, for the graded task of chapter 02.
-
-    A strip of five photos is flown with the variant's camera, scale and
-    overlap (:func:`aerophoto.simulate.variant_strip`, flat ground at the
-    mean of Z_min and Z_max) with imperfections drawn from the seed i (the
-    variant number): tilts up to 3.5°, a crab of up to ±12°, a flying-height
-    scatter of ±4 %, a route bend of up to ±3 % and a ±8 % base jitter, so
-    that some variants pass a criterion and others fail it.  The returned
-    values are what a technician reads: lengths to 0.1 mm with a ruler,
-    the crab angle to 0.5° with a protractor, the level bubble's offset to
-    0.1 of a division.
-
-    Returns
-    -------
-    dict with
-        ``a_mm`` (overlap width of photos 1–2), ``b_mm`` (frame side, 180),
-        ``b1_mm``, ``b2_mm`` (bases of photos 2–3 on photo 2 and on photo 3),
-        ``L_mm``, ``l_mm`` (strip line and the deviation of the middle photo),
-        ``crab_deg`` (measured on photo 2), ``bubble_div`` (offset of the
-        level's bubble on photo 3, divisions of 30′), ``f_mm``, ``H_m``,
-        ``numbers`` (photo numbers 1–5).
-    """
-    from . import simulate as sim
-
-    i = int(variant.i)
-    rng = np.random.default_rng([2014, i])
-    # tilts shift the principal points by about f·tan α on the photo: long-focus cameras fly stabilised
-    tilt = min(3.5, math.degrees(math.atan(6.0 / variant.f_mm)))
-    imp = sim.Imperfections(max_tilt_deg=tilt, crab_deg=float(rng.uniform(-12.0, 12.0)), max_crab_jitter_deg=1.0,
-                            max_height_percent=4.0, curvature_percent=float(rng.uniform(-3.0, 3.0)),
-                            max_base_percent=8.0, seed=i)
-    st = sim.variant_strip(variant, 5, imperfections=imp)
-    cam = st.camera
-    dem = g.FlatTerrain(st.ground_Z_m)
-    s = st.shots
-    a = measure_overlap(cam, s[0].pose, s[1].pose, dem)
-    b1, b2 = measure_base(cam, s[1].pose, s[2].pose, dem)
-    stt = measure_straightness(cam, [x.pose for x in s], dem, st.m)
-    crab = measure_crab_deg(cam, s[1].pose, s[2].pose, dem)
-    r1 = lambda x: float(np.round(x, 1))  # noqa: E731  (a ruler reads 0.1 mm)
-    return {
-        "a_mm": r1(a), "b_mm": cam.frame_mm, "b1_mm": r1(b1), "b2_mm": r1(b2),
-        "L_mm": r1(stt["L_mm"]), "l_mm": r1(stt["l_mm"][2]),
-        "crab_deg": float(np.round(crab * 2.0) / 2.0),
-        "bubble_div": float(np.round(abs(s[2].pose.alpha_deg) / (LEVEL_DIVISION_ARCMIN / 60.0), 1)),
-        "f_mm": cam.f_mm, "H_m": st.H_m, "numbers": tuple(x.number for x in s),
-    }
-
-
-def variant_task_answers(variant) -> dict:
-    """The correct answers to chapter 02's graded task, computed from :func:`variant_task` with the formulas."""
-    d = variant_task(variant)
-    Px = overlap_percent(d["a_mm"], d["b_mm"])
-    dm = scale_difference_percent(d["b1_mm"], d["b2_mm"])
-    n = straightness_percent(d["l_mm"], d["L_mm"])
-    lim = crab_limit_deg(d["f_mm"])
-    alpha = float(np.floor(d["bubble_div"] + 0.5)) * LEVEL_DIVISION_ARCMIN / 60.0
-    return {
-        "Px_percent": Px, "dm_percent": dm, "n_percent": n, "crab_limit_deg": lim, "alpha_read_deg": alpha,
-        "px_ok": Px >= PX_MIN_PERCENT, "dm_ok": abs(dm) <= SCALE_DIFF_MAX_PERCENT,
-        "n_ok": n <= straightness_limit_percent(d["H_m"]), "crab_ok": abs(d["crab_deg"]) <= lim,
-        "tilt_ok": alpha <= TILT_MAX_DEG,
-    }
-
-
-# =========================================================================== the guide's table 1
-def guide_table_1() -> pd.DataFrame:
-    """The guide's table 1 (§3) as printed: visual control of four photos (no computation in it)."""
-    rows = [(542, "good (хор.)", "good (хор.)", "no (нет)"),
-            (543, "fair (удовл.)", "fair (удовл.)", "yes (да)"),
-            (544, "fair (удовл.)", "fair (удовл.)", "yes (да)"),
-            (545, "fair (удовл.)", "fair (удовл.)", "yes (да)")]
-    return pd.DataFrame(rows, columns=["photo", "sharpness", "fine detail", "defects"]).set_index("photo")

@@ -52,10 +52,12 @@ level=None, background=0.5, keep_ground=False, tol_m=1e-3, number=None) -> Photo
 ``render_strip(site, strip, n_px=512, **kw) -> list[Photo]``
 ``Photo``: ``image`` (n, n) float32 0…1, ``camera``, ``pose``, ``pixel_mm``,
 ``mm_to_pixel``, ``pixel_to_mm``, ``pixel_centres_mm()``, ``project(XYZ)``,
-``points(catalogue=None)``, ``show(ax=None)``, ``value_at(xy_mm)``,
-``light_falloff()``, ``valid``, ``ground_m``, ``level``.
-``PhotoView(ax=None)``: a view of a photo with ``update(photo)`` (moves the
-image and the points in place).
+``points(catalogue=None)``, ``value_at(xy_mm)``, ``light_falloff()``,
+``valid``, ``ground_m``, ``level``.
+
+This module is data only (layer 3).  A photo's view — the image in photo mm
+with its points in the guide's symbols, updated in place — is
+:class:`aerophoto.demos.site_views.PhotoView` (:func:`~aerophoto.demos.site_views.show_photo`).
 """
 
 from __future__ import annotations
@@ -70,7 +72,7 @@ import pandas as pd
 from . import geometry as g
 from ._validate import check_int_range, check_range
 
-__all__ = ["Photo", "PhotoView", "render", "render_shot", "render_strip"]
+__all__ = ["Photo", "render", "render_shot", "render_strip"]
 
 COARSE_STEP = 8
 MAX_PX = 4096
@@ -213,70 +215,6 @@ class Photo:
         df["col"] = rc[:, 1]
         df["visible"] = visible
         return df
-
-    # ---- drawing
-    def show(self, ax=None, *, points: bool = True, labels: bool = False, title: str | None = None):
-        """Show the photo in photo mm with its visible catalogue points; returns a :class:`PhotoView`."""
-        view = PhotoView(ax, points=points, labels=labels)
-        view.update(self)
-        if title is not None:
-            view.ax.set_title(title)
-        elif self.number is not None:
-            view.ax.set_title(f"photo {self.number}")
-        return view
-
-
-class PhotoView:
-    """A photo in photo millimetres, with points marked by the guide's symbols.
-
-    ``view = PhotoView(ax=None)`` builds the artists once; ``view.update(photo)``
-    replaces the image data and moves the points in place (for live demos).
-    """
-
-    def __init__(self, ax=None, *, points: bool = True, labels: bool = False, cmap: str = "gray"):
-        from . import plots
-
-        self.fig, self.ax = plots.new_axes(ax)
-        self.show_points = points
-        self.labels = labels
-        self.image = self.ax.imshow(np.zeros((2, 2), np.float32), cmap=cmap, vmin=0.0, vmax=1.0,
-                                    extent=(-90, 90, -90, 90), interpolation="antialiased")
-        (self.control,) = self.ax.plot([], [], linestyle="none", marker="^", ms=9, mfc="none",
-                                       mec=plots.COLORS["control"], mew=2.0, label="control points (опознаки)")
-        (self.other,) = self.ax.plot([], [], linestyle="none", marker="o", ms=6, mfc="none",
-                                     mec=plots.COLORS["yellow"], mew=1.5, label="ground points")
-        self.texts = []
-        self.ax.set_xlabel("x, mm")
-        self.ax.set_ylabel("y, mm")
-        self.ax.set_aspect("equal")
-        self.ax.grid(False)
-
-    def update(self, photo: Photo):
-        self.image.set_data(photo.image)
-        self.image.set_extent(photo.extent_mm)
-        h = photo.camera.half_mm
-        self.ax.set_xlim(-h, h)
-        self.ax.set_ylim(-h, h)
-        for t in self.texts:
-            t.remove()
-        self.texts = []
-        if self.show_points:
-            df = photo.points()
-            df = df[df["visible"]]
-            c = df["control"].to_numpy(dtype=bool)
-            self.control.set_data(df["x_mm"].to_numpy()[c], df["y_mm"].to_numpy()[c])
-            self.other.set_data(df["x_mm"].to_numpy()[~c], df["y_mm"].to_numpy()[~c])
-            if self.labels:
-                from . import plots
-
-                for _, r in df[c].iterrows():
-                    self.texts.append(self.ax.annotate(str(r["id"]), (r["x_mm"], r["y_mm"]), xytext=(5, 5),
-                                                       textcoords="offset points", color=plots.COLORS["control"],
-                                                       fontsize=10, fontweight="bold"))
-        else:
-            self.control.set_data([], [])
-            self.other.set_data([], [])
-        return self
 
 
 # --------------------------------------------------------------------------- cached per-camera arrays

@@ -85,7 +85,7 @@ import numpy as np
 import pandas as pd
 
 from ._validate import check_int_range, check_percent, check_positive, check_range
-from .geometry import Camera, Pose, footprint
+from .geometry import Camera, Pose, flying_height_m, footprint
 
 __all__ = [
     "Imperfections",
@@ -468,7 +468,7 @@ def fly_strip(
     if not isinstance(imp, Imperfections):
         raise ValueError(f"imperfections = {imperfections!r} must be an Imperfections or None")
 
-    H = camera.f_mm / 1000.0 * m
+    H = flying_height_m(camera.f_mm, m)
     B = photo_base_m(camera, m, px)
     a = math.radians(az)
     d = np.array([math.cos(a), math.sin(a)])  # along the route
@@ -602,7 +602,7 @@ def required_site_size(
     n = check_int_range("n_photos", n_photos, 1, MAX_PHOTOS)
     K = check_int_range("n_strips", n_strips, 1, MAX_STRIPS)
     side = camera.frame_mm / 1000.0 * m
-    H = camera.f_mm / 1000.0 * m
+    H = flying_height_m(camera.f_mm, m)
     B = photo_base_m(camera, m, px_percent)
     By = strip_spacing_m(camera, m, py_percent)
     margin = side / 5.0 if margin_m is None else check_range("margin_m", margin_m, 0.0, 1e6, unit="m")

@@ -20,7 +20,7 @@ def _demo_cells(path: Path) -> list[str]:
 
 def _chapters_with_demos() -> dict[str, list[str]]:
     out = {}
-    for p in sorted(h.NOTEBOOKS.glob("*.ipynb")):
+    for p in sorted(h.NOTEBOOKS.glob("[0-9]*.ipynb")):  # the book's chapters (not _template)
         cells = _demo_cells(p)
         if cells:
             out[p.name] = cells

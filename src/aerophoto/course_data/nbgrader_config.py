@@ -9,11 +9,14 @@
 #   course/
 #     nbgrader_config.py          this file
 #     roster.csv                  optional: student_id,record_book (see README, "For instructors")
-#     source/00_start_here/00_start_here.ipynb      copied from notebooks/ by `aerophoto-course generate`
-#     release/00_start_here/00_start_here.ipynb     student version (solutions, hidden tests removed)
+#     source/00_start_here/00_start_here.ipynb      written by `aerophoto-course generate` from notebooks/ (the
+#                                                   student book) with reference solutions computed by the package
+#     release/00_start_here/00_start_here.ipynb     student version (solutions removed)
 #     submitted/<student_id>/00_start_here/00_start_here.ipynb    from `aerophoto-course import`
 #     autograded/<student_id>/00_start_here/...     executed and scored
 #     feedback/<student_id>/00_start_here/00_start_here.html
+#     trusted/<student_id>/00_start_here.json       the trusted check's report per submission (never released)
+#     teacher/                    `aerophoto-course teacher`: the solved copy for projecting
 #     gradebook.db                nbgrader's sqlite gradebook
 #     grades.csv                  `aerophoto-course gradebook`
 
@@ -26,6 +29,13 @@ c.CourseDirectory.course_id = "aerophoto"
 # the book's heaviest cells (rendering the virtual site) take a few seconds on a slow machine.
 c.ExecutePreprocessor.timeout = 120
 c.ExecutePreprocessor.interrupt_on_timeout = True
+
+# Every submission runs in a sandbox (bubblewrap; see README, "For instructors").  Its resource limits, per
+# kernel (all optional; these are the defaults):
+# c.SandboxExecute.limits = {"memory_mb": 3072, "cpu_s": 900, "fsize_mb": 64, "nofile": 256, "nproc": 128,
+#                            "tmpfs_mb": 256, "output_mb": 4.0, "message_mb": 32}
+# A kernel that dies (memory, CPU time) is restarted and the rest of the notebook graded; at most:
+# c.SandboxExecute.max_restarts = 2
 
 # What replaces the solution in the student version.  nbgrader's default stub,
 # `raise NotImplementedError()`, would stay below the template lines (`H_m = ...`) the student fills,

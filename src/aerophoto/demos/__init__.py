@@ -18,6 +18,13 @@ _SUBMODULES = (
     "reduction",  # the reduction explorer: free radial strip, error triangles, k, v (chapters 06, 12)
     "quality",  # rough mosaic and the §3 verdicts of a simulated flight (chapter 02)
     "fotoschema",  # the live single-strip fotoschema: seams, RMS, mean scale (chapter 05)
+    "plan_correction",  # mutual projective grids: a new photo's changes carried onto the old plan (chapter 09)
+    "control",  # control design on a block and the resection with its danger circle (chapter 10)
+    "rectification",  # the photo transformer's sequence converging on the base (chapter 11)
+    "block_accuracy",  # the error map of a block against its control layout and measuring error (chapter 14)
+    "dem_contours",  # contours from a DEM of the site against the true ground (chapter 16)
+    "error_budget",  # the live error budget of map updating (chapter 17)
+    "site_views",  # views of the virtual world: the site as a map, a rendered photo (PhotoView)
 )
 
 __all__ = list(_SUBMODULES)

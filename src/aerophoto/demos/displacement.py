@@ -1,9 +1,10 @@
 """The displacement explorer: relief and tilt displacement on one photo (chapters 03 and 04).
 
-The pure part is :func:`aerophoto.displacement.displacement_field`: a grid of
-ground points on hilly terrain (:class:`aerophoto.displacement.AnalyticHills`)
-photographed exactly through :mod:`aerophoto.geometry`.  :class:`DisplacementView`
-draws it on the photo: the relief displacement vectors (from the image the
+The model is :func:`displacement_field` (:class:`DisplacementField`): a grid of
+ground points on hilly terrain (:class:`aerophoto.terrain.AnalyticHills`)
+photographed exactly through :mod:`aerophoto.geometry`, with the guide's
+formulas from :mod:`aerophoto.displacement` beside the exact values.
+:class:`DisplacementView` draws it on the photo: the relief displacement vectors (from the image the
 point would have on the mean object plane to its actual image, radial from
 n), the exact tilt displacement vectors (from the image on the equivalent
 vertical photo to the image on the tilted one, radial from c) and, beside
@@ -18,15 +19,19 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import pandas as pd
 from matplotlib.lines import Line2D
 
 from .. import displacement as d
 from .. import geometry as g
 from .. import plots
+from .._validate import check_range
+from ..terrain import AnalyticHills
 from ..widgets import LiveDemo, Param
 
-__all__ = ["DisplacementView", "DisplacementDemo", "ReliefDemo", "TiltDemo", "nice_factor", "legend_html", "SHOW_OPTIONS",
-           "relief_section_figure", "principal_plane_figure", "as_png"]
+__all__ = ["DisplacementField", "displacement_field", "DisplacementView", "DisplacementDemo", "ReliefDemo",
+           "TiltDemo", "nice_factor", "legend_html", "SHOW_OPTIONS", "relief_section_figure",
+           "principal_plane_figure"]
 
 #: what the demo draws: (label, value)
 SHOW_OPTIONS = (("relief and tilt", "both"), ("relief only", "relief"), ("tilt only", "tilt"))
@@ -45,6 +50,170 @@ _LEGEND = (
 )
 
 
+# --------------------------------------------------------------------------- the exact field (the model)
+@dataclass(frozen=True)
+class DisplacementField:
+    """Relief and tilt displacement of a grid of points, computed exactly by projection.
+
+    The grid is regular on the tilted photo: its nodes ``grid_mm`` are the
+    images of ground points on the mean object plane Z = 0.  Each ground point
+    is then lifted onto the terrain (:class:`aerophoto.terrain.AnalyticHills`).
+
+    Attributes
+    ----------
+    camera, pose : the camera and orientation (H = Z_S above the mean plane)
+    terrain : :class:`aerophoto.terrain.AnalyticHills`
+    grid_mm : (N, 2) mean-plane images on the tilted photo, mm
+    h_m : (N,) heights of the points above the mean plane, m
+    xy_relief_mm : (N, 2) actual images of the terrain points, mm
+    relief_formula_mm : (N,) δh = r·h/H with r from n to the actual image, mm
+    xy_vertical_mm : (N, 2) images of the mean-plane points on the equivalent
+        vertical photo, turned into the tilted photo's plane about the isoline, mm
+    tilt_exact_mm : (N,) signed exact tilt displacement along the line from c, mm
+    tilt_approx_mm : (N,) the guide's approximate δα at the same points, mm
+    o_mm, n_mm, c_mm : (2,) principal point, nadir point, isocentre, mm
+    """
+
+    camera: g.Camera
+    pose: g.Pose
+    terrain: AnalyticHills
+    grid_mm: np.ndarray
+    h_m: np.ndarray
+    xy_relief_mm: np.ndarray
+    relief_formula_mm: np.ndarray
+    xy_vertical_mm: np.ndarray
+    tilt_exact_mm: np.ndarray
+    tilt_approx_mm: np.ndarray
+    o_mm: np.ndarray
+    n_mm: np.ndarray
+    c_mm: np.ndarray
+
+    @property
+    def H_m(self) -> float:
+        """Flying height above the mean object plane, m."""
+        return self.pose.Z_m
+
+    @property
+    def m(self) -> float:
+        """Scale denominator of the equivalent vertical photo over the mean plane, H/f."""
+        return self.H_m / (self.camera.f_mm / 1000.0)
+
+    @property
+    def relief_vectors_mm(self) -> np.ndarray:
+        """(N, 2): from the mean-plane image to the actual image, mm (radial from n)."""
+        return self.xy_relief_mm - self.grid_mm
+
+    @property
+    def relief_exact_mm(self) -> np.ndarray:
+        """(N,) signed exact relief displacement: + away from n, mm."""
+        rn1 = np.hypot(*(self.xy_relief_mm - self.n_mm).T)
+        rn0 = np.hypot(*(self.grid_mm - self.n_mm).T)
+        return rn1 - rn0
+
+    @property
+    def tilt_vectors_mm(self) -> np.ndarray:
+        """(N, 2): from the (turned) vertical image to the tilted image, mm (radial from c)."""
+        return self.grid_mm - self.xy_vertical_mm
+
+    @property
+    def tilt_approx_vectors_mm(self) -> np.ndarray:
+        """(N, 2): the guide's δα along the line from c, ending at the tilted image, mm."""
+        d = self.grid_mm - self.c_mm
+        r = np.hypot(d[:, 0], d[:, 1])
+        u = np.divide(d, r[:, None], out=np.zeros_like(d), where=r[:, None] > 0)
+        return u * self.tilt_approx_mm[:, None]
+
+    def summary(self) -> dict:
+        """The numbers the demo's table shows (mm unless stated)."""
+        te, ta = self.tilt_exact_mm, self.tilt_approx_mm
+        err = np.abs(ta - te)
+        max_te = float(np.max(np.abs(te)))
+        re, rf = self.relief_exact_mm, self.relief_formula_mm
+        return {
+            "H_m": self.H_m,
+            "m": self.m,
+            "on_mm": float(np.hypot(*self.n_mm)),
+            "oc_mm": d.isocentre_offset(self.camera.f_mm, self.pose.alpha_deg),
+            "max_relief_exact_mm": float(np.max(np.abs(re))),
+            "max_relief_formula_mm": float(np.max(np.abs(rf))),
+            "max_relief_error_mm": float(np.max(np.abs(rf - re))),
+            "n_relief_corrections": int(np.count_nonzero(np.abs(re) > d.THRESHOLD_MM)),
+            "max_tilt_exact_mm": max_te,
+            "max_tilt_approx_mm": float(np.max(np.abs(ta))),
+            "max_tilt_error_mm": float(np.max(err)),
+            "max_tilt_error_percent": float(100.0 * np.max(err) / max_te) if max_te > 1e-12 else 0.0,
+            "n_tilt_corrections": int(np.count_nonzero(np.abs(te) > d.THRESHOLD_MM)),
+        }
+
+    def table(self) -> pd.DataFrame:
+        s = self.summary()
+        rows = [
+            ("Flying height H (above the mean plane)", "m", s["H_m"]),
+            ("on = f·tg α", "mm", s["on_mm"]),
+            ("oc = −f·tg(α/2)", "mm", s["oc_mm"]),
+            ("max |δh| exact", "mm", s["max_relief_exact_mm"]),
+            ("max |δh| = r·h/H", "mm", s["max_relief_formula_mm"]),
+            ("points with |δh| > 0.2 mm", "", s["n_relief_corrections"]),
+            ("max |δα| exact", "mm", s["max_tilt_exact_mm"]),
+            ("max |δα| guide's formula", "mm", s["max_tilt_approx_mm"]),
+            ("max |formula − exact|", "mm", s["max_tilt_error_mm"]),
+            ("… relative to max |δα|", "%", s["max_tilt_error_percent"]),
+            ("points with |δα| > 0.2 mm", "", s["n_tilt_corrections"]),
+        ]
+        return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
+
+
+def displacement_field(f_mm: float = 100.0, m: float = 12000.0, alpha_deg: float = 3.0, lambda_deg: float = -60.0,
+                       relief_m: float = 60.0, *, grid_n: int = 9, frame_mm: float = 180.0,
+                       extent: float = 0.85) -> DisplacementField:
+    """Relief and tilt displacement vectors over the analytic hills (chapters 03–04).
+
+    Parameters
+    ----------
+    f_mm : focal length f, mm
+    m : scale denominator of the equivalent vertical photo over the mean plane; H = f·m
+    alpha_deg, lambda_deg : tilt α and direction λ of the principal vertical (see
+        :mod:`aerophoto.geometry`), degrees; κ = 0
+    relief_m : relief amplitude of :class:`aerophoto.terrain.AnalyticHills`, m (0 ≤ relief < H)
+    grid_n : points per side of the photo grid
+    extent : the grid spans ±extent·(frame/2) on the photo
+
+    The hills are laid out on the vertical photo's footprint (L = frame/2·m),
+    so they stay in view at every scale.  Everything is projected with
+    :mod:`aerophoto.geometry`: mean-plane ground points under the grid by
+    :func:`~aerophoto.geometry.photo_to_plane`, their terrain images by
+    :func:`~aerophoto.geometry.ground_to_photo`, the vertical-photo images by
+    :func:`~aerophoto.geometry.tilt_displacement_vectors`.
+    """
+    cam = g.Camera(f_mm, frame_mm)
+    m = check_range("m", m, 100.0, 1e6)
+    H = g.flying_height_m(cam.f_mm, m)
+    relief = check_range("relief_m", relief_m, 0.0, H, hi_open=True, unit="m")
+    pose = g.Pose(0.0, 0.0, H, alpha_deg, lambda_deg, 0.0)
+    n = int(grid_n)
+    if n < 2 or n > 60:
+        raise ValueError(f"grid_n = {grid_n} is outside the valid range 2 ≤ grid_n ≤ 60")
+    t = np.linspace(-1.0, 1.0, n) * check_range("extent", extent, 0.0, 1.0, lo_open=True) * cam.half_mm
+    gx, gy = np.meshgrid(t, t)
+    grid = np.column_stack([gx.ravel(), gy.ravel()])
+    terrain = AnalyticHills(relief, cam.half_mm / 1000.0 * m)
+    P0 = g.photo_to_plane(cam, pose, grid, 0.0)
+    h = terrain.height(P0[:, 0], P0[:, 1])
+    P = P0.copy()
+    P[:, 2] = h
+    xy_actual, xy_plane = d.relief_displacement_vectors(cam, pose, P, 0.0)
+    n_mm = g.nadir_point(cam, pose)
+    c_mm = g.isocentre(cam, pose)
+    r_n = np.hypot(*(xy_actual - n_mm).T)
+    formula = g.relief_displacement(r_n, h, H)
+    xy_t, xy_v = g.tilt_displacement_vectors(cam, pose, P0)
+    exact = np.hypot(*(xy_t - c_mm).T) - np.hypot(*(xy_v - c_mm).T)
+    approx = g.tilt_displacement_approx(cam, pose, xy_t)
+    return DisplacementField(cam, pose, terrain, xy_plane, h, xy_actual, np.asarray(formula), xy_v,
+                             exact, np.asarray(approx), g.principal_point(cam, pose), n_mm, c_mm)
+
+
+# --------------------------------------------------------------------------- the view and the demo
 def legend_html() -> str:
     """The view's legend as HTML, shown beside the live figure (cheaper than a legend redrawn each time)."""
     dash = {"-": "solid", ":": "dotted", "--": "dashed"}
@@ -88,7 +257,7 @@ def _move_quiver(q, xy, uv) -> None:
 class DemoFrame:
     """What the demo shows: the field, which vectors, and the exaggeration used."""
 
-    field: d.DisplacementField
+    field: DisplacementField
     show: str
     factor: int
 
@@ -101,7 +270,7 @@ class DisplacementView:
     ``set_data``) and returns the exaggeration factor used.
     """
 
-    def __init__(self, field: d.DisplacementField | None = None, ax=None, *, n_points: int | None = None,
+    def __init__(self, field: DisplacementField | None = None, ax=None, *, n_points: int | None = None,
                  legend: bool = True):
         if ax is None:
             # a fixed layout (no layout engine runs on each redraw) and few text artists: the redraw is
@@ -139,7 +308,7 @@ class DisplacementView:
         if field is not None:
             self.update(field)
 
-    def update(self, field: d.DisplacementField, *, show: str = "both", exaggeration: int = 0) -> int:
+    def update(self, field: DisplacementField, *, show: str = "both", exaggeration: int = 0) -> int:
         """Move the artists to ``field``; ``exaggeration`` 0 = automatic.  Returns the factor used."""
         if show not in ("both", "relief", "tilt"):
             raise ValueError(f"show = {show!r} is not one of the valid choices ['both', 'relief', 'tilt']")
@@ -208,7 +377,7 @@ class DisplacementDemo(LiveDemo):
         self.fig = self.view.fig
 
     def compute(self, f_mm, m, alpha_deg, lambda_deg, relief_m, show, exaggeration):
-        field = d.displacement_field(f_mm, m, alpha_deg, lambda_deg, relief_m, grid_n=9)
+        field = displacement_field(f_mm, m, alpha_deg, lambda_deg, relief_m, grid_n=9)
         return DemoFrame(field, show, int(exaggeration))
 
     def render(self, frame: DemoFrame):
@@ -336,16 +505,3 @@ def principal_plane_figure(ax=None, *, f_mm=100.0, alpha_deg=12.0, H=300.0):
     ax.set_ylim(-25, H + 20)
     ax.axis("off")
     return fig
-
-
-def as_png(fig, *, dpi: int = 100):
-    """A static figure as a PNG image for a notebook (the figure is closed; nothing stays live)."""
-    import io
-
-    import matplotlib.pyplot as plt
-    from IPython.display import Image
-
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
-    plt.close(fig)
-    return Image(data=buf.getvalue(), format="png")

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pandas as pd
 from matplotlib.collections import PolyCollection
 
 from .. import flight
@@ -60,26 +61,36 @@ def plan_table_html(p: flight.FlightPlan, lay: flight.FlightLayout | None = None
     return plots.html_table(df, caption=caption or "Survey parameters (guide §2)", notes=notes)
 
 
-def guide_example_html() -> str:
+def guide_example_html(audit=None) -> str:
     """The guide's §2 example recomputed (left) beside its line-by-line audit (right), as HTML.
 
-    Rows of the audit where the printed line does not follow from its inputs are shaded.
+    Reads the audit :func:`aerophoto.guide.s02.worked_example` (or ``audit``):
+    one row per printed line — the line as printed, the factors that follow
+    from the line before, the value computed and rounded as the guide rounds —
+    shaded where a printed factor or result does not follow, with the reasons
+    under the table.
     """
-    p = flight.guide_example()
+    from ..guide import s02
+
+    a = s02.worked_example() if audit is None else audit
+    p = a.result
     left = p.table(rounded=True)[["quantity", "value", "unit"]].copy()
     left["quantity"] = [q.split(" (")[0] for q in left["quantity"]]
     left["value"] = [f"{x:.{flight.GUIDE_DECIMALS[k]}f}" if not isinstance(x, int) else str(x)
                      for k, x in zip(flight.TABLE_ATTRS, left["value"])]
-    a = flight.guide_example_audit()
-    right = a[["step", "printed", "correct_factors", "computed_as_printed", "differs"]].copy()
-    dec = [int(flight.GUIDE_DECIMALS[k]) for k in a["attr"]]
-    right["computed_as_printed"] = [f"{x:.{d}f}" for x, d in zip(a["computed_as_printed"], dec)]
-    right["differs"] = np.where(right["differs"], "✗ slip", "✓")
-    right = right.rename(columns={"printed": "printed in the guide", "correct_factors": "factors that follow",
-                                  "computed_as_printed": "computed", "differs": ""}).set_index("step")
+    t = a.table
+    differs = ~t["follows"].to_numpy(dtype=bool)
+    right = pd.DataFrame({"step": t["step"].to_numpy(), "printed in the guide": t["printed"].to_numpy(),
+                          "factors that follow": t["factors that follow"].to_numpy(),
+                          "computed": t["as printed"].to_numpy(),
+                          "": np.where(differs, "✗ slip", "✓")}).set_index("step")
     hl = np.zeros(right.shape, dtype=bool)
-    hl[a["differs"].to_numpy(), :] = True
-    notes = [f"step {r.step}, {r.quantity}: {r.reason}" for r in a.itertuples() if r.differs]
+    hl[differs, :] = True
+    notes = []
+    for line in s02.LINES:
+        reasons = [v.reason for v in a.discrepancies if v.where == s02.line_where(line)]
+        if reasons:
+            notes.append(f"step {line.step}, {line.quantity}: {' '.join(reasons)}")
     return ("<div style='display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start'>"
             "<div style='flex:0 0 auto'>"
             + plots.html_table(left, caption="Recomputed by aerophoto (guide's rounding)")

@@ -16,7 +16,6 @@ from matplotlib.collections import LineCollection
 
 from .. import geometry as g
 from .. import plots
-from .._validate import check_positive
 from ..widgets import LiveDemo, Param
 
 __all__ = ["FootprintResult", "footprint_model", "FootprintView", "FootprintDemo"]
@@ -108,7 +107,7 @@ def footprint_model(f_mm=100.0, m=12000.0, alpha_deg=3.0, lambda_deg=-60.0, kapp
         (default: a tenth of the vertical footprint's side)
     """
     cam = g.Camera(f_mm, frame_mm)
-    H = check_positive("m", m) * cam.f_mm / 1000.0
+    H = g.flying_height_m(cam.f_mm, m)
     pose = g.Pose(0.0, 0.0, H, alpha_deg, lambda_deg, kappa_deg)
     poly = g.footprint(cam, pose, 0.0)[:, :2]
     vpoly = g.footprint(cam, pose.levelled(), 0.0)[:, :2]

@@ -49,6 +49,7 @@ from .. import geometry as g
 from .. import mosaic as mo
 from .. import plots
 from .. import simulate as sim
+from ..terrain import RescaledRelief
 from ..widgets import LiveDemo, Param, error_html
 
 __all__ = [
@@ -71,10 +72,10 @@ N_PHOTOS = 5
 
 
 def default_ground(relief_m: float = 30.0):
-    """The default virtual site with its relief rescaled to ``relief_m`` (:class:`aerophoto.mosaic.RescaledRelief`)."""
+    """The default virtual site with its relief rescaled to ``relief_m`` (:class:`aerophoto.terrain.RescaledRelief`)."""
     from .. import site as site_mod
 
-    return mo.RescaledRelief(site_mod.get_site(), relief_m)
+    return RescaledRelief(site_mod.get_site(), relief_m)
 
 
 @dataclass(frozen=True)
@@ -351,7 +352,8 @@ class FotoschemaDemo(LiveDemo):
     def render(self, result: FotoschemaResult):
         self.view.update(result)
         fs = result.fs
-        notes = [f"H = f·m = {fs.camera.f_mm / 1000 * fs.m_design:,.0f} m above the mean ground".replace(",", " "),
+        H_m = g.flying_height_m(fs.camera.f_mm, fs.m_design)
+        notes = [f"H = f·m = {H_m:,.0f} m above the mean ground".replace(",", " "),
                  "ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip"]
         self.table.value = (plots.html_table(result.table(), caption="Seams and scale (guide §6)",
                                              float_format="{:.3g}", notes=notes)

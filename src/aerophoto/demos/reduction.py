@@ -38,8 +38,6 @@ from ..widgets import LiveDemo, Param
 __all__ = [
     "ReductionResult",
     "reduction_model",
-    "LabStrip",
-    "lab_strip",
     "strip_design",
     "TemplateView",
     "StripView",
@@ -178,102 +176,6 @@ def reduction_model(f_mm: float = 100.0, m: float = 12000.0, scale_ratio: float 
     params = dict(f_mm=f_mm, m=m, scale_ratio=scale_ratio, pricking_mm=pricking_mm, centre=c,
                   max_tilt_deg=max_tilt_deg, n_photos=n, seed=seed, M=M, first_number=fn)
     return ReductionResult(strip, tm, fs, red, params, note)
-
-
-# =========================================================================== the lab strip
-@dataclass(frozen=True)
-class LabStrip:
-    """A student's free strip for the graded tasks of chapters 06 and 12 (guide §7, §13).
-
-    Four photos 36 … 39 of the student's variant (f, 1:m, p_x = 60 %) over the
-    virtual site, pricked with 0.1 mm, laid in a variant-dependent arbitrary
-    scale and reduced about working centre 37.  The tables give what the
-    student reads: ground coordinates of the control points (to 0.1 m) and the
-    positions of every point on the free strip (to 0.01 mm).  The expected
-    answers are computed **from those rounded numbers**, as a student would.
-
-    Attributes
-    ----------
-    variant : the student's Variant
-    result : ReductionResult (the unrounded computation)
-    """
-
-    variant: object
-    result: ReductionResult
-
-    @property
-    def M(self) -> float:
-        return self.result.reduction.M
-
-    @property
-    def centre(self) -> str:
-        """The central working centre (37)."""
-        return self.result.reduction.corrections.centre
-
-    def control_table(self):
-        """Control points: ground X, Y (m, to 0.1 m) and free-strip x, y (mm, to 0.01 mm)."""
-        import pandas as pd
-
-        red = self.result.reduction
-        pts = red.strip.points
-        idx = red.control
-        return pd.DataFrame(
-            {"X, m": np.round(pts.XYZ_m[idx, 0], 1), "Y, m": np.round(pts.XYZ_m[idx, 1], 1),
-             "x strip, mm": np.round(red.strip.points_mm[idx, 0], 2),
-             "y strip, mm": np.round(red.strip.points_mm[idx, 1], 2)},
-            index=pd.Index([pts.names[i] for i in idx], name="control point"))
-
-    def points_table(self):
-        """Every point on the free strip (mm, to 0.01 mm) with its kind."""
-        import pandas as pd
-
-        fs = self.result.free
-        return pd.DataFrame({"kind": list(fs.points.kinds), "x strip, mm": np.round(fs.points_mm[:, 0], 2),
-                             "y strip, mm": np.round(fs.points_mm[:, 1], 2)},
-                            index=pd.Index(list(fs.points.names), name="point"))
-
-    def ring(self) -> list:
-        """The four bases of a table-8 ring: 36/1 – 39/1 – 39/2 – 36/2 – 36/1."""
-        c = list(self.control_table().index)
-        a1, a2, b1, b2 = c[0], c[1], c[2], c[3]
-        return [(a1, b1), (b1, b2), (b2, a2), (a2, a1)]
-
-    def coefficients(self, pairs="all") -> tri.ReductionCoefficients:
-        """Table 8/12 from the rounded tables: ``pairs="all"`` (six bases) or ``"ring"`` (four, like table 8)."""
-        t = self.control_table()
-        base = t[["X, m", "Y, m"]].to_numpy() * 1000.0 / self.M
-        strip = t[["x strip, mm", "y strip, mm"]].to_numpy()
-        return tri.reduction_coefficients(list(t.index), base, strip, pairs=self.ring() if pairs == "ring" else pairs)
-
-    def corrections(self, names, k: float | None = None) -> np.ndarray:
-        """v = r·(k − 1) (mm) for the named points, r from the rounded strip positions to the centre;
-        k defaults to the mean over the six bases."""
-        t = self.points_table()
-        kk = self.coefficients().k_mean if k is None else k
-        C = t.loc[self.centre, ["x strip, mm", "y strip, mm"]].to_numpy(dtype=float)
-        P = t.loc[list(names), ["x strip, mm", "y strip, mm"]].to_numpy(dtype=float)
-        return np.hypot(*(P - C).T) * (kk - 1.0)
-
-
-def lab_strip(variant, *, pricking_mm: float = 0.1) -> LabStrip:
-    """The student's free strip (see :class:`LabStrip`): seeded by the variant number i.
-
-    The free strip's scale is q = 0.90 + 0.002·i of the plan scale (so the
-    reduction coefficient, near 1/q, differs between variants).
-    """
-    from .. import simulate, site as site_mod
-
-    s = site_mod.get_site()
-    strip = simulate.variant_strip(variant, 4, site=s, first_number=36)
-    cam = strip.camera
-    pts = tri.design_points(cam, strip.poses, s, catalogue=s.catalogue, photo_numbers=[sh.number for sh in strip.shots])
-    tm = tri.measure_templates(cam, strip.poses, pts, pricking_mm=pricking_mm, seed=int(variant.i))
-    q = 0.90 + 0.002 * int(variant.i)
-    fs = tri.lay_free_strip(tm, scale_ratio=q, M=variant.M)
-    red = tri.reduce_strip(fs, M=variant.M, centre=1)
-    params = dict(f_mm=variant.f_mm, m=variant.m, scale_ratio=q, pricking_mm=pricking_mm, centre=2,
-                  max_tilt_deg=0.0, n_photos=4, seed=int(variant.i), M=variant.M)
-    return LabStrip(variant, ReductionResult(strip, tm, fs, red, params))
 
 
 # =========================================================================== views
@@ -436,7 +338,7 @@ class StripView:
     def update(self, free, reduction: tri.Reduction | None = None) -> None:
         pts = free.points if hasattr(free, "points") else free.templates.points
         P = free.points_mm
-        self.rays.set_segments(list(_rays_of(free)))
+        self.rays.set_segments(list(free.ray_segments()))
         ok = np.all(np.isfinite(P), axis=1)
         lo, hi = P[ok].min(axis=0), P[ok].max(axis=0)
         span = hi - lo
@@ -544,7 +446,9 @@ class SiteStripView:
 
     def update(self, strip, points: tri.StripPoints) -> None:
         if self._image is None and self.site is not None:
-            self._image = self.site.plot(self.ax, points=False)["image"]
+            from .site_views import plot_site
+
+            self._image = plot_site(self.site, self.ax, points=False)["image"]
             self._image.set_alpha(0.75)
             self._image.set_zorder(0)
         fp = strip.footprints(strip.ground_Z_m)
@@ -602,22 +506,6 @@ class AccumulationView:
                                                                reading=key))
         self.ax.set_xlim(0.5, float(n.max()) + 0.5)
         self.ax.set_ylim(0.0, max(float(y.max()), 0.4) * 1.15)
-
-
-def _rays_of(strip):
-    if hasattr(strip, "ray_segments"):
-        return strip.ray_segments()
-    segs = []
-    tm = strip.templates
-    for t in range(tm.n_photos):
-        idx, d = tm.rays(t)
-        C = strip.centres_mm[t]
-        for i, a in zip(idx, d):
-            P = strip.points_mm[i]
-            if np.all(np.isfinite(P)):
-                L = float(np.hypot(*(P - C))) * 1.15
-                segs.append([C, C + L * np.array([math.cos(a + strip.theta_rad[t]), math.sin(a + strip.theta_rad[t])])])
-    return segs
 
 
 class CoefficientView:

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field, replace
 
 import pandas as pd
 
-__all__ = ["TOLERANCE_UNITS", "GENERIC_REASON", "Printed", "Audit", "printed", "digit_unit", "render",
+__all__ = ["TOLERANCE_UNITS", "GENERIC_REASON", "Printed", "Audit", "FullTextFrame", "printed", "digit_unit", "render",
            "discrepancy_frame"]
 
 TOLERANCE_UNITS = 0.6
@@ -145,6 +145,22 @@ def printed(where: str, quantity: str, value: float, computed: float, unit: floa
     return replace(p, reason=text)
 
 
+class FullTextFrame(pd.DataFrame):
+    """A DataFrame that shows its text cells in full (a reason is a sentence; pandas would cut it at 50 characters)."""
+
+    @property
+    def _constructor(self):
+        return FullTextFrame
+
+    def _repr_html_(self):
+        with pd.option_context("display.max_colwidth", None):
+            return super()._repr_html_()
+
+    def __repr__(self):
+        with pd.option_context("display.max_colwidth", None):
+            return super().__repr__()
+
+
 @dataclass(frozen=True)
 class Audit:
     """A source table recomputed from its printed inputs, with every printed number checked.
@@ -183,7 +199,7 @@ class Audit:
     def comparison(self, *, only_discrepancies: bool = True) -> pd.DataFrame:
         """Printed vs computed, one row per value: where, quantity, printed, computed, verdict, reason."""
         rows = [p for p in self.values if not (only_discrepancies and p.follows)]
-        return pd.DataFrame(
+        return FullTextFrame(
             {"where": [p.where for p in rows], "quantity": [p.quantity for p in rows],
              "printed": [p.shown_printed() for p in rows], "computed": [p.shown_computed() for p in rows],
              "verdict": ["follows" if p.follows else "does not follow" for p in rows],
@@ -203,7 +219,7 @@ def discrepancy_frame(audits) -> pd.DataFrame:
             rows.append({"source": a.source, "table": a.title.split(".")[0], "where": p.where,
                          "quantity": p.quantity, "printed": p.shown_printed(), "computed": p.shown_computed(),
                          "reason": p.reason})
-    return pd.DataFrame(rows, columns=["source", "table", "where", "quantity", "printed", "computed", "reason"])
+    return FullTextFrame(rows, columns=["source", "table", "where", "quantity", "printed", "computed", "reason"])
 
 
 def _html_frame(df: pd.DataFrame, caption: str) -> str:

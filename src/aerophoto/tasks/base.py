@@ -23,10 +23,11 @@ and hidden checks on values extracted from a sandboxed run.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-__all__ = ["Answer", "Hidden", "Task", "KINDS"]
+__all__ = ["Answer", "Hidden", "Task", "KINDS", "submitted_number"]
 
 KINDS = ("value", "count", "values", "bool", "choice")
 
@@ -59,6 +60,9 @@ class Answer:
         For verdicts and choices: what to compare when the answer is wrong.
     integer : bool
         For values/sequences: whole numbers compared exactly.
+    period : float or None
+        For angles: a number answer is brought into 0 ≤ value < period before
+        it is checked (360 for degrees), so any whole turn is accepted.
     """
 
     name: str
@@ -72,12 +76,30 @@ class Answer:
     options: tuple = ()
     hint: str = ""
     integer: bool = False
+    period: float | None = None
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"kind = {self.kind!r} is not valid; expected one of {KINDS}")
         if not self.name.isidentifier():
             raise ValueError(f"name = {self.name!r} is not a Python variable name")
+
+
+def submitted_number(x) -> float | None:
+    """A submitted answer as a float, or None when it is not one finite number (``...``, None, text, a list, a bool).
+
+    For :meth:`Task.hidden`: derive a second quantity from the student's own
+    answers only where they are numbers (a :class:`Hidden` with ``answer=None`` fails).
+    """
+    if getattr(x, "size", None) == 1 and hasattr(x, "item"):  # a one-element array or numpy scalar
+        x = x.item()
+    if x is None or x is Ellipsis or isinstance(x, (bool, str)):
+        return None
+    try:
+        f = float(x)
+    except (TypeError, ValueError):
+        return None
+    return f if math.isfinite(f) else None
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,316 @@
+"""Executing a submission: nbgrader's Execute preprocessor, in the sandbox, robust to what student code does.
+
+:class:`SandboxExecute` (built by :func:`sandbox_execute_class`) is nbgrader's ``Execute`` with
+
+* the kernel in the sandbox (:class:`~aerophoto.course.sandbox.SandboxKernelManager`, ipc transport);
+* a kernel that dies (memory, CPU time, ``os._exit``) or stops answering after a timed-out cell: the cell
+  gets an error output with the reason, a new kernel is started, the earlier cells are replayed silently
+  (not the failed ones, not the check cells) and grading goes on with the next cell — at most
+  ``max_restarts`` times; cells never run get an error output too (nbgrader would give an unexecuted test
+  cell full points);
+* a cap on the outputs kept per notebook (the rest is dropped and noted) — the answer records of the check
+  cells (:data:`aerophoto.checks.ANSWERS_MIME`) are always kept.
+
+What happened is kept in :data:`EVENTS` (key: student, assignment, notebook) for the flags.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .common import DEFAULT_TIMEOUT_S, graded_tasks, is_test, nbg, one_line
+from .sandbox import Limits, kernel_exit_reason
+
+#: (student, assignment, notebook) → list of events of the last sandboxed run
+EVENTS: dict = {}
+
+
+@dataclass
+class Event:
+    """Something the grader did to keep going: a dead kernel, a cell cut short, outputs dropped."""
+
+    kind: str          # kernel_died, timeout, not_run, output_truncated
+    cell: str          # cell id
+    message: str
+
+    def as_dict(self) -> dict:
+        return {"kind": self.kind, "cell": self.cell, "message": self.message}
+
+
+def _error_output(ename: str, evalue: str):
+    from nbformat import NotebookNode
+
+    return NotebookNode(output_type="error", ename=ename, evalue=evalue, traceback=[f"{ename}: {evalue}"])
+
+
+def _answers_mime() -> str:
+    from ..checks import ANSWERS_MIME
+
+    return ANSWERS_MIME
+
+
+def _build():
+    from nbclient.exceptions import CellTimeoutError, DeadKernelError
+    from nbclient.util import run_sync
+    from nbformat import NotebookNode
+    from nbgrader.preprocessors import Execute
+    from traitlets import Any, Bool, Integer, Unicode
+
+    from .sandbox import SandboxKernelManager
+
+    class SandboxExecute(Execute):
+        """nbgrader's Execute with the kernel in the sandbox (see the module notes)."""
+
+        record_book = Unicode(None, allow_none=True).tag(config=True)
+        unsafe_no_sandbox = Bool(False).tag(config=True)
+        grading = Bool(True).tag(config=True)
+        limits = Any(None).tag(config=True)
+        max_restarts = Integer(2).tag(config=True)
+        startup_timeout = Integer(120).tag(config=True)
+        shutdown_kernel = Unicode("immediate").tag(config=True)
+
+        @property
+        def the_limits(self) -> Limits:
+            lim = self.limits
+            if isinstance(lim, dict):
+                return Limits(**lim)
+            return lim if isinstance(lim, Limits) else Limits()
+
+        def create_kernel_manager(self):
+            self.km = SandboxKernelManager(config=self.config, record_book=self.record_book,
+                                           limits=self.the_limits, unsafe_no_sandbox=self.unsafe_no_sandbox,
+                                           grading=self.grading, parent=None)
+            self._km_ref = self.km
+            return self.km
+
+        async def async_start_new_kernel_client(self):
+            kc = await super().async_start_new_kernel_client()
+            self.km.seal()  # the kernel has bound its sockets: nothing more is written into the shared folder
+            return kc
+
+        start_new_kernel_client = run_sync(async_start_new_kernel_client)
+
+        async def _async_handle_timeout(self, timeout, cell=None):
+            self._timed_out = True
+            return await super()._async_handle_timeout(timeout, cell)
+
+        # outputs ------------------------------------------------------------------------------------
+        def output(self, outs, msg, display_id, cell_index):
+            content = msg.get("content", {})
+            data = content.get("data") if isinstance(content, dict) else None
+            is_record = isinstance(data, dict) and _answers_mime() in data
+            size = len(json.dumps(content, default=str)) if isinstance(content, dict) else 0
+            limit = self.the_limits.output_mb * 1024 * 1024
+            if not is_record and self._output_bytes + size > limit:
+                self._dropped += size
+                if cell_index not in self._truncated:
+                    self._truncated.add(cell_index)
+                    cell = self.nb.cells[cell_index]
+                    note = (f"[the grader kept the first {self.the_limits.output_mb:g} MB of this notebook's "
+                            "output; the rest was dropped]")
+                    outs.append(NotebookNode(output_type="stream", name="stdout", text=note + "\n"))
+                    self._event("output_truncated", cell, f"more than {self.the_limits.output_mb:g} MB of output")
+                return None
+            self._output_bytes += size
+            return super().output(outs, msg, display_id, cell_index)
+
+        # the run ------------------------------------------------------------------------------------
+        def _event(self, kind, cell, message):
+            self.events.append(Event(kind, str(cell.get("id", "?")), message))
+
+        def _reason(self, exc) -> str:
+            km = getattr(self, "_km_ref", None)
+            status = None
+            if km is not None:
+                try:
+                    status = km.exit_status()
+                except Exception:
+                    status = getattr(km, "last_exit_status", None)
+            if getattr(self, "_timed_out", False):
+                return (f"the cell ran past the time limit ({self.timeout} s) and did not stop when interrupted; "
+                        "the kernel was ended")
+            if isinstance(exc, CellTimeoutError) and "IOPub" in str(exc):
+                return (f"the cell's output could not be received (one message over "
+                        f"{self.the_limits.message_mb} MB, or the kernel stopped answering); the kernel was ended")
+            if isinstance(exc, CellTimeoutError) or (status is None and "Timeout" in type(exc).__name__):
+                return (f"the cell ran past the time limit ({self.timeout} s) and did not stop when interrupted; "
+                        "the kernel was ended")
+            if isinstance(exc, DeadKernelError) or status is not None:
+                return kernel_exit_reason(status, self.the_limits)
+            return f"the kernel stopped answering ({type(exc).__name__}: {one_line(str(exc))[:120]})"
+
+        def _replay(self, upto: int, skip: set) -> None:
+            """Run cells[:upto] again in a new kernel, outputs discarded (not the failed ones, not the checks)."""
+            for i in range(upto):
+                cell = self.nb.cells[i]
+                if cell.get("cell_type") != "code" or i in skip or is_test(cell):
+                    continue
+                original = self.nb.cells[i]
+                try:
+                    self.execute_cell(copy.deepcopy(cell), i, store_history=False)
+                finally:
+                    self.nb.cells[i] = original
+
+        def preprocess(self, nb, resources=None, km=None):
+            from nbclient.client import NotebookClient
+
+            NotebookClient.__init__(self, nb, km)
+            self.reset_execution_trackers()
+            self._check_assign_resources(resources)
+            self.events, self._output_bytes, self._dropped, self._truncated = [], 0, 0, set()
+            t0 = time.perf_counter()
+            cells = self.nb.cells
+            start, failed, restarts, ran_any = 0, set(), 0, False
+            while start < len(cells):
+                index = start
+                try:
+                    with self.setup_kernel():
+                        info = self.wait_for_reply(self.kc.kernel_info())
+                        if info and "language_info" in info["content"]:
+                            self.nb.metadata["language_info"] = info["content"]["language_info"]
+                        if start:
+                            self._replay(start, failed)
+                        for index in range(start, len(cells)):
+                            self._timed_out = False
+                            self.preprocess_cell(cells[index], resources, index)
+                            ran_any = True
+                            cell = cells[index]
+                            if any(o.get("ename") == "CellTimeoutError" for o in cell.get("outputs", [])
+                                   if o.get("output_type") == "error"):
+                                self._event("timeout", cell, f"cut at the per-cell limit ({self.timeout} s)")
+                    start = len(cells)
+                except Exception as exc:  # a dead or unresponsive kernel: note it, go on with a new one
+                    if not ran_any and index == start == 0 and not isinstance(exc, (DeadKernelError,
+                                                                                    CellTimeoutError)):
+                        raise  # the sandbox itself did not start: that is the grader's failure, not the student's
+                    self.km, self.kc = None, None
+                    reason = self._reason(exc)
+                    cell = cells[index]
+                    if cell.get("cell_type") == "code":
+                        cell.setdefault("outputs", []).append(_error_output("KernelDied", reason))
+                    self._event("kernel_died", cell, reason)
+                    failed.add(index)
+                    restarts += 1
+                    start = index + 1
+                    if restarts > self.max_restarts:
+                        for j in range(start, len(cells)):
+                            if cells[j].get("cell_type") == "code" and cells[j].get("source", "").strip():
+                                cells[j].setdefault("outputs", []).append(
+                                    _error_output("NotRun", f"not run: the kernel died {restarts} times"))
+                                if is_test(cells[j]):
+                                    self._event("not_run", cells[j], "the kernel died too often before this cell")
+                        break
+            self.set_widgets_metadata()
+            self.seconds = time.perf_counter() - t0
+            key = _key(resources)
+            if key is not None:
+                EVENTS[key] = [e.as_dict() for e in self.events]
+            return self.nb, self.resources
+
+    return SandboxExecute
+
+
+def _key(resources):
+    nbr = (resources or {}).get("nbgrader") or {}
+    if not nbr.get("student"):
+        return None
+    return (str(nbr.get("student")), str(nbr.get("assignment")), str(nbr.get("notebook")))
+
+
+def __getattr__(name: str):
+    if name == "SandboxExecute":
+        cls = _build()
+        globals()["SandboxExecute"] = cls
+        return cls
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+# --------------------------------------------------------------------------------------------------
+# executed outcomes (nbgrader's view of each test cell)
+
+
+@dataclass
+class TaskOutcome:
+    task: str
+    passed: bool
+    points: float
+    message: str = ""
+    ename: str = ""     # the exception of a failed check ("WrongAnswer" for a check's verdict)
+    score: float | None = None
+
+
+@dataclass
+class CheckResult:
+    path: Path
+    tasks: list[TaskOutcome] = field(default_factory=list)
+    errors: list[tuple[str, str]] = field(default_factory=list)  # (cell id, "Ename: value") outside tests
+    flags: list = field(default_factory=list)
+    problem: str = ""    # why nothing could be verified (unknown kernel, no record book, no tasks)
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.tasks) and not self.problem and all(t.passed for t in self.tasks) and not self.errors
+
+
+def error_outputs(cell) -> list[dict]:
+    return [o for o in cell.get("outputs", []) if o.get("output_type") == "error"]
+
+
+def _stderr_text(cell) -> str:
+    return "".join(
+        "".join(o.get("text", "")) if isinstance(o.get("text"), list) else o.get("text", "")
+        for o in cell.get("outputs", [])
+        if o.get("output_type") == "stream" and o.get("name") == "stderr"
+    )
+
+
+def test_outcome(cell) -> tuple[bool, str, str]:
+    """nbgrader's rule for an executed test cell: an error or any stderr output scores 0.
+
+    Returns (passed, message, exception name)."""
+    errs = error_outputs(cell)
+    if errs:
+        e = errs[0]
+        msg = one_line(e.get("evalue", ""))
+        ename = str(e.get("ename", ""))
+        return False, (msg if ename == "WrongAnswer" and msg else f"{ename}: {msg}".rstrip(": ")), ename
+    err = _stderr_text(cell)
+    if err.strip():
+        return False, "the check printed to stderr (nbgrader scores that 0): " + one_line(err), "stderr"
+    return True, "", ""
+
+
+def executed_outcomes(nb) -> tuple[list[TaskOutcome], list[tuple[str, str]]]:
+    """Per-task pass/fail (nbgrader's in-kernel view) and the errors outside test cells of an executed notebook."""
+    outcomes, errors = [], []
+    tests = {t.check_id: t for t in graded_tasks(nb)}
+    for cell in nb["cells"]:
+        if cell.get("cell_type") != "code":
+            continue
+        if is_test(cell):
+            gid = nbg(cell).get("grade_id")
+            ok, msg, ename = test_outcome(cell)
+            outcomes.append(TaskOutcome(tests[gid].task, ok, tests[gid].points, msg, ename))
+        else:
+            for e in error_outputs(cell):
+                errors.append((cell.get("id", "?"), f"{e.get('ename')}: {one_line(e.get('evalue', ''))}".rstrip(": ")))
+    return outcomes, errors
+
+
+def run_sandboxed(nb, *, cwd, timeout: int = DEFAULT_TIMEOUT_S, record_book: str | None = None,
+                  limits: Limits | None = None, unsafe_no_sandbox: bool = False, grading: bool = True,
+                  resources: dict | None = None):
+    """Execute ``nb`` (in place) in the sandbox; returns the preprocessor (``.events``, ``.seconds``)."""
+    cls = __getattr__("SandboxExecute") if "SandboxExecute" not in globals() else globals()["SandboxExecute"]
+    ex = cls(timeout=timeout, interrupt_on_timeout=True, allow_errors=True, record_book=record_book,
+             limits=limits or Limits(), unsafe_no_sandbox=unsafe_no_sandbox, grading=grading,
+             error_on_timeout={"ename": "CellTimeoutError", "evalue": f"the cell ran longer than {timeout} s",
+                               "traceback": [f"CellTimeoutError: the cell ran longer than {timeout} s"]})
+    res = dict(resources or {})
+    res.setdefault("metadata", {})["path"] = str(cwd)
+    ex.preprocess(nb, res)
+    return ex

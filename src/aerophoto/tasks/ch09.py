@@ -1,0 +1,278 @@
+"""Graded tasks of chapter 09 (guide §10): correcting the student's old plan from their new photo.
+
+Each variant has its own piece of farmland (:func:`aerophoto.projective.land_use_scene`
+with seed i) and its own new photo of it: the variant's camera f and scale
+1:m, tilt α = 3° with the principal vertical at λ, a heading κ and a small
+offset of the photo centre drawn from the variant.  The old plan is at
+1:10 000 (guide §10).  The student reads (:func:`plan_correction_lab`):
+
+* the four control points on the photo (x, y mm from the principal point, to
+  0.01 mm) and on the plan (x, y mm, to 0.01 mm);
+* the photo positions of the changes: the corners of the new farm building 1
+  and the vertices of the new road.
+
+The answers are computed from those rounded numbers, as a student computes
+them:
+
+* task 09.1 (:class:`GridCell`): in a 4 × 4 grid of central directions, the
+  cell of farm building 1's first corner and the plan position a cell-by-cell
+  transfer gives it;
+* task 09.2 (:class:`NewRoad`): the new road's vertices on the plan by the
+  exact projective transformation of the four points, and its length on the
+  ground.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from .. import geometry as g
+from .. import projective as pj
+from .base import Answer, Hidden, Task, submitted_number
+
+__all__ = ["PLAN_M", "GRID_N", "SCENE_SIZE_M", "SPREAD", "EXAMPLE_SEED", "PlanCorrectionLab", "plan_correction_lab",
+           "lab_for", "GridCell", "NewRoad", "TASKS"]
+
+#: the plan's scale denominator (guide §10: a 1:10 000 map)
+PLAN_M = 10000.0
+#: cells per side of task 09.1's grid
+GRID_N = 4
+#: side of the variant's square of farmland, m
+SCENE_SIZE_M = 1600.0
+#: how far out the four control points lie (fraction of the half-side)
+SPREAD = 0.85
+#: the scene of the chapter's worked example and live demo (no variant's: variants use seeds 0…99)
+EXAMPLE_SEED = 2014
+
+
+@dataclass(frozen=True)
+class PlanCorrectionLab:
+    """The student's plan-correction data (or the worked example's).
+
+    Attributes
+    ----------
+    scene : :class:`aerophoto.projective.LandUseScene`
+    camera : Camera
+    pose : Pose
+        The new photo's exterior orientation over flat ground at Z = 0.
+    M : float
+        The plan's scale denominator.
+    control : DataFrame
+        The four control points: ``x photo, mm``, ``y photo, mm``, ``x plan, mm``, ``y plan, mm`` (rounded to
+        0.01 mm), index "1"…"4".
+    changes : DataFrame
+        Photo positions of the new features' vertices: ``feature``, ``vertex``, ``x photo, mm``, ``y photo, mm``
+        (0.01 mm); index like "farm building 1/1".
+    """
+
+    scene: pj.LandUseScene
+    camera: g.Camera
+    pose: g.Pose
+    M: float
+    control: pd.DataFrame
+    changes: pd.DataFrame
+
+    # -- what the student reads
+    def control_table(self) -> pd.DataFrame:
+        return self.control.copy()
+
+    def changes_table(self) -> pd.DataFrame:
+        return self.changes.copy()
+
+    @property
+    def photo_corners(self) -> np.ndarray:
+        return self.control[["x photo, mm", "y photo, mm"]].to_numpy(dtype=float)
+
+    @property
+    def plan_corners(self) -> np.ndarray:
+        return self.control[["x plan, mm", "y plan, mm"]].to_numpy(dtype=float)
+
+    def photo_of(self, feature: str) -> np.ndarray:
+        """Photo positions (k, 2) mm of a feature's vertices, as the table gives them."""
+        df = self.changes[self.changes["feature"] == feature]
+        if not len(df):
+            raise ValueError(f"no changed feature {feature!r}; features: {sorted(set(self.changes['feature']))}")
+        return df[["x photo, mm", "y photo, mm"]].to_numpy(dtype=float)
+
+    def truth_plan_of(self, feature: str) -> np.ndarray:
+        """Where the feature's vertices belong on the plan (the ground truth), plan mm."""
+        return self.scene.feature(feature).xy_m * 1000.0 / self.M
+
+    # -- the computations (the instructor's side)
+    def grid_pair(self, n: int = GRID_N, method: str = "central") -> pj.GridPair:
+        return pj.grid_pair(self.photo_corners, self.plan_corners, n, method)
+
+    @functools.cached_property
+    def exact(self) -> pj.Projective2D:
+        """The projective transformation photo → plan fixed by the four rounded control points."""
+        return pj.fit_projective(self.photo_corners, self.plan_corners)
+
+
+def _round(a, decimals=2):
+    return np.round(np.asarray(a, dtype=float), decimals)
+
+
+def lab_for(seed: int, f_mm: float, m: float, alpha_deg: float, lambda_deg: float, kappa_deg: float,
+            offset_m=(0.0, 0.0), *, M: float = PLAN_M, spread: float = SPREAD,
+            size_m: float = SCENE_SIZE_M) -> PlanCorrectionLab:
+    """A plan-correction lab for any scene seed and photo (the demo and the worked example use it too)."""
+    scene = pj.land_use_scene(seed, size_m)
+    cam = g.Camera(f_mm)
+    H = g.flying_height_m(f_mm, m)
+    pose = g.Pose(float(offset_m[0]), float(offset_m[1]), H, alpha_deg, lambda_deg, kappa_deg)
+    cp = scene.control_points(spread)
+    G = np.column_stack([cp[["X_m", "Y_m"]].to_numpy(), np.zeros(len(cp))])
+    ph = _round(g.ground_to_photo(cam, pose, G))
+    pl = _round(cp[["X_m", "Y_m"]].to_numpy() * 1000.0 / M)
+    control = pd.DataFrame({"ground point": cp["point"].to_numpy(), "x photo, mm": ph[:, 0], "y photo, mm": ph[:, 1],
+                            "x plan, mm": pl[:, 0], "y plan, mm": pl[:, 1]}, index=pd.Index(cp["name"], name="control"))
+    V = scene.change_vertices()
+    xy = _round(g.ground_to_photo(cam, pose, np.column_stack([V[["X_m", "Y_m"]].to_numpy(), np.zeros(len(V))])))
+    changes = pd.DataFrame({"feature": V["feature"].to_numpy(), "vertex": V["vertex"].to_numpy(),
+                            "x photo, mm": xy[:, 0], "y photo, mm": xy[:, 1]},
+                           index=pd.Index([f"{a}/{b}" for a, b in zip(V["feature"], V["vertex"])], name="point"))
+    return PlanCorrectionLab(scene, cam, pose, float(M), control, changes)
+
+
+@functools.lru_cache(maxsize=128)
+def _lab(i: int, f_mm: float, m: float, alpha_deg: float, lambda_deg: float) -> PlanCorrectionLab:
+    rng = np.random.default_rng([int(i), 9])
+    kappa = float(rng.uniform(-20.0, 20.0))
+    offset = rng.uniform(-60.0, 60.0, size=2)
+    return lab_for(int(i), f_mm, m, alpha_deg, lambda_deg, kappa, offset)
+
+
+def plan_correction_lab(v) -> PlanCorrectionLab:
+    """The student's lab for variant ``v`` (its i, f, m, α, λ; the scene's seed is i)."""
+    return _lab(int(v.i), float(v.f_mm), float(v.m), float(v.alpha_deg), float(v.lambda_deg))
+
+
+# =========================================================================== task 09.1
+@dataclass(frozen=True)
+class GridCell(Task):
+    """Task 09.1: the cell of farm building 1's first corner in a 4 × 4 grid, and its transfer to the plan."""
+
+    id = "task-09-1"
+    title = "A point carried cell by cell"
+    points = 3
+    FEATURE = "farm building 1"
+    spec = (
+        Answer("row", "row of the cell on the photo grid (0 at side 1–2)", kind="count", rounding="nearest"),
+        Answer("col", "column of the cell (0 at side 1–4)", kind="count", rounding="nearest"),
+        Answer("x_mm", "x of the corner on the plan, mm", unit="mm", tol_abs=0.02),
+        Answer("y_mm", "y of the corner on the plan, mm", unit="mm", tol_abs=0.02),
+    )
+
+    def inputs(self, v) -> PlanCorrectionLab:
+        return plan_correction_lab(v)
+
+    def _point(self, lab):
+        return lab.photo_of(self.FEATURE)[:1]
+
+    def answers(self, v) -> dict:
+        lab = plan_correction_lab(v)
+        gp = lab.grid_pair(GRID_N, "central")
+        p = self._point(lab)
+        loc = pj.locate(gp.photo_nodes, p).iloc[0]
+        q = gp.transfer(p)[0]
+        return {"row": int(loc["row"]), "col": int(loc["col"]), "x_mm": float(q[0]), "y_mm": float(q[1])}
+
+    def slips(self, v) -> dict:
+        lab = plan_correction_lab(v)
+        p = self._point(lab)
+        ex = lab.exact.apply(p)[0]
+        pr = lab.grid_pair(GRID_N, "proportional").transfer(p)[0]
+        a = self.answers(v)
+        exact_hint = ("that is the exact projective position; the task asks for the cell-by-cell transfer on the "
+                      "4 × 4 grid — the difference is the grid's own error")
+        prop_hint = ("that is the transfer on a grid of proportional division (equal parts); build the grid by "
+                     "central directions")
+        out = {"x_mm": {exact_hint: float(ex[0]), prop_hint: float(pr[0])},
+               "y_mm": {exact_hint: float(ex[1]), prop_hint: float(pr[1])}}
+        if a["row"] != a["col"]:
+            out["row"] = {"rows and columns are swapped: rows count from side 1–2 towards 4–3": a["col"]}
+            out["col"] = {"rows and columns are swapped: columns count from side 1–4 towards 2–3": a["row"]}
+        return out
+
+    def hidden(self, v, got) -> list:
+        # the submitted plan point must lie in the plan cell the student named (consistency of their own answers)
+        lab = plan_correction_lab(v)
+        gp = lab.grid_pair(GRID_N, "central")
+        x, y = submitted_number(got.get("x_mm")), submitted_number(got.get("y_mm"))
+        if x is None or y is None:
+            return [Hidden("the plan point lies in the cell (row, col)", None, None, kind="count")]
+        loc = pj.locate(gp.plan_nodes, [[x, y]]).iloc[0]
+        exp_row, exp_col = int(loc["row"]), int(loc["col"])
+        r, c = submitted_number(got.get("row")), submitted_number(got.get("col"))
+        if r is not None and c is not None and float(r).is_integer() and float(c).is_integer() \
+                and 0 <= r < GRID_N and 0 <= c < GRID_N:
+            # a point within the answers' tolerance (0.02 mm) of the named cell's edge is consistent with it
+            N = gp.plan_nodes
+            r, c = int(r), int(c)
+            cell = np.array([N[r, c], N[r, c + 1], N[r + 1, c + 1], N[r + 1, c]])
+            sub = pj.locate(np.array([[cell[0], cell[1]], [cell[3], cell[2]]]), [[x, y]]).iloc[0]
+            side = min(np.hypot(*(cell[1] - cell[0])), np.hypot(*(cell[3] - cell[0])))
+            slack = 0.03 / side
+            if -slack <= sub["s"] <= 1 + slack and -slack <= sub["t"] <= 1 + slack:
+                exp_row, exp_col = r, c
+        return [Hidden("the plan point lies in row `row` of the plan grid", got.get("row"), exp_row, kind="count"),
+                Hidden("the plan point lies in column `col` of the plan grid", got.get("col"), exp_col, kind="count")]
+
+
+# =========================================================================== task 09.2
+@dataclass(frozen=True)
+class NewRoad(Task):
+    """Task 09.2: the new road's vertices on the plan (exact projective transfer) and its length on the ground."""
+
+    id = "task-09-2"
+    title = "The new road on the old plan"
+    points = 3
+    FEATURE = "new road"
+    spec = (
+        Answer("xr_mm", "x of the road's vertices on the plan, mm (in the table's order)", unit="mm", kind="values",
+               tol_abs=0.1),
+        Answer("yr_mm", "y of the road's vertices on the plan, mm", unit="mm", kind="values", tol_abs=0.1),
+        Answer("road_m", "length of the new road on the ground, m"),
+    )
+
+    def inputs(self, v) -> PlanCorrectionLab:
+        return plan_correction_lab(v)
+
+    def answers(self, v) -> dict:
+        lab = plan_correction_lab(v)
+        q = lab.exact.apply(lab.photo_of(self.FEATURE))
+        length = float(np.sum(np.hypot(*np.diff(q, axis=0).T))) * lab.M / 1000.0
+        return {"xr_mm": [float(a) for a in q[:, 0]], "yr_mm": [float(a) for a in q[:, 1]], "road_m": length}
+
+    def slips(self, v) -> dict:
+        lab = plan_correction_lab(v)
+        q = lab.exact.apply(lab.photo_of(self.FEATURE))
+        L = float(np.sum(np.hypot(*np.diff(q, axis=0).T)))
+        p = lab.photo_of(self.FEATURE)
+        Lp = float(np.sum(np.hypot(*np.diff(p, axis=0).T)))
+        return {"road_m": {"that is the length on the plan in mm — multiply by M/1000 for metres": L,
+                           "that is the straight distance between the road's ends; add up its segments":
+                           float(np.hypot(*(q[-1] - q[0]))) * lab.M / 1000.0,
+                           "that is measured on the photo at 1:m — a tilted photo has no single scale; measure on "
+                           "the corrected plan": Lp * float(v.m) / 1000.0}}
+
+    def hidden(self, v, got) -> list:
+        # the length must follow from the student's own vertices: Σ|segment| · M/1000
+        lab = plan_correction_lab(v)
+        try:
+            xs = np.asarray(got.get("xr_mm"), dtype=float).ravel()
+            ys = np.asarray(got.get("yr_mm"), dtype=float).ravel()
+        except (TypeError, ValueError):
+            xs = ys = np.zeros(0)
+        if len(xs) < 2 or xs.shape != ys.shape or not (np.all(np.isfinite(xs)) and np.all(np.isfinite(ys))):
+            return [Hidden("road_m from your own vertices", None, None)]
+        L = float(np.sum(np.hypot(np.diff(xs), np.diff(ys)))) * lab.M / 1000.0
+        return [Hidden("road_m from your own vertices", got.get("road_m"), L, tol_rel=0.002)]
+
+
+TASKS = (GridCell(), NewRoad())

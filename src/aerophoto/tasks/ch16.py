@@ -1,0 +1,273 @@
+"""Graded tasks of chapter 16 (article 000): the densification you can expect, and the contours of your own sheet.
+
+* task 16.1 (:class:`DensificationForecast`): Lysenko's formula for the student's block — H = f·m,
+  b = l·(1 − p_x), m_z, and the smallest standard contour interval that m_z allows;
+* task 16.2 (:class:`SheetCheckPoints`): the check points of the student's own 1:2000 sheet of the
+  virtual site, with the heights of a regular DEM and of the same DEM with structural lines — the
+  RMS errors of both, the mean error and the share within 15 cm, as the article judged its DEMs.
+
+The variant's data
+------------------
+The block of task 16.1 (:func:`block_of`): K = 4 + (i mod 4) strips of n_s = 8 + (i mod 5) photos of
+the student's camera (f = 100 + 10i mm, 1:m with m = 12 000 + 100i, 18 cm frame, p_x = 60 %), the
+article's m = 16 points per photo and s = 3 images per point, and r = 3K control points (both ends and
+the middle of every strip).  The guide's scheme makes H = f·m grow from 1.2 km (i = 0) to 23.9 km
+(i = 99); the formula holds at any height and the interval it allows grows with it — no clamping.
+
+The sheet of task 16.2 (:func:`sheet_of`): the 1 km × 1 km square with its south-west corner at
+X = 100 + 88i m, Y = 2500 + 250·(i mod 7) m on the site (every variant its own, all on the hills
+north of the river); the regular grid's step is the article's 7 mm on the student's photo,
+d = 0.007·m metres (84–153 m); the node heights carry the article's measured densification error,
+12 cm RMS, drawn with the seed 1000 + i; 40 check points spread at random (seed i) over the sheet.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from .. import dem
+from .. import geometry as g
+from .base import Answer, Hidden, Task, submitted_number
+
+__all__ = ["MP_MM", "POINTS_PER_PHOTO", "IMAGES_PER_POINT", "MEAN_RATIO", "MZ_SHEET_M", "N_CHECK", "TOL_15_M",
+           "Block", "block_of", "sheet_of", "SheetData", "sheet_data", "DensificationForecast",
+           "SheetCheckPoints", "TASKS"]
+
+#: the measurement-error term of Lysenko's formula, mm (the article's "0,25" read as 0.025 mm)
+MP_MM = 0.025
+POINTS_PER_PHOTO = 16
+IMAGES_PER_POINT = 3
+#: the article's requirement: mean contour error 15 cm for h = 0.5 m, i.e. 0.3·h
+MEAN_RATIO = 0.3
+#: the node heights' error of task 16.2: the article's measured densification, m
+MZ_SHEET_M = 0.12
+N_CHECK = 40
+#: the article's 15 cm
+TOL_15_M = 0.15
+
+
+@dataclass(frozen=True)
+class Block:
+    """The student's block for Lysenko's formula (task 16.1).
+
+    Attributes
+    ----------
+    f_mm, m : the camera's focal length (mm) and the photo scale denominator
+    frame_mm, px_percent : frame side l (mm) and forward overlap p_x (%)
+    strips, per_strip : K and n_s
+    n, points_per_photo, images_per_point, r : Lysenko's n, m, s, r
+    mp_mm : the measurement-error term m_p, mm
+    """
+
+    f_mm: float
+    m: float
+    frame_mm: float
+    px_percent: float
+    strips: int
+    per_strip: int
+    n: int
+    points_per_photo: int
+    images_per_point: int
+    r: int
+    mp_mm: float
+
+    @property
+    def H_m(self) -> float:
+        """H = f·m, m."""
+        return g.flying_height_m(self.f_mm, self.m)
+
+    @property
+    def b_mm(self) -> float:
+        """b = l·(1 − p_x/100), mm."""
+        return self.frame_mm * (1.0 - self.px_percent / 100.0)
+
+    @property
+    def mz_m(self) -> float:
+        """Lysenko's m_z, m."""
+        return dem.lysenko_mz_m(self.H_m, self.b_mm, self.mp_mm, self.n, self.points_per_photo,
+                                self.images_per_point, self.r)
+
+    def table(self) -> pd.DataFrame:
+        rows = [("focal length f", "mm", self.f_mm), ("photo scale 1:m", "", f"1:{self.m:.0f}"),
+                ("frame l", "mm", self.frame_mm), ("forward overlap p_x", "%", self.px_percent),
+                ("strips K × photos per strip", "", f"{self.strips} × {self.per_strip}"),
+                ("photos in the block n", "", self.n), ("points per photo m", "", self.points_per_photo),
+                ("images per point s", "", self.images_per_point), ("control points r", "", self.r),
+                ("measurement-error term m_p", "mm", self.mp_mm)]
+        return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
+
+
+def block_of(v) -> Block:
+    """Task 16.1's block for variant ``v`` (see the module notes)."""
+    i = int(v.i)
+    K, ns = 4 + i % 4, 8 + i % 5
+    return Block(float(v.f_mm), float(v.m), float(v.frame_mm), float(v.px_percent), K, ns, K * ns,
+                 POINTS_PER_PHOTO, IMAGES_PER_POINT, 3 * K, MP_MM)
+
+
+def sheet_of(v) -> dem.Sheet:
+    """The student's 1 km sheet of the site (see the module notes)."""
+    i = int(v.i)
+    return dem.Sheet(100.0 + 88.0 * i, 2500.0 + 250.0 * (i % 7), 1000.0)
+
+
+@dataclass(frozen=True, eq=False)
+class SheetData:
+    """Task 16.2's data: the sheet, its DEMs and the check points (the reference solution's side).
+
+    Attributes
+    ----------
+    sheet : :class:`aerophoto.dem.Sheet`
+    spacing_m : the regular grid's step d, m
+    grid, lines_dem : the regular DEM and the same with structural lines (:class:`aerophoto.dem.DEM`)
+    points : DataFrame — X_m, Y_m, Z_geod_m (true), Z_grid_m, Z_lines_m (heights read from the DEMs)
+    """
+
+    sheet: dem.Sheet
+    spacing_m: float
+    grid: dem.DEM
+    lines_dem: dem.DEM
+    points: pd.DataFrame
+
+    def errors(self, which: str) -> np.ndarray:
+        col = {"grid": "Z_grid_m", "lines": "Z_lines_m"}[which]
+        return (self.points[col] - self.points["Z_geod_m"]).to_numpy()
+
+
+@functools.lru_cache(maxsize=8)
+def _sheet_data(i: int, f_mm: float, m: float) -> SheetData:
+    from ..site import get_site
+
+    site = get_site()
+    sheet = dem.Sheet(100.0 + 88.0 * i, 2500.0 + 250.0 * (i % 7), 1000.0)
+    d = 0.007 * m
+    lines = dem.structural_lines(site, sheet)
+    grid = dem.grid_dem(site, sheet, d, mz_m=MZ_SHEET_M, seed=1000 + i)
+    with_lines = dem.grid_with_lines(site, sheet, d, lines, mz_m=MZ_SHEET_M, seed=1000 + i)
+    rng = np.random.default_rng(i)
+    P = np.column_stack([sheet.X0_m + 20.0 + 960.0 * rng.random(N_CHECK),
+                         sheet.Y0_m + 20.0 + 960.0 * rng.random(N_CHECK)]).round(1)
+    Zt = np.asarray(site.height(P[:, 0], P[:, 1]), dtype=float)
+    pts = pd.DataFrame({"X_m": P[:, 0], "Y_m": P[:, 1], "Z_geod_m": Zt.round(3),
+                        "Z_grid_m": grid.height(P[:, 0], P[:, 1]).round(3),
+                        "Z_lines_m": with_lines.height(P[:, 0], P[:, 1]).round(3)},
+                       index=pd.Index(np.arange(1, N_CHECK + 1), name="point"))
+    return SheetData(sheet, d, grid, with_lines, pts)
+
+
+def sheet_data(v) -> SheetData:
+    """Task 16.2's data for variant ``v`` (cached)."""
+    return _sheet_data(int(v.i), float(v.f_mm), float(v.m))
+
+
+@dataclass(frozen=True)
+class DensificationForecast(Task):
+    """Task 16.1: H, b, Lysenko's m_z for the student's block, and the contour interval it allows."""
+
+    id = "task-16-1"
+    title = "How well will your block densify the heights?"
+    points = 3
+    spec = (
+        Answer("H_m", "flying height H = f·m, m", unit="m"),
+        Answer("b_mm", "photo base b = l·(1 − p_x), mm", unit="mm"),
+        Answer("mz_m", "Lysenko's m_z, m", unit="m"),
+        Answer("h_m", "smallest standard contour interval h with m_z/1.25 ≤ 0.3·h, m", unit="m", tol_abs=1e-6),
+    )
+
+    def inputs(self, v) -> Block:
+        return block_of(v)
+
+    def answers(self, v) -> dict:
+        b = block_of(v)
+        return {"H_m": b.H_m, "b_mm": b.b_mm, "mz_m": b.mz_m,
+                "h_m": dem.standard_interval(b.mz_m / 1.25, MEAN_RATIO)}
+
+    def slips(self, v) -> dict:
+        b = block_of(v)
+        root = dem.lysenko_ratio(b.n, b.points_per_photo, b.images_per_point, b.r)
+        two_r = math.sqrt(3 * (2 * b.n * b.images_per_point + b.points_per_photo * b.n - 2 * b.r)
+                          / (2 * b.points_per_photo * b.n * b.images_per_point))
+        return {
+            "H_m": {"f is in millimetres: H = f/1000 · m gives metres": b.f_mm * b.m},
+            "b_mm": {"the base is the part of the frame not overlapped: l·(1 − p_x/100)": b.frame_mm},
+            "mz_m": {"m_p is 0.025 mm — the printed 0,25 lost a zero (see the reading above)":
+                     0.25 * b.H_m / b.b_mm * root,
+                     "the book reads “zr” as s·r, not 2r": b.mp_mm * b.H_m / b.b_mm * two_r,
+                     "the whole frame is not the base: b = l·(1 − p_x)": b.mp_mm * b.H_m / b.frame_mm * root},
+            "h_m": {"compare the mean error m_z/1.25, not m_z itself, with 0.3·h":
+                    dem.standard_interval(min(b.mz_m, 30.0), MEAN_RATIO)},
+        }
+
+    def hidden(self, v, got) -> list:
+        b = block_of(v)
+        root = dem.lysenko_ratio(b.n, b.points_per_photo, b.images_per_point, b.r)
+        H, base = submitted_number(got.get("H_m")), submitted_number(got.get("b_mm"))
+        expected = None if H is None or base is None or base <= 0 else b.mp_mm * H / base * root
+        out = [Hidden("mz_m from your H and b", got.get("mz_m") if expected is not None else None, expected,
+                      tol_rel=0.005)]
+        mz = submitted_number(got.get("mz_m"))
+        ok = mz is not None and 0 <= mz / 1.25 <= MEAN_RATIO * dem.STANDARD_INTERVALS_M[-1]
+        out.append(Hidden("h_m from your m_z", got.get("h_m") if ok else None,
+                          dem.standard_interval(mz / 1.25, MEAN_RATIO) if ok else None, tol_abs=1e-6))
+        return out
+
+
+@dataclass(frozen=True)
+class SheetCheckPoints(Task):
+    """Task 16.2: RMS errors of the regular and the structural-line DEM at the sheet's check points."""
+
+    id = "task-16-2"
+    title = "Check points of your sheet"
+    points = 3
+    cross_variant = False  # each variant's table is its own; no other variant's numbers to recognise
+    spec = (
+        Answer("m_grid_m", "RMS error of the regular DEM at the check points, m", unit="m", tol_abs=0.0005),
+        Answer("m_lines_m", "RMS error of the DEM with structural lines, m", unit="m", tol_abs=0.0005),
+        Answer("v_lines_m", "mean error Σ|Δ|/n of the DEM with structural lines, m", unit="m", tol_abs=0.0005),
+        Answer("share_pct", "share of its errors within 15 cm, %", unit="%", tol_abs=0.01),
+    )
+
+    def inputs(self, v) -> pd.DataFrame:
+        return sheet_data(v).points.copy()
+
+    def answers(self, v) -> dict:
+        d = sheet_data(v)
+        eg, el = d.errors("grid"), d.errors("lines")
+        return {"m_grid_m": float(np.sqrt(np.mean(eg**2))), "m_lines_m": float(np.sqrt(np.mean(el**2))),
+                "v_lines_m": float(np.mean(np.abs(el))),
+                "share_pct": float(100.0 * np.count_nonzero(np.abs(el) <= TOL_15_M + 1e-9) / len(el))}
+
+    def slips(self, v) -> dict:
+        d = sheet_data(v)
+        eg, el = d.errors("grid"), d.errors("lines")
+        n = len(el)
+        return {
+            "m_grid_m": {"that is the mean error Σ|Δ|/n; the RMS error is √(ΣΔ²/n)": float(np.mean(np.abs(eg))),
+                         "divide ΣΔ² by n, not n − 1 (the true heights are known)":
+                         float(np.sqrt(np.sum(eg**2) / (n - 1)))},
+            "m_lines_m": {"that is the mean error Σ|Δ|/n; the RMS error is √(ΣΔ²/n)": float(np.mean(np.abs(el))),
+                          "divide ΣΔ² by n, not n − 1 (the true heights are known)":
+                          float(np.sqrt(np.sum(el**2) / (n - 1)))},
+            "v_lines_m": {"the mean error takes |Δ|: with signs the errors cancel": float(abs(np.mean(el)))},
+            "share_pct": {"count |Δ| ≤ 0.15 m, of the DEM with structural lines": float(
+                100.0 * np.count_nonzero(np.abs(eg) <= TOL_15_M + 1e-9) / n)},
+        }
+
+    def hidden(self, v, got) -> list:
+        # the share is a whole number of the 40 points; the mean error can never exceed the RMS error
+        share = submitted_number(got.get("share_pct"))
+        k = None if share is None else share * N_CHECK / 100.0
+        out = [Hidden("share_pct is a count of the 40 points", k, round(k) if k is not None else None,
+                      tol_abs=1e-6)]
+        mv, mr = submitted_number(got.get("v_lines_m")), submitted_number(got.get("m_lines_m"))
+        ratio = None if mv is None or mr is None or mr <= 0 else mv / mr
+        out.append(Hidden("v_lines_m / m_lines_m between 0.5 and 1", ratio, 0.75, tol_abs=0.25))
+        return out
+
+
+TASKS = (DensificationForecast(), SheetCheckPoints())

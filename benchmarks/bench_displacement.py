@@ -10,6 +10,10 @@ Both are driven through the same cycle of slider changes (f, 1:m, α, λ, relief
   usually sends a smaller diff).
 * ``naive``: an ``interact``-style callback that builds a new figure, draws the grid and the three quivers and
   renders a PNG into memory each time (what ``ipywidgets.interact`` + ``%matplotlib inline`` does).
+
+The students' lab sheets and the measuring tool (issue 12) are timed too (``lab``): designing the sheets of all
+100 variants, rendering one student's photo (1024 px) and plan, building the two tools, and one click (the
+reading recorded, the table and the code lines refreshed, the figure drawn: what the kernel does per click).
 """
 
 from __future__ import annotations
@@ -82,7 +86,58 @@ def run(quick: bool = False) -> dict:
 
     # both ways run under the book's style (aerophoto.setup applies it in every notebook)
     with plots.style_context():
-        return _run(quick)
+        out = _run(quick)
+        out["lab"] = _lab(quick)
+        return out
+
+
+def _lab(quick: bool) -> dict:
+    """The lab sheets of chapters 03–04 and the measuring tool: build times and the kernel side of a click."""
+    from _timing import measure
+
+    from aerophoto.demos.measure import photo_tool, plan_tool
+    from aerophoto.site import get_site
+    from aerophoto.tasks import displacement_lab as lab
+
+    t0 = time.perf_counter()
+    get_site()
+    t_site = time.perf_counter() - t0
+    lab.relief_sheet.cache_clear()
+    lab.tilt_sheet.cache_clear()
+    t0 = time.perf_counter()
+    for i in range(100):
+        lab.relief_sheet(i)
+        lab.tilt_sheet(i)
+    t_sheets = time.perf_counter() - t0
+    sheet = lab.relief_sheet(57)
+    t_photo = measure(lambda: (lab.photo_of.cache_clear(), sheet.photo()), 2 if quick else 4, warmup=1)
+    t_plan = measure(lambda: (lab.plan_of.cache_clear(), sheet.plan()), 2 if quick else 4, warmup=1)
+    t_tool = measure(lambda: photo_tool(sheet).close(), 2 if quick else 4, warmup=1)
+    tool = photo_tool(sheet)
+    tool.widget()
+    canvas = tool.fig.canvas
+    canvas.draw_idle = lambda *a, **k: None  # ipympl only schedules; the forced draw below counts
+    marks = list(sheet.marks("photo").values())
+
+    def click(k):
+        x, y = marks[k % len(marks)]
+        tool.select(sheet.names[k % len(marks)])
+        tool.click(x + 0.03, y - 0.02)
+        canvas.draw()
+
+    clicks = measure(click, 10 if quick else 30, args_for=lambda k: (k,))
+    tool.close()
+    plan = plan_tool(sheet)
+    plan.close()
+    return {
+        "site_build_s": round(t_site, 2),
+        "sheets_all_100_variants_both_kinds_s": round(t_sheets, 2),
+        "render_photo_1024px": t_photo,
+        "plan_image": t_plan,
+        "photo_tool_build": t_tool,
+        "click_reading_table_draw": clicks,
+        "target": "click p95 ≤ 100 ms (kernel side)",
+    }
 
 
 def _run(quick: bool) -> dict:

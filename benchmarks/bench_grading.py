@@ -105,10 +105,10 @@ def run(quick: bool = False) -> dict:
         book = top / "notebooks"
         book.mkdir()
         nbtools.write(strip_solutions(nbtools.read(ROOT / "notebooks" / f"{A}.ipynb"))[0], book / f"{A}.ipynb")
-        release = None
-
         c0 = course.Course(top / "course", book, out=lambda s: None)
+        t0 = time.perf_counter()
         c0.generate()
+        t_generate_first = time.perf_counter() - t0
         release = nbformat.read(str(c0.path("release", A)), as_version=4)
 
         c, results, t_class, t_generate, t_import = _grade_class(top, book, release, n, unsafe=False)
@@ -158,7 +158,8 @@ def run(quick: bool = False) -> dict:
         "autograde_class_no_sandbox_s": round(t_class_u, 2),
         "kernel_start_one_cell": starts,
         "trusted_check_per_notebook": summarize(trusted),
-        "generate_s": round(t_generate, 2),
+        "generate_s": round(t_generate_first, 2),
+        "generate_unchanged_s": round(t_generate, 2),
         "import_s": round(t_import, 3),
         "gradebook_export_s": round(t_gradebook, 3),
         "feedback_class_s": round(t_feedback, 2),

@@ -17,7 +17,15 @@ Measured (never asserted):
   artists, refresh the tables and draw the figure once (under the Agg backend ``draw_idle`` draws at
   once, so this is everything the kernel does for a slider event; ipympl then only sends the image);
 * ``demo_update_full`` — the same at full resolution (what follows when the slider rests);
-* ``quality_demo_update`` — one slider event of the chapter 02 rough-mosaic demo, for comparison.
+* ``demo_update_preview_largest`` — the same at the largest variant's camera and scale (f = 1090 mm,
+  1:21 900), the demo's four photos;
+* ``quality_demo_update`` — one slider event of the chapter 02 rough-mosaic demo, for comparison;
+* the student's own fotoschema (chapter 05's tasks), for the largest variant 99 (and variant 00 beside it):
+  ``own_fotoschema`` (fly, assemble, the details along the cuts — uncached), ``own_readings_all_variants``
+  (both tasks' reference answers for all 100 variants, uncached: what the grader builds),
+  ``own_prints_1024`` (rendering the four prints), ``own_glue_5px`` (gluing them at 5 px/mm),
+  ``own_sheet_export`` (the A3 sheet figure written as PNG at 150 dpi and PDF) and the sheet's size
+  (``own_sheet_size``: pixels, paper, megabytes of the raster and the files).
 
 Target: a preview update ≤ 250 ms at p95.
 """
@@ -81,9 +89,70 @@ def run(quick: bool = False) -> dict:
 
     from aerophoto.demos.quality import QualityDemo
 
+    d2 = FotoschemaDemo(f_mm=1090, m=21900)
+    out["demo_update_preview_largest"] = measure(lambda r: d2.set(preview=True, relief_m=r), max(3, n // 4),
+                                                 warmup=1, args_for=lambda i: (reliefs[i + 50],))
+    d2.close()
+    out.update(_own_sheet(quick))
+
     qd = QualityDemo()
     crabs = [-6.0 + 0.5 * (i % 24) for i in range(100)]
     out["quality_demo_update"] = measure(lambda c: qd.set(crab_deg=c), 8 if quick else 30, warmup=2,
                                          args_for=lambda i: (crabs[i],))
     qd.close()
+    return out
+
+
+def _own_sheet(quick: bool) -> dict:
+    """The student's own fotoschema and its finished sheet, for the largest variant (99) and the first (00)."""
+    import tempfile
+    import time
+    from pathlib import Path
+
+    from aerophoto import mosaic as mo
+    from aerophoto.demos import fotoschema as F
+    from aerophoto.tasks import _own, ch05
+    from aerophoto.variants import variant_for_index
+
+    out = {}
+    v99, v00 = variant_for_index(99), variant_for_index(0)
+
+    def uncached_fotoschema(v):
+        ch05._own_fotoschema.cache_clear()
+        _own._own_strip.cache_clear()
+        return ch05.own_fotoschema(v)
+
+    out["own_fotoschema_v99"] = measure(lambda: uncached_fotoschema(v99), 2 if quick else 5, warmup=1)
+    out["own_fotoschema_v00"] = measure(lambda: uncached_fotoschema(v00), 2 if quick else 5, warmup=1)
+
+    def all_readings():
+        ch05._own_fotoschema.cache_clear()
+        _own._own_strip.cache_clear()
+        ch05._seam_readings.cache_clear()
+        ch05._scale_readings.cache_clear()
+        for i in range(100):
+            ch05.answers_of(variant_for_index(i))
+
+    out["own_readings_all_variants"] = measure(all_readings, 1, warmup=0)
+    own = ch05.own_fotoschema(v99)
+    F._own_prints.cache_clear()
+    out["own_prints_1024_v99"] = measure(lambda: (F._own_prints.cache_clear(), F.own_prints(v99)), 1 if quick else 3,
+                                         warmup=0)
+    prints = list(F.own_prints(v99))
+    out["own_glue_5px_v99"] = measure(lambda: mo.sheet_raster(own.fs, own.site, 5.0, photos=prints),
+                                      2 if quick else 5, warmup=1)
+    folder = Path(tempfile.mkdtemp(prefix="bench-sheet-"))
+    k = iter(range(1000))
+    t0 = time.perf_counter()
+    fig = F.student_sheet(v99, "Benchmark B.")
+    build_s = time.perf_counter() - t0
+    out["own_sheet_export_v99"] = measure(lambda: F.export_sheet(fig, folder, f"sheet{next(k)}"), 1 if quick else 3,
+                                          warmup=0)
+    image, _extent = F.own_sheet_image(v99)
+    files = F.export_sheet(fig, folder, "final")
+    out["own_sheet_size"] = {
+        "raster_px": list(image.shape), "raster_MB": round(image.nbytes / 1e6, 1), "paper": fig.aerophoto_paper,
+        "sheet_mm": [round(x, 1) for x in F.sheet_size_mm(own.fs)], "figure_build_ms": round(build_s * 1000, 1),
+        "png_MB": round(files["png"].stat().st_size / 1e6, 2), "pdf_MB": round(files["pdf"].stat().st_size / 1e6, 2),
+    }
     return out

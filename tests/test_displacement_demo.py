@@ -175,3 +175,36 @@ def test_static_section_figures():
     assert {"o", "n", "c", "O", "N", "C", "S"} <= texts
     img = plots.static(relief_section_figure(), alt="a vertical cross-section")
     assert img.png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# --------------------------------------------------------------------------- the variant policy (issue 12)
+def test_the_demos_open_on_the_guides_example_and_reach_every_variant():
+    from aerophoto.variants import variant_for_index
+
+    r, t = ReliefDemo(), TiltDemo()
+    # variant 00, the guide's worked example: f = 100 mm, 1:12 000, λ = −60° (the relief demo starts vertical)
+    assert (t.values["f_mm"], t.values["m"], t.values["alpha_deg"], t.values["lambda_deg"]) == (100, 12000, 3.0, -60)
+    assert (r.values["f_mm"], r.values["m"], r.values["lambda_deg"]) == (100, 12000, -60)
+    for demo in (r, t):
+        p = demo._params
+        for i in range(100):
+            v = variant_for_index(i)
+            assert p["f_mm"].lo <= v.f_mm <= p["f_mm"].hi and p["m"].lo <= v.m <= p["m"].hi
+            assert p["lambda_deg"].lo <= v.lambda_deg <= p["lambda_deg"].hi
+        assert p["f_mm"].hi >= 1100 and p["m"].hi >= 22000
+    # the largest variant is shown as it is: H = f·m = 1.09 m × 21 900 = 23 871 m, nothing clamped
+    t.set(f_mm=1090, m=21900)
+    assert t.result.field.summary()["H_m"] == pytest.approx(23871.0)
+    r.close()
+    t.close()
+
+
+@pytest.mark.parametrize("notebook, cell, cls", [("03_relief_displacement.ipynb", "demo-relief", "ReliefDemo"),
+                                                 ("04_tilt_displacement.ipynb", "demo-tilt", "TiltDemo")])
+def test_the_notebooks_build_their_demo_without_the_students_variant(notebook, cell, cls):
+    from conftest import NOTEBOOKS
+
+    from aerophoto import nbtools
+
+    src = nbtools.find_cell(nbtools.read(NOTEBOOKS / notebook), cell)[1].source
+    assert src.splitlines()[0] == f"demo = {cls}()" and "v." not in src

@@ -373,7 +373,7 @@ def test_demo_set_moves_artists(demo):
     assert demo.n_updates == n0 + 1
     assert p.px_percent == 70 and p.m == 10000
     after = np.array(demo.view.centres.get_offsets())
-    assert len(after) == p.N != len(before_centres)
+    assert len(after) == demo.view.shown != len(before_centres) and demo.view.shown <= p.N
     assert demo.view.ax_plan.get_title() != before_title and str(p.K) in demo.view.ax_plan.get_title()
     assert not np.allclose(demo.view.z_fp.get_paths()[0].vertices[:4], np.array(before_fp)[:4])
     assert f"{p.N:,}".replace(",", " ") in demo.table.value

@@ -397,6 +397,8 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
     dict(f_mm=70, m=16000, px_percent=56, alpha_max_deg=5, relief_m=200, seed=20),
     dict(f_mm=350, m=8000, px_percent=80, alpha_max_deg=5, relief_m=0, seed=0, cut_shape="zigzag"),
     dict(f_mm=70, m=16000, px_percent=56, alpha_max_deg=5, relief_m=200, seed=7, cut_shape="curved"),
+    dict(f_mm=1100, m=22000, px_percent=56, alpha_max_deg=0, relief_m=200, seed=3),
+    dict(f_mm=70, m=22000, px_percent=80, alpha_max_deg=5, relief_m=0, seed=9),
 ])
 def test_demo_slider_extremes_work(values):
     from aerophoto.demos.fotoschema import FotoschemaDemo
@@ -404,6 +406,32 @@ def test_demo_slider_extremes_work(values):
     d = FotoschemaDemo()
     d.set(preview=True, **values)
     assert d.result.fs.dI_mm.size > 0 and np.isfinite(d.result.fs.scale.m)
+    assert len(d.result.fs.poses) == 4  # the guide's four prints, at every scale
+    d.close()
+
+
+def test_demo_opens_on_variant_00_and_reaches_every_variant():
+    from aerophoto.demos.fotoschema import FotoschemaDemo
+    from aerophoto.variants import variant_for_index
+
+    p = {q.name: q for q in FotoschemaDemo.params}
+    v0, v99 = variant_for_index(0), variant_for_index(99)
+    assert (p["f_mm"].default, p["m"].default) == (v0.f_mm, v0.m)
+    for v in (v0, variant_for_index(57), v99):  # every variant's f and m is a slider position: nothing clamped
+        for name in ("f_mm", "m"):
+            q, x = p[name], getattr(v, name)
+            assert q.lo <= x <= q.hi and abs((x - q.lo) / q.step - round((x - q.lo) / q.step)) < 1e-9
+
+
+def test_demo_says_when_it_flies_a_smaller_tilt_than_asked():
+    from aerophoto.demos.fotoschema import FotoschemaDemo
+
+    d = FotoschemaDemo()
+    assert d.result.note == "" and d.result.alpha_max_deg == 1.0
+    d.set(preview=True, f_mm=1100, m=22000, alpha_max_deg=5)
+    assert 0.5 < d.result.alpha_max_deg < 1.5  # H = 24.2 km: about 1.1° keeps the four photos on the site
+    assert "reduced from 5°" in d.result.note and "reduced from 5°" in d.table.value
+    assert max(s.pose.alpha_deg for s in d.result.strip.shots) <= d.result.alpha_max_deg + 1e-9
     d.close()
 
 
@@ -425,6 +453,8 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
 
     from aerophoto.demos.fotoschema import PAPER_MM, export_sheet, sheet_figure
 
+    from aerophoto.demos.fotoschema import TRIM_MM, sheet_size_mm
+
     fs, gr = _fotoschema(relief_m=30.0)
     img, ext = mo.sheet_raster(fs, gr, 1.0)
     fig = sheet_figure(fs, img, ext, made_by="Student S.", checked_by="Teacher T.", year=2025)
@@ -444,11 +474,20 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     assert pdf.startswith(b"%PDF-") and pdf.rstrip().endswith(b"%%EOF")
     box = re.search(rb"/MediaBox \[\s*0 0 ([\d.]+) ([\d.]+)\s*\]", pdf)
     assert box and float(box.group(1)) == pytest.approx(w_mm / 25.4 * 72, abs=0.5)
-    # the mosaic is drawn at true size: its axes span the sheet's millimetres on the paper
+    # the mosaic is drawn at true size: its axes span the sheet's millimetres on the paper, trimmed 1 cm outside
+    # the working-area lines (63 mm from o across the strip at p_y = 30 %), which are drawn in ink
     ax = fig.axes[0]
     x0, x1, y0, y1 = fs.extent_mm
-    assert ax.get_position().width * w_mm == pytest.approx(x1 - x0, rel=1e-6)
-    assert ax.get_position().height * h_mm == pytest.approx(y1 - y0, rel=1e-6)
+    w, h = sheet_size_mm(fs)
+    assert (w, h) == (pytest.approx(x1 - x0), pytest.approx(2 * (63.0 + TRIM_MM), abs=0.5))
+    assert ax.get_position().width * w_mm == pytest.approx(w, rel=1e-6)
+    assert ax.get_position().height * h_mm == pytest.approx(h, rel=1e-6)
+    assert ax.get_ylim()[1] - ax.get_ylim()[0] == pytest.approx(h)
+    inked = [ln.get_ydata() for ln in ax.lines]
+    assert len(inked) == 2 and all(np.all(np.abs(np.abs(y) - 63.0) < 1.0) for y in inked)
+    # signed with the scale the student computed, when given
+    fig2 = sheet_figure(fs, img, ext, scale_m=12345.0)
+    assert "М 1:12 300" in " ".join(t.get_text() for t in fig2.texts)
     # never overwrite silently
     with pytest.raises(FileExistsError, match="sheet.png"):
         export_sheet(fig, tmp_path / "out", "sheet")
@@ -458,3 +497,53 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     with pytest.raises(ValueError, match="stem"):
         export_sheet(fig, tmp_path, "../evil")
 
+
+
+# --------------------------------------------------------------------------- what the student measures
+def test_working_area_lines_run_along_the_middle_of_the_side_overlaps():
+    fs = mo.assemble(sim.fly_strip(g.Camera(100), 12000, 60, 4))
+    up, low = fs.working_area_lines()
+    assert np.allclose(up[:, 1], 63.0) and np.allclose(low[:, 1], -63.0)  # 90 − 30 %·180/2
+    assert up[0, 0] == pytest.approx(fs.extent_mm[0]) and up[1, 0] == pytest.approx(fs.extent_mm[1])
+    assert np.allclose(fs.working_area_lines(20.0)[:, :, 1], [[72.0, 72.0], [-72.0, -72.0]])
+    with pytest.raises(ValueError, match="py_percent"):
+        fs.working_area_lines(100.0)
+
+
+def test_seam_details_give_the_guides_signs():
+    # a right print moved along the strip by +1 mm puts the prick 1 mm nearer the cut than the contour:
+    # ΔI = contour − prick = +1, a duplicate; moved back by 0.5 mm, the contour lies between cut and prick: −0.5
+    import dataclasses
+
+    fs = mo.assemble(sim.fly_strip(g.Camera(100), 12000, 60, 2))
+    for shift, expected in ((+1.0, +1.0), (-0.5, -0.5)):
+        moved = mo.Similarity2D(1, 0, shift, 0).compose(fs.to_sheet[1])
+        d = mo.seam_details(dataclasses.replace(fs, to_sheet=(fs.to_sheet[0], moved)), g.FlatTerrain(0.0),
+                            inset_mm=3.0)
+        assert d.dI_mm == pytest.approx(np.full(len(d.dI_mm), expected), abs=1e-9)
+        assert d.contour_from_cut_mm == pytest.approx(np.full(len(d.dI_mm), 3.0), abs=1e-9)
+        assert np.all((d.prick_from_cut_mm < d.contour_from_cut_mm) == (expected > 0))
+        assert list(d.seam) == [0] * len(d.dI_mm) and list(d.point) == list(range(1, len(d.dI_mm) + 1))
+
+
+def test_seam_details_agree_with_the_mismatch_at_the_cut():
+    # vertical photos over a valley along the strip: a detail 3 mm from the cut lies at the cut's height, so the
+    # prick's offset is the mismatch the cut itself shows (duplicates up the valley sides, guide §6 step 2)
+    strip = sim.fly_strip(g.Camera(100), 12000, 60, 4, ground_Z_m=40.0)
+    fs = mo.assemble(strip, Valley())
+    d = mo.seam_details(fs, Valley(), inset_mm=3.0)
+    assert d.dI_mm.shape == fs.dI_mm.shape and fs.dI_mm.max() > 0.3
+    # (the cut's ΔI converts ground metres with the design scale 1:m; the detail's is sheet mm, at the local
+    # scale of ground up to 120 m above the mean: they agree to that few per cent)
+    assert np.all(np.abs(d.dI_mm - fs.dI_mm) <= 0.01 + 0.05 * np.abs(fs.dI_mm))
+    # the details lie on the left piece, the pricks where the right print shows the same ground point
+    for k, (s_, A, B, G) in enumerate(zip(d.seam, d.contour_mm, d.prick_mm, d.ground_m)):
+        assert fs.photo_index(A) == s_
+        back = fs.to_sheet[s_ + 1].inverse().apply(B)
+        assert np.allclose(g.ground_to_photo(fs.camera, fs.poses[s_ + 1], G), back, atol=1e-6)
+    inset = np.linspace(2.0, 5.0, fs.dI_mm.size)
+    assert np.allclose(mo.seam_details(fs, Valley(), inset_mm=inset).contour_from_cut_mm, inset, atol=1e-6)
+    with pytest.raises(ValueError, match="inset_mm"):
+        mo.seam_details(fs, Valley(), inset_mm=[1.0, 2.0])
+    with pytest.raises(ValueError, match="inset_mm"):
+        mo.seam_details(fs, Valley(), inset_mm=0.0)

@@ -15,7 +15,8 @@ from nbclient import NotebookClient
 from conftest import all_notebooks
 
 NOTEBOOKS = all_notebooks()
-IDS = [p.stem for p in NOTEBOOKS]
+IDS = [p.relative_to(p.parents[1] if p.parent.name == "lectures" else p.parent).with_suffix("").as_posix()
+       for p in NOTEBOOKS]  # a lecture page: "lectures/01_flight_planning"
 
 
 def test_there_are_notebooks():

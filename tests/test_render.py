@@ -1,4 +1,4 @@
-"""Rendered photos are exact central projections of the site's DEM and texture."""
+"""Rendered photos are exact central projections of the site's DEM and texture — and of the objects standing on it."""
 
 from dataclasses import replace
 
@@ -50,7 +50,7 @@ def test_pixel_convention(hilly):
 @pytest.mark.parametrize("k", range(len(POSES)))
 def test_every_pixel_is_the_ray_dem_intersection_and_samples_the_texture(hilly, k):
     pose = POSES[k]
-    ph = R.render(hilly, CAM, pose, 192, vignetting=0.0, fiducials=False, keep_ground=True)
+    ph = R.render(hilly, CAM, pose, 192, vignetting=0.0, fiducials=False, keep_ground=True, objects=False)
     G = ph.ground_m.reshape(-1, 3)
     assert ph.valid.all()
     # on the DEM ...
@@ -69,7 +69,7 @@ def test_every_pixel_is_the_ray_dem_intersection_and_samples_the_texture(hilly, 
 
 
 def test_tight_tolerance(hilly):
-    ph = R.render(hilly, CAM, POSES[1], 96, tol_m=1e-6, keep_ground=True)
+    ph = R.render(hilly, CAM, POSES[1], 96, tol_m=1e-6, keep_ground=True, objects=False)
     G = ph.ground_m.reshape(-1, 3)
     assert np.max(np.abs(G[:, 2] - hilly.height(G[:, 0], G[:, 1]))) <= 1e-6
     assert ph.dem_evaluations >= 2
@@ -105,7 +105,7 @@ def test_rendered_marker_lies_on_the_geometric_projection(hilly, k):
     assert len(chosen) >= 4
     marked = _marker_site(hilly, xy[chosen])
     n = 1024  # 0.18 mm pixels: about 2.5 m on the ground, close to the 2 m texels
-    ph = R.render(marked, CAM, pose, n, vignetting=0.0, fiducials=False, level=0)
+    ph = R.render(marked, CAM, pose, n, vignetting=0.0, fiducials=False, level=0, objects=False)
     img = ph.image - 60.0 / 255.0
     H = pose.Z_m - hilly.mean_height_m
     for i in chosen:
@@ -139,7 +139,7 @@ def test_catalogue_points_round_trip(hilly):
 
 def test_vertical_photo_of_flat_ground_has_scale_f_over_H(flat):
     pose = g.Pose.vertical(2000.0, 1500.0, 1200.0, ground_Z_m=120.0, kappa_deg=30.0)
-    ph = R.render(flat, CAM, pose, 128, keep_ground=True)
+    ph = R.render(flat, CAM, pose, 128, keep_ground=True, objects=False)
     G = ph.ground_m
     assert np.allclose(G[..., 2], 120.0)
     ref = g.photo_to_plane(CAM, pose, ph.pixel_centres_mm(), 120.0)
@@ -233,3 +233,178 @@ def test_photo_view_updates_in_place(hilly):
     vis = vis[vis["visible"] & ~vis["control"]]
     assert np.allclose(view.other.get_xdata(), vis["x_mm"]) and not np.array_equal(xa, view.other.get_xdata())
     assert a.value_at([[0.0, 0.0]]).shape == (1,)
+
+
+# --------------------------------------------------------------------------- objects with height
+def test_every_pixel_shows_the_first_surface_on_its_ray(hilly):
+    pose = POSES[1]
+    ph = R.render(hilly, CAM, pose, 192, keep_ground=True)
+    assert ph.objects and ph.surface.shape == (192, 192) and ph.object_id.dtype == np.int32
+    G = ph.ground_m.reshape(-1, 3)
+    sf = ph.surface.ravel()
+    # on the ray through the pixel centre …
+    assert np.allclose(g.ground_to_photo(CAM, pose, G), ph.pixel_centres_mm().reshape(-1, 2), atol=1e-6)
+    # … never below the ground, on the DEM where the ground shows
+    dem = hilly.height(G[:, 0], G[:, 1])
+    assert np.all(G[:, 2] >= dem - 1e-3)
+    assert np.allclose(G[sf == 0, 2], dem[sf == 0], atol=1e-3)
+    assert set(np.unique(sf)) >= {0, 1, 3, 4}  # ground, roofs, crowns, canopy
+    # roofs and crowns seen are the top of the surface there (the DSM); the ground too, except under a crown
+    dsm = hilly.surface_height(G[:, 0], G[:, 1])
+    assert np.allclose(G[sf == 1, 2], dsm[sf == 1], atol=1e-3)
+    crown = sf == 3  # mostly their tops; an oblique ray may meet a crown's side below its top
+    assert np.all(G[crown, 2] <= dsm[crown] + 1e-3) and np.mean(np.abs(G[crown, 2] - dsm[crown]) < 1e-3) > 0.8
+    under = (sf == 0) & (dsm > G[:, 2] + 1e-3)
+    objs = hilly.objects
+    Gu = G[under]
+    k, i = objs.candidates_at(Gu[:, 0], Gu[:, 1])
+    # no house or structure standing on the ground covers such a point (or it is at a wall's foot); the water
+    # tower's tank overhangs the ground, like a crown …
+    poly = (k < objs.n_polyhedra) & (objs.bbox[k, 4] <= Gu[i, 2] + 0.1)
+    from aerophoto.site.objects import hit_ellipsoids, hit_polyhedra
+
+    def covered(dx, dy):
+        S_up = np.column_stack([Gu[i[poly], 0] + dx, Gu[i[poly], 1] + dy, np.full(poly.sum(), 1e4)])
+        return np.isfinite(hit_polyhedra(objs.planes, k[poly], S_up, [0.0, 0.0, -1.0])[0])
+
+    inside = covered(0.0, 0.0)
+    wall = np.zeros_like(inside)
+    for dx, dy in ((0.05, 0), (-0.05, 0), (0, 0.05), (0, -0.05)):
+        wall |= ~covered(dx, dy)
+    assert np.all(~inside | wall)
+    e = k[~poly] - objs.n_polyhedra  # … a crown does: the ground is seen obliquely under it …
+    S_e = np.column_stack([Gu[i[~poly], :2], np.full((~poly).sum(), 1e4)])
+    crowned = np.unique(i[~poly][np.isfinite(hit_ellipsoids(objs.ell_centre[e], objs.ell_radii[e], S_e,
+                                                            [0.0, 0.0, -1.0])[0])])
+    rest = np.setdiff1d(np.arange(under.sum()), crowned)
+    edge = np.zeros(len(rest), bool)  # … or the ray meets a forest column's wall at its very foot
+    for dx, dy in ((0.05, 0), (-0.05, 0), (0, 0.05), (0, -0.05)):
+        edge |= hilly.objects.canopy_at(Gu[rest, 0] + dx, Gu[rest, 1] + dy) == 0
+    assert edge.all()
+    # the canopy: mostly its tops (walls at the forest's edges are below the top of their column)
+    can = sf == 4
+    assert np.mean(np.abs(G[can, 2] - dsm[can]) < 0.1) > 0.5
+    assert np.all(G[can, 2] > dem[can])
+    # the same as trace() finds for those pixel centres
+    sel = np.random.default_rng(0).choice(len(G), 400, replace=False)
+    t = R.trace(hilly, CAM, pose, ph.pixel_centres_mm().reshape(-1, 2)[sel])
+    assert np.allclose(t.XYZ_m, G[sel], atol=0.05) and np.array_equal(t.surface, sf[sel])
+
+
+def test_a_tall_object_leans_by_r_h_over_H():
+    """The mast on a vertical photo: its image runs from the foot's image to the top's, radially, r·h/H long."""
+    site = S.get_site()
+    t = site.objects.table()
+    k = int(t.index[t["kind"] == "mast"][0])
+    X, Y, z0, top = t.loc[k, ["X_m", "Y_m", "ground_Z_m", "top_Z_m"]]
+    H = 1200.0
+    pose = g.Pose(X - 600.0, Y - 350.0, z0 + H)  # the mast some 60 mm from the nadir point
+    n = 1024
+    ph = R.render(site, CAM, pose, n, fiducials=False)
+    foot, tip = ph.project([[X, Y, z0], [X, Y, top]])
+    r_foot, r_tip = np.hypot(*foot), np.hypot(*tip)
+    # geometry: radial from n (= o on a vertical photo), δh = r·h/H with r at the top's image
+    assert foot[0] * tip[1] - foot[1] * tip[0] == pytest.approx(0.0, abs=1e-9)
+    assert r_tip - r_foot == pytest.approx(r_tip * (top - z0) / H, rel=1e-9)
+    # the rendered mast: its pixels reach from the foot's image out to the top's, within a pixel
+    rc = np.argwhere(ph.object_id == k)
+    assert len(rc) > 10
+    xy = ph.pixel_to_mm(rc)
+    u = tip / r_tip
+    along = xy @ u
+    p = ph.pixel_mm
+    assert abs(along.max() - r_tip) < 1.5 * p and abs(along.min() - r_foot) < 1.5 * p
+    assert np.abs(xy @ np.array([-u[1], u[0]])).max() < 2.0 * p  # a thin radial line
+    lean = along.max() - along.min()
+    assert abs(lean - r_tip * (top - z0) / H) < 2.0 * p
+
+
+def test_a_roof_corner_projects_where_geometry_says():
+    """A house's roof: the pixels showing it are the pixel centres inside its projected outline (to a pixel)."""
+    from matplotlib.path import Path
+
+    site = S.get_site()
+    pts = site.object_points
+    roofs = pts[pts["kind"] == "roof corner"]
+    objs = site.objects
+    # a flat-roofed house (four roof corners at one height, no ridge)
+    k = next(int(o) for o, grp in roofs.groupby("object") if len(grp) == 4
+             and (pts[(pts["object"] == o) & (pts["kind"] == "ridge end")]).empty)
+    corners = roofs[roofs["object"] == k][["X_m", "Y_m", "Z_m"]].to_numpy()
+    c = corners.mean(axis=0)
+    pose = g.Pose(c[0], c[1], site.mean_height_m + 400.0)  # the house under the camera: the roof hides nothing
+    n = 2048
+    ph = R.render(site, CAM, pose, n, fiducials=False)
+    xy = ph.project(corners)
+    order = np.argsort(np.arctan2(*(xy - xy.mean(axis=0)).T[::-1]))
+    outline = Path(xy[order])
+    cen = ph.pixel_centres_mm().reshape(-1, 2)
+    r0, c0 = np.floor(ph.mm_to_pixel(xy).min(axis=0)).astype(int) - 3
+    r1, c1 = np.ceil(ph.mm_to_pixel(xy).max(axis=0)).astype(int) + 3
+    rr, cc = np.mgrid[r0:r1, c0:c1]
+    inside = outline.contains_points(cen[(rr * n + cc).ravel()]).reshape(rr.shape)
+    roof = (ph.object_id[r0:r1, c0:c1] == k) & (ph.surface[r0:r1, c0:c1] == 1)
+    differ = inside != roof
+    # where they differ, the pixel centre is within a pixel of the outline
+    p = ph.pixel_mm
+    d = np.array([min(_seg_dist(q, xy[order][j], xy[order][(j + 1) % 4]) for j in range(4))
+                  for q in cen[(rr * n + cc).ravel()][differ.ravel()]])
+    assert inside.sum() > 50 and np.all(d < p)
+
+
+def _seg_dist(q, a, b):
+    d = b - a
+    u = np.clip(np.dot(q - a, d) / np.dot(d, d), 0, 1)
+    return float(np.hypot(*(q - a - u * d)))
+
+
+def test_objects_hide_what_stands_behind_and_under_them():
+    site = S.get_site()
+    cat = site.all_points
+    trees = cat[cat["kind"] == "tree"].iloc[:5]
+    for _, t in trees.iterrows():
+        pose = g.Pose(t["X_m"], t["Y_m"], site.mean_height_m + 1200.0)  # the tree under the camera
+        with_objects = R.render(site, CAM, pose, 32).points(cat).set_index("id")
+        bare = R.render(site, CAM, pose, 32, objects=False).points(cat).set_index("id")
+        assert bare.loc[t["id"], "visible"] and not with_objects.loc[t["id"], "visible"]  # the crown hides its foot
+        top = cat[(cat["kind"] == "tree top") & (np.hypot(cat["X_m"] - t["X_m"], cat["Y_m"] - t["Y_m"]) < 1e-6)]
+        assert with_objects.loc[int(top["id"].iloc[0]), "visible"]  # and its top is seen
+
+
+def test_sun_and_shadows():
+    site = S.get_site()
+    t = site.objects.table()
+    k = int(t.index[t["kind"] == "mast"][0])
+    X, Y, z0, top = t.loc[k, ["X_m", "Y_m", "ground_Z_m", "top_Z_m"]]
+    pose = g.Pose(X, Y, z0 + 800.0)
+    sun = R.Sun(azimuth_deg=225.0, elevation_deg=35.0)
+    ph = R.render(site, CAM, pose, 1024, sun=sun, keep_ground=True, fiducials=False, vignetting=0.0)
+    assert ph.sun == sun and ph.shadow.dtype == bool and ph.shadow.any()
+    plain = R.render(site, CAM, pose, 1024, keep_ground=True, fiducials=False, vignetting=0.0)
+    assert plain.shadow is None and plain.sun is None
+    # the shadow darkens what it falls on to the ambient share of the light
+    gr = (ph.surface == 0) & ph.shadow
+    assert np.allclose(ph.image[gr], plain.image[gr] * R.AMBIENT, atol=1e-5)
+    # the mast's shadow: on the ground to the north-east, as long as h / tg(elevation)
+    G = ph.ground_m
+    near = ph.shadow & (ph.surface == 0) & (np.hypot(G[..., 0] - X, G[..., 1] - Y) < 120.0)
+    d = G[near][:, :2] - [X, Y]
+    assert np.all(d @ [1.0, 1.0] > -3.0)  # away from the sun (north-east)
+    length = np.max(np.hypot(*d.T))
+    assert length == pytest.approx(sun.shadow_length_m(top - z0), abs=2.0)
+    assert sun.shadow_azimuth_deg == 45.0 and np.allclose(sun.direction, [-0.5792, -0.5792, 0.5736], atol=1e-4)
+    for bad, name in ((dict(azimuth_deg=360.0), "azimuth_deg"), (dict(elevation_deg=0.0), "elevation_deg")):
+        with pytest.raises(ValueError, match=name):
+            R.Sun(**bad)
+    with pytest.raises(ValueError, match="sun"):
+        R.render(site, CAM, pose, 32, sun=(225, 35))
+
+
+def test_a_site_without_objects_renders_bare_ground(hilly):
+    from aerophoto.terrain import RescaledRelief
+
+    rr = RescaledRelief(hilly, 100.0)
+    ph = R.render(rr, CAM, POSES[0], 48)
+    assert not ph.objects and ph.surface is None and ph.object_id is None
+    bare = R.render(hilly, CAM, POSES[0], 48, objects=False)
+    assert not bare.objects and bare.surface is None

@@ -534,3 +534,51 @@ def test_importing_has_no_side_effects():
         import aerophoto
 
         aerophoto.triangulation = saved["aerophoto.triangulation"]
+
+
+# --------------------------------------------------------------------------- the student's convention (geodetic)
+@settings(max_examples=40, deadline=None)
+@given(X=st.floats(-1e4, 1e4), Y=st.floats(-1e4, 1e4), th=st.floats(-3.1, 3.1))
+def test_geodetic_round_trips(X, Y, th):
+    G = T.ground_to_geodetic([X, Y])
+    assert G == pytest.approx([T.GEODETIC_ORIGIN_M[0] + Y, T.GEODETIC_ORIGIN_M[1] + X])  # X north, Y east
+    assert T.geodetic_to_ground(G) == pytest.approx([X, Y], abs=1e-6)
+    a = T.direction_to_geodetic_deg(th)
+    assert 0.0 <= a < 360.0
+    assert T.geodetic_to_direction_rad(a) == pytest.approx(th, abs=1e-9)
+
+
+def test_geodetic_directions_read_the_same_formulas():
+    # a ray from the sheet's centre at θ (math) reaches the same point as the swapped ray at α = 90° − θ (geodetic)
+    C = np.array([12.0, -3.0])
+    for th in np.radians([0.0, 30.0, 90.0, 200.0, -45.0]):
+        P = C + 50.0 * np.array([math.cos(th), math.sin(th)])
+        a = math.radians(float(T.direction_to_geodetic_deg(th)))
+        Cg, Pg = T.sheet_to_geodetic(C), T.sheet_to_geodetic(P)
+        assert Cg + 50.0 * np.array([math.cos(a), math.sin(a)]) == pytest.approx(Pg)
+    # so an error triangle is the same in both conventions
+    O = np.array([[0.0, 0.0], [70.0, 1.0], [141.0, -2.0]])
+    A = np.radians([40.0, 91.0, 139.5])
+    _, sides = plane.error_triangle(O, A)
+    _, sides_g = plane.error_triangle(T.sheet_to_geodetic(O), np.radians(T.direction_to_geodetic_deg(A)))
+    assert sides_g == pytest.approx(sides)
+    with pytest.raises(ValueError, match="XY_m"):
+        T.ground_to_geodetic([1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="theta_rad"):
+        T.direction_to_geodetic_deg(float("nan"))
+
+
+def test_tie_points_are_seen_on_all_three_photos_of_every_students_strip():
+    # tilted photos turn against each other: a tie point at x = 0 of its photo, or a catalogue point near it,
+    # may leave a neighbour's frame; the design slides it along the strip and the catalogue must be seen there
+    from aerophoto.tasks import ch06
+    from aerophoto.variants import variant_for_index
+
+    for i in range(100):
+        fs = ch06.lab_strip(variant_for_index(i)).free
+        pts = fs.points
+        for k, kind in enumerate(pts.kinds):
+            if kind == "tie":
+                assert fs.n_rays[k] == 3, (i, pts.names[k])
+            else:
+                assert np.all(np.isfinite(fs.points_mm[k])), (i, pts.names[k])

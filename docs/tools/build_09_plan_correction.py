@@ -15,12 +15,9 @@ PATH = ROOT / "notebooks" / "09_plan_correction.ipynb"
 
 
 def answer_cell(task_id: str):
-    """The answer cell: the task's template lines, then the solution block (for now the package's answers)."""
+    """The answer cell of the student book: the task's template lines only (the reference lives in aerophoto.tasks)."""
     t = tasks.get(task_id)
-    lines = [t.template(), "### BEGIN SOLUTION", f'_ref = aerophoto.tasks.answers("{task_id}", v)']
-    lines += [f'{a.name} = _ref["{a.name}"]' for a in t.spec]
-    lines.append("### END SOLUTION")
-    return nbgrader_answer(code("\n".join(lines), id=f"{task_id}-answer"), f"{task_id}-answer")
+    return nbgrader_answer(code(t.template(), id=f"{task_id}-answer"), f"{task_id}-answer")
 
 
 def check_cell(task_id: str):
@@ -122,13 +119,13 @@ plots.static(pc.transfer_study_figure(),
              alt="Log-log plot of the largest transfer error on the plan against the number of cells per side n "
                  "from 1 to 32, for tilts 1, 3 and 8 degrees. The solid lines of central directions fall with a "
                  "slope of minus two (halving the cells quarters the error) to hundredths of a millimetre; the "
-                 "dashed lines of proportional division stay flat at the error of one cell, from about 0.6 mm "
-                 "at 1 degree to several millimetres at 8 degrees.")
+                 "dashed lines of proportional division stay flat at the error of a single cell, about 0.4 mm "
+                 "at 1 degree, 1.2 mm at 3 degrees and 3 mm at 8 degrees.")
 """, id="figure-study"),
     md("""
-At the guide's tilt of 3° and a 1:10 000 plan, proportional division leaves errors of one to two millimetres on
-the plan — ten to twenty metres on the ground, far more than a plan may carry (article 001 puts the mean error of
-a clear contour point at 0.5 mm). With central directions a 4 × 4 grid is already within a few tenths of a
+At the guide's tilt of 3° and a 1:10 000 plan, proportional division leaves errors of more than a millimetre on
+the plan (1.2 mm here) — twelve metres on the ground, more than a plan may carry (article 001 puts the mean error
+of a clear contour point at 0.5 mm). With central directions a 4 × 4 grid is already within a tenth of a
 millimetre inside the four points, and 8 × 8 within a few hundredths.
 
 ## The plan-correction explorer
@@ -229,8 +226,9 @@ directions (`projective.fit_projective(photo, plan)`) — and give
     answer_cell("task-09-2"),
     check_cell("task-09-2"),
     md("""
-**Think about it.** Measure the same road on the photo and multiply by your $m$: the answer is off by several
-per cent, because a tilted photo has no single scale. The corrected plan has one.
+**Think about it.** Measure the same road on the photo and multiply by your $m$: the answer is off by up to about
+a per cent, because a tilted photo has no single scale — its $1:m$ is the scale of the equivalent vertical photo.
+The corrected plan has one scale everywhere.
 
 ## Summary
 
@@ -239,8 +237,8 @@ per cent, because a tilted photo has no single scale. The corrected plan has one
 * Grids of **central directions** (lines through the vanishing points, or halving by diagonals) are images of
   each other: cell-by-cell transfer converges to the exact map as $1/n^2$.
 * Grids of **proportional division** (equal parts of the sides), which the guide's step 3 describes, are not:
-  their error depends on the tilt and the spread of the points, not on the density — about 1–2 mm on a 1:10 000
-  plan at the guide's 3°.
+  their error depends on the tilt and the spread of the points, not on the density — above a millimetre on a
+  1:10 000 plan at the guide's 3°.
 * Changes outside the four points are extrapolated and quickly lose accuracy: put the points at the corners of
   the working area.
 

@@ -9,7 +9,8 @@ course-design guide (Presnyakov & Tyuklenkova, Penza 2014), in six layers
 1    foundation            ``geometry`` (camera, central projection, terrain),
                            ``plane`` (2-D fits, rays), ``variants`` (§1)
 2    physics               ``flight`` (§2), ``quality`` (§3), ``displacement``
-                           (§4–§5), ``mosaic`` (§6), ``triangulation`` (§7, §13)
+                           (§4–§5), ``mosaic`` (§6), ``triangulation`` (§7, §13),
+                           ``stereo`` (§8)
 3    the virtual world     ``terrain``, ``site``, ``simulate``, ``render``
 4    the course's content  ``guide`` (printed tables and their audits),
                            ``tasks`` (graded tasks per chapter)
@@ -40,6 +41,7 @@ _SUBMODULES = (
     "displacement",
     "mosaic",
     "triangulation",
+    "stereo",
     "projective",
     "control",
     "rectify",

@@ -78,8 +78,13 @@ def check_percent(name: str, value, *, lo: float = 0.0, hi: float = 100.0) -> fl
 
 
 def check_int_range(name: str, value, lo: int, hi: int) -> int:
-    """A whole number within [lo, hi]."""
-    if isinstance(value, bool) or not isinstance(value, (int, Real)) or int(value) != value:
+    """A whole number within [lo, hi] (NaN, ±inf, fractions and non-numbers are rejected by name)."""
+    if isinstance(value, bool) or not isinstance(value, (int, Real)):
+        raise ValueError(f"{name} = {value!r:.80} must be a whole number with {lo} ≤ {name} ≤ {hi}")
+    if not isinstance(value, int) and not math.isfinite(float(value)):
+        raise ValueError(f"{name} = {_fmt(float(value)) if not math.isnan(float(value)) else 'nan'} is not a "
+                         f"finite number; expected a whole number with {lo} ≤ {name} ≤ {hi}")
+    if int(value) != value:
         raise ValueError(f"{name} = {value!r} must be a whole number with {lo} ≤ {name} ≤ {hi}")
     check_range(name, value, lo, hi)
     return int(value)

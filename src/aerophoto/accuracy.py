@@ -73,7 +73,7 @@ __all__ = [
     "COEFF_10_21", "squares_sum", "free_strip_factor", "middle_factor_article", "middle_factor_exact",
     "strip_errors_mm", "allowed_height_error_m", "plan_bases", "height_bases", "whole_bases",
     "StripMonteCarlo", "strip_monte_carlo", "fit_accumulation", "control_rows", "BlockPrecision",
-    "block_precision", "block_vs_strip",
+    "block_precision", "block_vs_strip", "block_monte_carlo",
 ]
 
 #: the coefficients of the reconstructed formula (10.21), photo-scale errors per m_q·√n³ (Z also × f/b)
@@ -367,6 +367,8 @@ def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.0
     n = check_int_range("n_bases", len(poses) - 1, 2, 200)
     sig = check_range("sigma_mm", sigma_mm, 0.0, 0.5, lo_open=True, unit="mm")
     runs = check_int_range("n_runs", n_runs, 1, 5000)
+    seed = check_int_range("seed", seed, 0, 2**63 - 1)
+    margin_mm = check_range("margin_mm", margin_mm, 0.0, camera.half_mm, hi_open=True, unit="mm")
     f = camera.f_mm
     c0, c1 = poses[0].centre, poses[-1].centre
     Bm = float(np.linalg.norm(c1[:2] - c0[:2])) / n
@@ -578,3 +580,42 @@ def block_vs_strip(strip_precision: BlockPrecision, block_precision_: BlockPreci
     a, b = strip_precision.summary(), block_precision_.summary()
     return {"plan": a["plan RMS, m"] / b["plan RMS, m"], "height": a["height RMS, m"] / b["height RMS, m"]}
 
+
+
+def block_monte_carlo(camera: g.Camera, poses, photo_strip, photo_order, terrain, *, every: int = 4,
+                      layout: str = "rows", sigma_mm: float = 0.01, control_factor: float = 1.0, n_runs: int = 20,
+                      seed: int = 0, points_m=None) -> dict:
+    """Adjust the block ``n_runs`` times with random measuring and control errors; compare with the prediction.
+
+    The same block and layout as :func:`block_precision`; each run draws new errors
+    (:func:`aerophoto.bundle.simulate_measurements`), adjusts from the true values (the bundle converges
+    to the same minimum from the three-stage approximations) and records the tie points' true errors.
+
+    Returns
+    -------
+    dict: ``"plan RMS, m"``, ``"height RMS, m"`` (over runs and tie points), the predicted
+    ``"plan RMS predicted, m"``, ``"height RMS predicted, m"`` and ``"runs"``.
+    """
+    runs = check_int_range("n_runs", n_runs, 1, 1000)
+    pred = block_precision(camera, poses, photo_strip, photo_order, terrain, every=every, layout=layout,
+                           sigma_mm=sigma_mm, control_factor=control_factor, points_m=points_m)
+    strip = np.asarray(photo_strip, dtype=int)
+    order = np.asarray(photo_order, dtype=int)
+    eo = _col.eo_from_poses(poses)
+    m_scale = float(np.mean([p.Z_m for p in poses]) - np.mean(pred.XYZ_m[:, 2])) / camera.f_mm
+    ids = np.arange(1, len(pred.XYZ_m) + 1)
+    e_plan, e_z = [], []
+    for r in range(runs):
+        meas = simulate_measurements(camera.f_mm, camera.frame_mm, eo, np.arange(1, len(poses) + 1), strip, order,
+                                     pred.XYZ_m, ids, pred.kind, sigma_mm=sigma_mm,
+                                     control_sigma_m=control_factor * sigma_mm * m_scale, margin_mm=3.0,
+                                     seed=int(seed) * 100003 + r, drop_single=False)
+        adj = _solve.adjust(meas, eo, pred.XYZ_m)
+        d = adj.xyz_m - pred.XYZ_m
+        tie = meas.point_kind != "control"
+        e_plan.append(d[tie, 0] ** 2 + d[tie, 1] ** 2)
+        e_z.append(d[tie, 2] ** 2)
+    tie = pred.kind != "control"
+    return {"plan RMS, m": float(np.sqrt(np.mean(e_plan))), "height RMS, m": float(np.sqrt(np.mean(e_z))),
+            "plan RMS predicted, m": float(np.sqrt(np.mean(pred.sigma_plan_m[tie] ** 2))),
+            "height RMS predicted, m": float(np.sqrt(np.mean(pred.sigma_Z_m[tie] ** 2))), "runs": runs}

@@ -30,8 +30,8 @@ from .plots import use_style
 from .variants import Variant, variant, variant_for_index
 
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
-           "Demo", "Chapter", "CHAPTERS", "LECTURE_INDEX", "chapter", "chapter_table_markdown",
-           "lecture_table_markdown", "sync_generated"]
+           "Demo", "Chapter", "CHAPTERS", "LECTURE_INDEX", "LECTURES_DIR", "chapter", "chapter_table_markdown",
+           "lecture_table_markdown", "lecture_page", "lecture_notebook", "sync_generated"]
 
 # =========================================================================== the chapter registry
 @dataclass(frozen=True)
@@ -156,12 +156,78 @@ CHAPTERS = (
                      "grow the error triangles",
                      (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
             )),
+    Chapter("07", "stereoscope", "guide §8", "the stereoscope and the stereo model: parallax, heights, the floating "
+            "mark", "линзово-зеркальный стереоскоп; изучение стереомодели", (
+                Demo("demo-floating-mark", "aerophoto.demos.stereo.FloatingMarkDemo", "The floating mark on an anaglyph",
+                     "p (the parallax bar's drum), then x, y onto a roof, then the area",
+                     "through red–cyan glasses the two crosses fuse into one mark that rises with p; at the parallax "
+                     "of a roof or a tree top it rests on it and the table reads its height",
+                     (("p, mm", "PageUp"), ("x, mm", "PageUp")), timed="p, mm"),
+                Demo("demo-base-height", "aerophoto.demos.stereo.BaseHeightDemo", "Base, height and focal length",
+                     "B, then H and f together",
+                     "a longer base or a lower flight gives every height more parallax and a taller model; a longer "
+                     "lens at the same scale flattens it",
+                     (("B, m", "PageUp"), ("f, mm", "PageUp")), timed="B, m"),
+            )),
+    Chapter("09", "plan_correction", "guide §10", "correcting a plan by mutual projective grids",
+            "корректировка плана методом взаимно-проектных сеток", (
+                Demo("demo-plan-correction", "aerophoto.demos.plan_correction.PlanCorrectionDemo",
+                     "Plan correction by mutual projective grids", "α, then n and the grid method, then the spread",
+                     "with central directions the carried changes sit on the truth and improve as n grows; with "
+                     "proportional division they stay off however fine the grid",
+                     (("α, °", "PageUp"), ("n (cells per side)", "ArrowRight"), ("spread of 1–4, %", "PageDown")),
+                     timed="n (cells per side)"),
+            )),
+    Chapter("10", "ground_control", "guide §11", "ground control: design, marking and resection",
+            "проект планово-высотной привязки", (
+                Demo("demo-control-design", "aerophoto.demos.control.ControlDesignDemo", "Design of control on a block",
+                     "m_ε and the allowed error, then the photo scale",
+                     "Zhukov's spacing sets how many bases apart the rows of control go; a smaller scale or poorer "
+                     "directions crowd them, down to dense control",
+                     (("m_ε, ′", "PageUp"), ("m (photo 1:m)", "PageUp"), ("strips", "ArrowRight")), timed="m_ε, ′"),
+                Demo("demo-resection", "aerophoto.demos.control.ResectionDemo", "Resection and the danger circle",
+                     "move the station towards the circle through I, II, III",
+                     "the cloud of stations resected under angle errors stretches near the danger circle",
+                     (("P north, m", "PageUp"), ("P east, m", "PageUp")), timed="P north, m"),
+            )),
+    Chapter("11", "rectification", "guide §12", "rectifying photos of flat ground", "фототрансформирование", (
+        Demo("demo-transformer", "aerophoto.demos.rectification.TransformerDemo", "The photo transformer, step by step",
+             "step, then α and the pricking error",
+             "centre, scale, hh, turn, tilt: the misses of the four points fall below 0.4 mm in two cycles",
+             (("step", "ArrowRight"), ("α, °", "PageUp")), timed="step"),
+    )),
     Chapter("12", "phototriangulation", "guide §13", "phototriangulation: control spacing and reduction",
             "фототриангуляция", (
                 Demo("demo-reduction", "aerophoto.demos.reduction.ReductionDemo", "Reduction explorer (tilted photos)",
                      "α max, q, pricking error",
                      "the same explorer with tilted photos: the reduced strip against the control points",
                      (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
+            )),
+    Chapter("14", "triangulation_accuracy", "article 001", "accuracy of phototriangulation: error accumulation and "
+            "control spacing", "точность фототриангуляционных сетей", (
+                Demo("demo-block-errors", "aerophoto.demos.block_accuracy.BlockErrorDemo",
+                     "Block error map — control layout and σ", "n (control spacing), then K strips and σ",
+                     "the predicted errors swell between the control rows, faster in height; more strips stiffen "
+                     "the block; σ brightens the whole map",
+                     (("σ, µm", "PageUp"), ("K, strips", "ArrowRight")), timed="σ, µm"),
+            )),
+    Chapter("15", "block_adjustment", "article 002", "bundle block adjustment: locating field points in the "
+            "mountains", "блочная фототриангуляция по методу связок"),
+    Chapter("16", "dem_contours", "article 000", "contours from a DEM: regular grid, structural lines, Lysenko's "
+            "densification accuracy", "рисовка горизонталей по точкам ЦМР", (
+                Demo("demo-contours", "aerophoto.demos.dem_contours.ContourDemo", "Contours from a DEM against the truth",
+                     "m_z to 0, then d up to 150 m, then the structural lines on",
+                     "with error-free nodes a 30 m grid follows the site's hills to millimetres; coarse grids cut "
+                     "the bends and the structural lines win part back; node errors make the contours wriggle",
+                     (("d, m", "PageUp"), ("m_z, m", "PageUp")), timed="d, m"),
+            )),
+    Chapter("17", "map_update_errors", "article 003", "the error budget of map updating", "анализ плановой точности "
+            "при обновлении карт", (
+                Demo("demo-budget", "aerophoto.demos.error_budget.BudgetDemo", "The error budget of map updating",
+                     "the DEM stage, then 1:M_c and P, then the map scale",
+                     "the instruction's DEM and transfer tolerances dominate; a real DEM brings the map within "
+                     "0.4 mm; the photo scale and the scan barely matter",
+                     (("1:M_c (photo)", "PageUp"), ("P, µm", "PageUp")), timed="1:M_c (photo)"),
             )),
 )
 """Every chapter of the book, in order: the one registry (aerophoto.__init__, the lecture index, the README and
@@ -193,12 +259,99 @@ def chapter_table_markdown(*, prefix: str = "") -> str:
 
 
 def lecture_table_markdown() -> str:
-    """The lecture index's table of demos (generated; a test keeps ``notebooks/lectures.ipynb`` current)."""
-    lines = ["| chapter | demo | move | what the class sees |", "|---|---|---|---|"]
+    """The lecture index's table of demos (generated; a test keeps ``notebooks/lectures.ipynb`` current).
+
+    Each chapter links its lecture page (``lectures/NN_slug.ipynb``: the demos only, the guide's example) and,
+    beside it, the whole chapter.
+    """
+    lines = ["| lecture page | demo | move | what the class sees |", "|---|---|---|---|"]
     for c in CHAPTERS:
         for d in c.demos:
-            lines.append(f"| [{c.number} · {_title(c)} ({c.source})]({c.notebook}) | {d.name} | {d.move} | {d.sees} |")
+            lines.append(f"| [{c.number} · {_title(c)} ({c.source})]({lecture_page(c)}) "
+                         f"<br>([whole chapter]({c.notebook})) | {d.name} | {d.move} | {d.sees} |")
     return "\n".join(lines)
+
+
+# =========================================================================== lecture pages
+LECTURES_DIR = "lectures"
+"""The lecture pages' folder inside ``notebooks/``: one generated page per chapter with demos."""
+
+
+def lecture_page(c: Chapter) -> str:
+    """The lecture page of chapter ``c``, relative to ``notebooks/``: ``"lectures/01_flight_planning.ipynb"``."""
+    return f"{LECTURES_DIR}/{c.notebook}"
+
+
+_GENERATED_NOTE = ("<!-- generated from aerophoto.book.CHAPTERS and the chapter's setup and demo cells by "
+                   "`python -m aerophoto.book`; do not edit -->")
+
+
+def _lecture_setup(source: str, where: str) -> str:
+    """A chapter's setup cell for its lecture page: always the guide's example, never a student's number."""
+    lines = [ln for ln in source.splitlines() if not ln.strip().startswith("RECORD_BOOK")]
+    text = "\n".join(lines)
+    if "aerophoto.setup(RECORD_BOOK)" not in text:
+        raise ValueError(f"{where}: the setup cell does not call aerophoto.setup(RECORD_BOOK); the lecture page "
+                         "cannot force the guide's example")
+    text = text.replace("aerophoto.setup(RECORD_BOOK)", "aerophoto.setup(lecture=True)   # the guide's example, variant 00")
+    return text + "\nfrom aerophoto.demos.lecture import lecture_view"
+
+
+def _lecture_demo(source: str, c: Chapter, d: Demo, where: str) -> str:
+    """A chapter's demo cell for its lecture page: the same demo, shown by :func:`~aerophoto.demos.lecture.lecture_view`."""
+    import ast
+
+    body = source.rstrip().splitlines()
+    try:
+        last = ast.parse(source).body[-1]
+    except (SyntaxError, IndexError) as exc:
+        raise ValueError(f"{where}: the demo cell cannot be read ({exc})") from None
+    if not (isinstance(last, ast.Expr) and isinstance(last.value, ast.Name) and last.lineno == len(body)):
+        raise ValueError(f"{where}: the demo cell must end with the demo's name on a line of its own (e.g. `demo`)")
+    name = last.value.id
+    title = f"{c.number} · {_title(c)} ({c.source})"
+    subtitle = f"{d.name} · the guide's example (variant 00)"
+    screen = ", full_screen=True" if len(c.demos) > 1 else ""   # several demos: each fills a screen
+    return "\n".join([*body[:-1], f"lecture_view({name}, {title!r}, {subtitle!r}{screen})"])
+
+
+def lecture_notebook(c: Chapter, root=None):
+    """The lecture page of chapter ``c``, built from its notebook: its demos only, each at the top of a screen.
+
+    Cells: ``setup`` (the chapter's setup cell forcing the guide's example, ``aerophoto.setup(lecture=True)``),
+    then for each demo its cell (same id, shown by :func:`aerophoto.demos.lecture.lecture_view`: title, sliders,
+    figure and table on one 1280×800 screen) and a note ``<demo cell>-notes`` with what to move and what the
+    class sees (from :data:`CHAPTERS`), and last ``links`` (back to the lecture index, the whole chapter).  No
+    task, no check cell, no student's variant.
+    """
+    from . import nbtools
+
+    root = Path(root) if root is not None else Path(__file__).resolve().parents[2]
+    src = nbtools.read(root / "notebooks" / c.notebook)
+    cells = {cell.get("id"): cell for cell in src.cells}
+    where = c.notebook
+    if "setup" not in cells:
+        raise ValueError(f"{where} has no setup cell")
+    out = [nbtools.code(_lecture_setup(cells["setup"].source, where), id="setup")]
+    for d in c.demos:
+        if d.cell not in cells:
+            raise ValueError(f"{where} has no cell {d.cell!r} (aerophoto.book.CHAPTERS names it)")
+        out.append(nbtools.code(_lecture_demo(cells[d.cell].source, c, d, f"{where} [{d.cell}]"), id=d.cell))
+        out.append(nbtools.md(f"**{d.name}.** Move: {d.move}. The class sees: {d.sees}.", id=f"{d.cell}-notes"))
+    out.append(nbtools.md(
+        f"{_GENERATED_NOTE}\n[← every lecture page](../{LECTURE_INDEX}) · "
+        f"[the whole chapter {c.number}, with the theory and the tasks](../{c.notebook}) · {c.source} · "
+        "the demos open on the guide's worked example (variant 00); **Reset** returns there.", id="links"))
+    return nbtools.notebook(out, title=f"{c.number} · {_title(c)} — lecture")
+
+
+def _notebook_text(nb) -> str:
+    import json
+
+    from . import nbtools
+
+    nbtools.strip_outputs(nb)
+    return json.dumps(nb, indent=1, ensure_ascii=False, sort_keys=True) + "\n"
 
 
 #: where the generated tables live: (file relative to the repository, how to find the place, generator)
@@ -207,27 +360,35 @@ _README_MARK = ("<!-- BEGIN chapters (generated from aerophoto.book.CHAPTERS: py
 
 
 def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
-    """[(file, kind, place, text)]: kind "markdown-section" (between markers) or "cell" (a notebook cell by id)."""
-    return [
+    """[(file, kind, place, content)]: kind "markdown-section" (between markers), "cell" (a notebook cell by
+    id) or "notebook" (a whole generated notebook: a lecture page)."""
+    out = [
         (root / "README.md", "markdown-section", "chapters", chapter_table_markdown(prefix="notebooks/")),
         (root / "notebooks" / LECTURE_INDEX, "cell", "demos",
          "## The demonstrations\n\n" + lecture_table_markdown()),
         (root / "notebooks" / CHAPTERS[0].notebook, "cell", "chapters",
          "## The chapters\n\n" + chapter_table_markdown()),
     ]
+    for c in CHAPTERS:
+        if c.demos:
+            out.append((root / "notebooks" / lecture_page(c), "notebook", "lecture page", c))
+    return out
 
 
 def sync_generated(root=None, *, write: bool = False) -> list[str]:
-    """Check (or with ``write=True`` rewrite) the tables generated from :data:`CHAPTERS`; returns the stale places.
+    """Check (or with ``write=True`` rewrite) what is generated from :data:`CHAPTERS`; returns the stale places.
 
     README.md's chapter table (between the ``BEGIN chapters``/``END chapters`` markers), the lecture index's
-    ``demos`` cell and chapter 00's ``chapters`` cell.  Safe to re-run: cells are found by id.
+    ``demos`` cell, chapter 00's ``chapters`` cell, and the lecture pages ``notebooks/lectures/NN_slug.ipynb``
+    (:func:`lecture_notebook`, one per chapter with demos; a page without its chapter is stale and removed).
+    Safe to re-run: cells are found by id.
     """
     from . import nbtools
 
     root = Path(root) if root is not None else Path(__file__).resolve().parents[2]
     stale = []
-    for path, kind, place, text in _generated(root):
+    pages = set()
+    for path, kind, place, content in _generated(root):
         if kind == "markdown-section":
             doc = path.read_text(encoding="utf-8")
             begin, end = _README_MARK
@@ -235,19 +396,33 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
                 raise ValueError(f"{path.name} has no generated-table markers {begin!r} … {end!r}")
             head, rest = doc.split(begin, 1)
             _, tail = rest.split(end, 1)
-            new = f"{head}{begin}\n{text}\n{end}{tail}"
+            new = f"{head}{begin}\n{content}\n{end}{tail}"
             if new != doc:
                 stale.append(f"{path.name} [{place}]")
                 if write:
                     path.write_text(new, encoding="utf-8")
+        elif kind == "notebook":
+            pages.add(path)
+            text = _notebook_text(lecture_notebook(content, root))
+            old = path.read_text(encoding="utf-8") if path.is_file() else None
+            if old != text:
+                stale.append(f"{path.relative_to(root / 'notebooks')} [{place}]")
+                if write:
+                    path.parent.mkdir(parents=True, exist_ok=True)
+                    nbtools.write(lecture_notebook(content, root), path)
         else:
             nb = nbtools.read(path)
             _, cell = nbtools.find_cell(nb, place)
-            if cell.source != text:
+            if cell.source != content:
                 stale.append(f"{path.name} [{place}]")
                 if write:
-                    nbtools.set_cell(nb, place, text)
+                    nbtools.set_cell(nb, place, content)
                     nbtools.write(nb, path)
+    for extra in sorted((root / "notebooks" / LECTURES_DIR).glob("*.ipynb")):
+        if extra not in pages:
+            stale.append(f"{extra.relative_to(root / 'notebooks')} [no such chapter with demos]")
+            if write:
+                extra.unlink()
     return stale
 
 
@@ -317,7 +492,7 @@ def _in_ipython():
     return get_ipython()
 
 
-def setup(record_book=None, *, live: bool = True, quiet: bool = False) -> Variant:
+def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: bool = False) -> Variant:
     """Prepare a chapter and return the student's variant.
 
     Parameters
@@ -331,14 +506,24 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False) -> Varian
         update in place.  Set False for static figures.
     quiet : bool
         Do not display the banner.
+    lecture : bool
+        A lecture page (``notebooks/lectures/``): always the guide's worked
+        example, variant 00 — whatever number is remembered on the machine or
+        set in ``AEROPHOTO_RECORD_BOOK`` — nothing remembered, no banner.
+        ``record_book`` must then be None.
     """
     use_style()
     problems = check_installation()
     if problems:
         raise RuntimeError("aerophoto cannot run in this environment:\n- " + "\n- ".join(problems))
+    if lecture and record_book is not None:
+        raise ValueError(f"record_book = {record_book!r} with lecture=True: a lecture page always shows the guide's "
+                         "worked example (variant 00); leave record_book at None")
     ip = _in_ipython()
     if live and ip is not None:
         ip.run_line_magic("matplotlib", "widget")
+    if lecture:
+        return variant_for_index(0, "lecture — the guide's worked example")
     note = ""
     if record_book is not None and str(record_book).strip():
         v = variant(record_book)

@@ -48,7 +48,7 @@ __all__ = ["MEAN_TO_RMS", "TOLERANCE_MEAN_MM", "SCAN_RMS_UM", "TRIANGULATION_K",
            "VECTORISING_MAP_MM", "STAGES", "rms_from_mean", "mean_from_rms", "mean_abs_deviation",
            "plan_error", "Vectorising", "vectorising_error", "sigma_um", "triangulation_rms_m",
            "transfer_rms_mm", "relief_limit_m", "working_area_radii_mm", "dtm_displacement_m",
-           "plane_rectification_m", "Stage", "Budget", "budget", "ARTICLE_CASES"]
+           "plane_rectification_m", "Stage", "Budget", "budget", "ARTICLE_CASES", "scenarios"]
 
 #: formulas (1) and (5): RMS error m = 1.25 · mean error v
 MEAN_TO_RMS = 1.25
@@ -337,6 +337,9 @@ def budget(M_c: float = 10_000.0, P_um: float = 16.0, M_k: float = 2000.0, *, f_
     Mc = check_range("M_c", M_c, 500.0, 200_000.0)
     Mk = check_range("M_k", M_k, 100.0, 1e6)
     P = check_range("P_um", P_um, 1.0, 200.0, unit="µm")
+    check_positive("f_mm", f_mm, unit="mm", hi=2000.0)  # checked whichever DEM stage uses them
+    check_range("m_h_m", m_h_m, 0.0, 1e4, unit="m")
+    check_range("relief_m", relief_m, 0.0, 1e4, unit="m")
     if dtm not in ("instruction", "dem", "plane"):
         raise ValueError(f"dtm = {dtm!r} is not one of the valid choices ['instruction', 'dem', 'plane']")
     _, r_rms = working_area_radii_mm(frame_mm, px_percent, py_percent)
@@ -374,3 +377,29 @@ ARTICLE_CASES = (
     dict(M_k=10_000.0, M_c=15_000.0, f_mm=153.0, frame_mm=230.0, P_um=42.0),
     dict(M_k=2000.0, M_c=10_000.0, f_mm=153.0, frame_mm=230.0, P_um=16.0),
 )
+
+
+def scenarios(M_c: float = 10_000.0, P_um: float = 16.0, M_k: float = 2000.0, *, f_mm: float = 153.0,
+              frame_mm: float = 230.0, m_h_m: float = 0.5) -> pd.DataFrame:
+    """What would change the verdict: the article's budget and four variations of it, one row each.
+
+    * the article's stages (formula 9's 0.357 mm for the transfer);
+    * the DEM's tolerance replaced by a DEM of height RMS ``m_h_m`` ((r_rms/f)·m_h);
+    * the transfer between strips by the instruction's rule for digital work, 40 µm on the photo;
+    * both;
+    * the article's stages plus the closing paragraph's two errors (interior orientation, σ = 0.884·P).
+
+    Columns: m_D (m, ground), m_d and v_d (mm, map), whether v_d ≤ 0.4 mm, and the dominant stage.
+    """
+    kw = dict(f_mm=f_mm, frame_mm=frame_mm)
+    t40 = 40.0e-3 * check_range("M_c", M_c, 500.0, 200_000.0) / check_range("M_k", M_k, 100.0, 1e6)
+    cases = (
+        ("the article's budget", budget(M_c, P_um, M_k, **kw)),
+        (f"a DEM of m_h = {m_h_m:g} m instead of the tolerance", budget(M_c, P_um, M_k, dtm="dem", m_h_m=m_h_m, **kw)),
+        ("transfer at 40 µm on the photo", budget(M_c, P_um, M_k, transfer_mm=t40, **kw)),
+        ("both", budget(M_c, P_um, M_k, dtm="dem", m_h_m=m_h_m, transfer_mm=t40, **kw)),
+        ("with the closing paragraph's errors", budget(M_c, P_um, M_k, extra_stages=True, **kw)),
+    )
+    rows = [{"case": name, "m_D, m": B.total_m, "m_d, mm": B.map_rms_mm, "v_d, mm": B.map_mean_mm,
+             "v_d ≤ 0.4 mm": bool(B.meets_tolerance), "largest stage": B.dominant.name} for name, B in cases]
+    return pd.DataFrame(rows).set_index("case")

@@ -74,6 +74,7 @@ __all__ = [
     "task_passed",
     "results",
     "task_results",
+    "passed",
     "report",
     "reset",
     "TOL_REL",
@@ -135,6 +136,11 @@ def results() -> dict[str, TaskResult]:
 def task_results() -> dict[str, TaskResult]:
     """The tasks whose check cell ran to its end (:func:`task_passed`) in this session."""
     return dict(_TASKS)
+
+
+def passed(task: str) -> bool:
+    """Whether ``task`` (``"task-03-1"``) passed in this session: a later cell may then show its results."""
+    return str(task) in _TASKS
 
 
 def reset() -> None:

@@ -227,12 +227,12 @@ class Resection:
         return np.hypot(*(self.known - self.point).T)
 
     def table(self) -> pd.DataFrame:
-        """The station and its quality as a small table (quantity, unit, value)."""
-        rows = [("X of the station", "m", self.point[0]), ("Y of the station", "m", self.point[1]),
-                ("β₁ (A → B)", "°", self.beta1_deg), ("β₂ (B → C)", "°", self.beta2_deg),
-                ("distance from the danger circle", "m", self.danger_distance_m),
-                ("shift of P per 1″ of angle error", "m", self.metres_per_arcsec),
-                ("strength of the intersection (0 on the danger circle)", "", self.strength)]
+        """The station and its quality as a small table (quantity, unit, value as text at a sensible precision)."""
+        rows = [("X of the station", "m", f"{self.point[0]:.3f}"), ("Y of the station", "m", f"{self.point[1]:.3f}"),
+                ("β₁ (A → B)", "", format_dms(self.beta1_deg, 1)), ("β₂ (B → C)", "", format_dms(self.beta2_deg, 1)),
+                ("distance from the danger circle", "m", f"{self.danger_distance_m:.1f}"),
+                ("shift of P per 1″ of angle error", "m", f"{self.metres_per_arcsec:.4f}"),
+                ("strength of the intersection (0 on the danger circle)", "", f"{self.strength:.3f}")]
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 
@@ -389,6 +389,16 @@ class ResectionCheck:
     def ok(self) -> bool:
         """The check holds: |discrepancy| ≤ tolerance."""
         return abs(self.discrepancy_arcsec) <= self.tolerance_arcsec
+
+    def table(self) -> pd.DataFrame:
+        """The check as a small table (quantity, unit, value as text)."""
+        rows = [("check angle, measured", "", format_dms(self.measured_deg, 1)),
+                ("check angle, computed from the station", "", format_dms(self.computed_deg, 1)),
+                ("discrepancy Δγ = measured − computed", "″", f"{self.discrepancy_arcsec:+.1f}"),
+                ("distance to the check point S", "m", f"{self.distance_m:.1f}"),
+                ("tolerance ρ″·e/S", "″", f"{self.tolerance_arcsec:.1f}"),
+                ("the check holds", "", "yes" if self.ok else "no")]
+        return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 
 def check_tolerance_arcsec(distance_m: float, M: float = 10000.0, tol_mm: float = IDENTIFICATION_MM) -> float:

@@ -39,7 +39,10 @@ scale 1:M:
       m_cp = mean of the zones' m_част,  Δm_i = m_част − m_cp,  Δm_i/m_cp = 1/N
 
 :func:`partial_scales` computes tables 2, 4, 5 and 7, :func:`relief_corrections`
-table 3 and :func:`tilt_corrections` table 6.
+table 3 and :func:`tilt_corrections` table 6.  :func:`relief_work` and
+:func:`tilt_work` run the whole procedure of §4 (tables 2 → 3 → 4) and §5
+(tables 5 → 6 → 7) on one set of measurements: photo coordinates of the
+pricked points and plan lengths of the bases.
 
 Where the rest lives: the guide's printed tables 2–7 and their audits in
 :mod:`aerophoto.guide.s04` and :mod:`aerophoto.guide.s05`; the lab tasks of
@@ -82,6 +85,11 @@ __all__ = [
     "TiltCorrections",
     "tilt_corrections",
     "apply_radial_corrections",
+    "base_lengths_mm",
+    "ReliefWork",
+    "relief_work",
+    "TiltWork",
+    "tilt_work",
 ]
 
 #: corrections smaller than this are not applied (guide §4 step 5, §5 step 10), mm
@@ -411,7 +419,7 @@ def relief_displacement_vectors(camera: g.Camera, pose: g.Pose, XYZ_m, Z_mean_m:
     """
     P = np.asarray(XYZ_m, dtype=float)
     Pm = P.copy()
-    Pm[..., 2] = float(Z_mean_m)
+    Pm[..., 2] = check_range("Z_mean_m", Z_mean_m, hi=pose.Z_m, hi_open=True, unit="m")  # below S
     return g.ground_to_photo(camera, pose, P), g.ground_to_photo(camera, pose, Pm)
 
 
@@ -589,3 +597,189 @@ def apply_radial_corrections(xy_mm, centre_mm, delta_mm, threshold_mm: float = T
         u = np.where(r[..., None] > 0, v / r[..., None], 0.0)
     move = np.where(np.abs(d) > thr, d, 0.0)
     return xy - u * move[..., None]
+
+
+# =========================================================================== the whole procedure on measurements
+def base_lengths_mm(names, xy_mm, bases) -> np.ndarray:
+    """Lengths, mm, of the bases ``(a, b)`` between named points with coordinates ``xy_mm`` (shape (n, 2)).
+
+    Returns an array of shape (n_bases,).  Works for photo and plan coordinates alike.
+    """
+    names = tuple(str(n) for n in names)
+    xy = np.asarray(xy_mm, dtype=float).reshape(-1, 2)
+    if len(xy) != len(names):
+        raise ValueError(f"xy_mm has {len(xy)} points for {len(names)} names; they must be equal")
+    if not np.all(np.isfinite(xy)):
+        raise ValueError("xy_mm contains a value that is not a finite number (mm)")
+    idx = {n: k for k, n in enumerate(names)}
+    out = []
+    for a, b in bases:
+        if a not in idx or b not in idx:
+            raise ValueError(f"base {a}-{b} joins a point that is not among names {names}")
+        out.append(float(np.hypot(*(xy[idx[a]] - xy[idx[b]]))))
+    return np.array(out)
+
+
+def _scale_bases(bases, l_plan_mm, l_photo_mm) -> list:
+    lp = np.asarray(l_plan_mm, dtype=float).ravel()
+    if len(lp) != len(bases):
+        raise ValueError(f"l_plan_mm has {len(lp)} lengths for {len(bases)} bases; they must be equal")
+    return [Base(f"{a}-{b}", float(p), float(s), zone=str(a)) for (a, b), p, s in zip(bases, lp, l_photo_mm)]
+
+
+@dataclass(frozen=True)
+class ReliefWork:
+    """The guide's §4 on one set of measurements: tables 2, 3 and 4 (steps 3–6).
+
+    Attributes
+    ----------
+    names : tuple of str
+        The pricked points, e.g. ``("I", "1", "2", "II", "3", "4")``.
+    bases : tuple of (str, str)
+        The bases, each from a zone's main point, e.g. ``(("I", "1"), ("I", "2"), ...)``.
+    photo_xy_mm : ndarray, shape (n, 2)
+        Measured photo coordinates of the points, mm (origin o).
+    l_plan_mm : ndarray, shape (n_bases,)
+        Plan lengths l_пл of the bases, mm (photoplan 1:M).
+    Z_m : ndarray, shape (n,)
+        Heights Z_i of the points, m.
+    f_mm, M : float
+        Focal length and the plan's scale denominator.
+    n_mm : ndarray, shape (2,)
+        The nadir point n, mm.
+    Z_mean_m : float
+        The mean object plane Z_cp: the mean of the zones' heights, each the mean of its bases' mean heights.
+    table2 : :class:`ScaleTable`
+        Scales before the correction (l_сн from the measured points).
+    H_m : float
+        H = m_cp·f with m_cp from table 2, m (the guide's choice, §4 step 4).
+    table3 : :class:`ReliefCorrections`
+        δh = r·h/H with r from n.
+    corrected_xy_mm : ndarray, shape (n, 2)
+        The points moved back along the radius from n where |δh| > 0.2 mm (step 5).
+    table4 : :class:`ScaleTable`
+        Scales by the corrected points (step 6).
+    """
+
+    names: tuple
+    bases: tuple
+    photo_xy_mm: np.ndarray
+    l_plan_mm: np.ndarray
+    Z_m: np.ndarray
+    f_mm: float
+    M: float
+    n_mm: np.ndarray
+    Z_mean_m: float
+    table2: ScaleTable
+    H_m: float
+    table3: ReliefCorrections
+    corrected_xy_mm: np.ndarray
+    table4: ScaleTable
+
+
+def relief_work(names, photo_xy_mm, l_plan_mm, Z_m, bases, *, f_mm: float, n_mm, M: float = GUIDE_M_PLAN,
+                threshold_mm: float = THRESHOLD_MM) -> ReliefWork:
+    """Run the guide's §4 (tables 2 → 3 → 4) on measured photo coordinates and plan lengths.
+
+    Parameters
+    ----------
+    names : sequence of str, length n
+    photo_xy_mm : array_like, shape (n, 2)
+        Photo coordinates of the pricked points, mm.
+    l_plan_mm : array_like, shape (n_bases,)
+        Plan lengths of the bases, mm.
+    Z_m : array_like, shape (n,)
+        Heights of the points, m.
+    bases : sequence of (a, b)
+        The bases; ``a`` is the zone's main point (its name names the zone).
+    f_mm : float
+        Focal length, mm (H = m_cp·f).
+    n_mm : array_like, shape (2,)
+        The nadir point on the photo, mm.
+    M : float
+        Plan scale denominator (guide: 10 000).
+
+    Every step uses this module's functions: :func:`partial_scales`,
+    :func:`zone_height`, :func:`mean_object_plane`, :func:`relief_corrections`,
+    :func:`apply_radial_corrections`.
+    """
+    names = tuple(str(n) for n in names)
+    bases = tuple((str(a), str(b)) for a, b in bases)
+    xy = np.asarray(photo_xy_mm, dtype=float).reshape(-1, 2)
+    Z = np.asarray(Z_m, dtype=float).ravel()
+    if len(Z) != len(names):
+        raise ValueError(f"Z_m has {len(Z)} heights for {len(names)} names; they must be equal")
+    n = np.asarray(n_mm, dtype=float).reshape(2)
+    f = check_positive("f_mm", f_mm, unit="mm")
+    Zof = dict(zip(names, Z))
+    zones = tuple(dict.fromkeys(a for a, _ in bases))
+    z_heights = [zone_height([(Zof[a], Zof[b]) for a, b in bases if a == z]) for z in zones]
+    Zcp = mean_object_plane(z_heights)
+    l_plan = np.asarray(l_plan_mm, dtype=float).ravel()
+    t2 = partial_scales(_scale_bases(bases, l_plan, base_lengths_mm(names, xy, bases)), M, zone_heights_m=z_heights)
+    H = g.flying_height_m(f, t2.m_mean)
+    r = np.hypot(*(xy - n).T)
+    t3 = relief_corrections(names, Z, r, H, Zcp, threshold_mm=threshold_mm)
+    corrected = apply_radial_corrections(xy, n, t3.delta_mm, threshold_mm)
+    t4 = partial_scales(_scale_bases(bases, l_plan, base_lengths_mm(names, corrected, bases)), M,
+                        zone_heights_m=z_heights)
+    return ReliefWork(names, bases, xy, l_plan, Z, f, float(M), n, Zcp, t2, H, t3, corrected, t4)
+
+
+@dataclass(frozen=True)
+class TiltWork:
+    """The guide's §5 on one set of measurements: tables 5, 6 and 7 (steps 6–11).
+
+    Attributes
+    ----------
+    names, bases, photo_xy_mm, l_plan_mm, M : as :class:`ReliefWork`
+    f_mm, alpha_deg, lambda_deg : float
+        The camera and the tilt; λ is the direction of the positive principal vertical on the photo.
+    c_mm : ndarray, shape (2,)
+        The isocentre c, mm.
+    table5 : :class:`ScaleTable`
+    table6 : :class:`TiltCorrections`
+        r_c and φ measured from c (φ from the positive principal vertical, counter-clockwise), δα.
+    corrected_xy_mm : ndarray, shape (n, 2)
+        The points moved along the line from c where |δα| > 0.2 mm (step 10).
+    table7 : :class:`ScaleTable`
+    """
+
+    names: tuple
+    bases: tuple
+    photo_xy_mm: np.ndarray
+    l_plan_mm: np.ndarray
+    f_mm: float
+    alpha_deg: float
+    lambda_deg: float
+    M: float
+    c_mm: np.ndarray
+    table5: ScaleTable
+    table6: TiltCorrections
+    corrected_xy_mm: np.ndarray
+    table7: ScaleTable
+
+
+def tilt_work(names, photo_xy_mm, l_plan_mm, bases, *, f_mm: float, alpha_deg: float, lambda_deg: float,
+              M: float = GUIDE_M_PLAN, threshold_mm: float = THRESHOLD_MM) -> TiltWork:
+    """Run the guide's §5 (tables 5 → 6 → 7) on measured photo coordinates and plan lengths.
+
+    Parameters as :func:`relief_work`, with the tilt α and the direction λ of
+    the positive principal vertical instead of heights and n.  r_c and φ come
+    from :func:`polar_about_isocentre`, δα from :func:`tilt_corrections`, the
+    corrections from :func:`apply_radial_corrections` about c.
+    """
+    names = tuple(str(n) for n in names)
+    bases = tuple((str(a), str(b)) for a, b in bases)
+    xy = np.asarray(photo_xy_mm, dtype=float).reshape(-1, 2)
+    cam = g.Camera(f_mm)
+    pose = g.Pose(alpha_deg=alpha_deg, lambda_deg=lambda_deg)
+    l_plan = np.asarray(l_plan_mm, dtype=float).ravel()
+    t5 = partial_scales(_scale_bases(bases, l_plan, base_lengths_mm(names, xy, bases)), M)
+    c = g.isocentre(cam, pose)
+    r_c, phi = polar_about_isocentre(cam, pose, xy)
+    t6 = tilt_corrections(names, r_c, phi, f_mm=cam.f_mm, alpha_deg=pose.alpha_deg, threshold_mm=threshold_mm)
+    corrected = apply_radial_corrections(xy, c, t6.delta_approx_mm, threshold_mm)
+    t7 = partial_scales(_scale_bases(bases, l_plan, base_lengths_mm(names, corrected, bases)), M)
+    return TiltWork(names, bases, xy, l_plan, cam.f_mm, pose.alpha_deg, pose.lambda_deg, float(M), c, t5, t6,
+                    corrected, t7)

@@ -50,7 +50,7 @@ from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
 
-from ._validate import check_positive, check_range
+from ._validate import check_int_range, check_positive, check_range
 
 __all__ = [
     "Camera",
@@ -181,7 +181,7 @@ class Pose:
 
     def flying_height(self, ground_Z_m: float = 0.0) -> float:
         """H = Z_S − Z_ground in metres; raises if S is not above the ground."""
-        H = self.Z_m - float(ground_Z_m)
+        H = self.Z_m - check_range("ground_Z_m", ground_Z_m, unit="m")
         if H <= 0:
             raise ValueError(
                 f"Z_m = {self.Z_m:g} is at or below the terrain (ground_Z_m = {float(ground_Z_m):g}); "
@@ -367,7 +367,7 @@ def photo_to_plane(camera: Camera, pose: Pose, xy_mm, Z_m: float = 0.0) -> np.nd
     ndarray, shape (..., 3)
         Ground points X, Y, Z in metres.
     """
-    Zp = float(Z_m)
+    Zp = check_range("Z_m", Z_m, unit="m")
     pose.flying_height(Zp)  # raises if S is not above the plane
     g = _rays(camera, pose, xy_mm)
     gz = g[..., 2]
@@ -432,6 +432,8 @@ def photo_to_dem(
         P = S + t[..., None] * g
         return P[..., 2] - height(P[..., 0], P[..., 1])
 
+    tol_m = check_positive("tol_m", tol_m, unit="m", hi=1e3)
+    max_iter = check_int_range("max_iter", max_iter, 1, 10_000)
     f0 = resid(t0)
     f1 = resid(t1)
     if zmax - zmin <= tol_m:
@@ -500,9 +502,7 @@ def footprint(camera: Camera, pose: Pose, Z_m: float = 0.0, *, samples_per_side:
     a plane, but not on a DEM).
     """
     c = camera.corners_mm()
-    k = int(samples_per_side)
-    if k < 1:
-        raise ValueError(f"samples_per_side = {samples_per_side} is outside the valid range 1 ≤ samples_per_side")
+    k = check_int_range("samples_per_side", samples_per_side, 1, 10_000)
     pts = []
     for i in range(4):
         a, b = c[i], c[(i + 1) % 4]

@@ -55,7 +55,7 @@ import numpy as np
 import pandas as pd
 
 from . import geometry as g
-from ._validate import check_positive, check_range
+from ._validate import check_int_range, check_positive, check_range
 from .displacement import base_scale
 from .plane import Similarity2D, fit_similarity
 
@@ -81,6 +81,9 @@ __all__ = [
     "catalogue_points",
     "sheet_raster",
     "sheet_raster_bands",
+    "SIDE_OVERLAP_PERCENT",
+    "SeamDetails",
+    "seam_details",
 ]
 
 #: guide §6, step 8: the largest cut-out (вырез) allowed on a seam, mm
@@ -89,6 +92,9 @@ ALLOWED_CUTOUT_MM = 0.5
 CHECK_SPACING_MM = 25.0
 #: the forms of cut the guide shows (figure 12)
 CUT_SHAPES = ("straight", "zigzag", "curved")
+#: guide §1: the side overlap p_y; the working area's upper and lower boundaries run along the middle
+#: of the side overlaps (guide §6, after step 9)
+SIDE_OVERLAP_PERCENT = 30.0
 
 
 # =========================================================================== plane geometry
@@ -249,6 +255,8 @@ def choose_tie_points(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *,
     k, s = g.photo_axis_towards(ob)
     mid = ob[k] / 2.0
     lo, hi = (float(v) for v in margin_mm)
+    half_width_mm = check_positive("half_width_mm", half_width_mm, unit="mm", hi=h)
+    samples = check_int_range("samples", samples, 1, 201)
     along = mid + np.linspace(-half_width_mm, half_width_mm, samples)
     pts_a, pts_b, grd = [], [], []
     for side in (1.0, -1.0):  # a: upper (+ across), b: lower
@@ -414,6 +422,31 @@ class Fotoschema:
         c = np.vstack([c, c[:1]])
         return np.array([T.apply(c) for T in self.to_sheet])
 
+    def working_area_lines(self, py_percent: float = SIDE_OVERLAP_PERCENT) -> np.ndarray:
+        """The upper and lower boundary of the working area on the sheet, shape (2, 2, 2): [upper, lower] × [start, end].
+
+        Guide §6, after step 9: on the first and the last photo two points on the
+        middle of the side overlap with the neighbouring strips — l/2 − p_y·l/200
+        from o across the strip (63 mm for 18 cm at p_y = 30 %) — are joined by
+        straight lines (here from frame edge to frame edge along the sheet's x);
+        the sheet is trimmed 0.5–1 cm outside them.
+        """
+        py = check_range("py_percent", py_percent, 0.0, 100.0, hi_open=True, unit="%")
+        d = self.camera.half_mm - py / 100.0 * self.camera.frame_mm / 2.0
+        first, last = self.to_sheet[0], self.to_sheet[-1]
+        o = self.principal_points_mm()
+        along = o[-1] - o[0]
+        along = along / np.hypot(*along) if np.hypot(*along) > 0 else np.array([1.0, 0.0])
+        x0, x1 = self.extent_mm[0], self.extent_mm[1]
+        out = []
+        for side in (1.0, -1.0):
+            # the two points: on photos 1 and n, d across the strip from o (across = the sheet's +y for side = +1)
+            a = first.apply(side * d * _photo_across(first, along))  # the photo's o is its (0, 0)
+            b = last.apply(side * d * _photo_across(last, along))
+            t = (np.array([x0, x1]) - a[0]) / (b[0] - a[0]) if abs(b[0] - a[0]) > 1e-9 else np.array([0.0, 1.0])
+            out.append(a + t[:, None] * (b - a))
+        return np.array(out)
+
     def photo_index(self, xy_mm) -> np.ndarray:
         """Which photo's working area each sheet point lies in, shape (...,), int."""
         return assign_working_areas(xy_mm, [s.cut_mm for s in self.seams])
@@ -454,6 +487,14 @@ class Fotoschema:
 def _within(worst_cutout_mm: float) -> bool:
     """The guide's test of a cut-out against −0.5 mm, on ΔI read to 0.01 mm."""
     return round(float(worst_cutout_mm), 2) >= -ALLOWED_CUTOUT_MM
+
+
+def _photo_across(T: Similarity2D, along_sheet) -> np.ndarray:
+    """The unit vector on a photo that ``T`` lays along the sheet's across direction (+90° from ``along_sheet``)."""
+    n = np.array([-along_sheet[1], along_sheet[0]])
+    M = T.matrix()[:2, :2]
+    v = np.linalg.solve(M, n)
+    return v / np.hypot(*v)
 
 
 def assign_working_areas(xy_mm, cuts) -> np.ndarray:
@@ -511,6 +552,87 @@ def seam_mismatches(camera: g.Camera, pose_left: g.Pose, pose_right: g.Pose, T_l
     d = d / np.hypot(*d)
     dI = (GL[:, :2] - GR[:, :2]) @ d * 1000.0 / float(m)
     return dI, GL, GR
+
+
+@dataclass(frozen=True)
+class SeamDetails:
+    """What the check with the cut-off strips measures along every cut (guide §6, step 8), from truth.
+
+    At every check point a sharp detail ``inset_mm`` into the left print's glued
+    piece is pricked through the right print's cut-off strip laid back in place:
+    the prick sits where the *right* print shows it, the contour where the *left*
+    one does.  Along the strip (sheet x) from the cut, positive into the left piece,
+    ΔI = (contour from the cut) − (prick from the cut): negative — the contour
+    between the cut and the prick — a cut-out (вырез), positive a duplicate (дублет).
+
+    Attributes
+    ----------
+    seam : (n,) int, the cut (0-based, between photos seam and seam + 1)
+    point : (n,) int, the check point's number along its cut (1-based)
+    contour_mm : (n, 2) the detail on the left piece, sheet mm
+    prick_mm : (n, 2) the prick: where the right print shows the detail, sheet mm
+    contour_from_cut_mm, prick_from_cut_mm : (n,) distances from the cut along the strip, mm
+    ground_m : (n, 3) the details on the ground, m
+    """
+
+    seam: np.ndarray
+    point: np.ndarray
+    contour_mm: np.ndarray
+    prick_mm: np.ndarray
+    contour_from_cut_mm: np.ndarray
+    prick_from_cut_mm: np.ndarray
+    ground_m: np.ndarray
+
+    @property
+    def dI_mm(self) -> np.ndarray:
+        """ΔI = contour − prick distance from the cut, mm (− cut-out, + duplicate)."""
+        return self.contour_from_cut_mm - self.prick_from_cut_mm
+
+
+def seam_details(fs: Fotoschema, dem=None, *, inset_mm=3.0) -> SeamDetails:
+    """The details pricked through the cut-off strips at every check point of every cut (see :class:`SeamDetails`).
+
+    Parameters
+    ----------
+    fs : Fotoschema
+    dem : the photographed terrain (as given to :func:`assemble`); default flat at Z = 0
+    inset_mm : how far into the left piece the detail lies, along the strip, mm (0 < inset ≤ 20): one
+        value, or one per check point of all cuts in order (a technician pricks sharp details, not a ruled line)
+    """
+    n_all = sum(len(s.points_mm) for s in fs.seams)
+    ins = np.asarray(inset_mm, dtype=float).reshape(-1)
+    if ins.size == 1:
+        ins = np.full(n_all, ins[0])
+    if ins.shape != (n_all,):
+        raise ValueError(f"inset_mm has {ins.size} values; the valid input is one value or one per check point ({n_all})")
+    for x in ins:
+        check_range("inset_mm", x, 0.0, 20.0, lo_open=True, unit="mm")
+    dem = g.as_terrain(dem, 0.0)
+    cam = fs.camera
+    seam, point, A_all, B_all, dA, dB, G_all = [], [], [], [], [], [], []
+    k0 = 0
+    for s in fs.seams:
+        i = s.index
+        if not len(s.points_mm):
+            continue
+        k1 = k0 + len(s.points_mm)
+        A = np.asarray(s.points_mm, dtype=float) - np.column_stack([ins[k0:k1], np.zeros(k1 - k0)])
+        k0 = k1
+        G = g.photo_to_dem(cam, fs.poses[i], fs.to_sheet[i].inverse().apply(A), dem)
+        B = fs.to_sheet[i + 1].apply(g.ground_to_photo(cam, fs.poses[i + 1], G))
+        cut = s.cut_mm
+        seam.append(np.full(len(A), i))
+        point.append(np.arange(1, len(A) + 1))
+        A_all.append(A)
+        B_all.append(B)
+        dA.append(np.interp(A[:, 1], cut[:, 1], cut[:, 0]) - A[:, 0])
+        dB.append(np.interp(B[:, 1], cut[:, 1], cut[:, 0]) - B[:, 0])
+        G_all.append(G)
+    if not seam:
+        z = np.zeros(0)
+        return SeamDetails(z.astype(int), z.astype(int), np.zeros((0, 2)), np.zeros((0, 2)), z, z, np.zeros((0, 3)))
+    return SeamDetails(np.concatenate(seam), np.concatenate(point), np.vstack(A_all), np.vstack(B_all),
+                       np.concatenate(dA), np.concatenate(dB), np.vstack(G_all))
 
 
 def mean_scale(camera: g.Camera, poses, to_sheet, cuts, dem, *, M: float = 10000.0, points_m=None,

@@ -45,7 +45,7 @@ import numpy as np
 import pandas as pd
 
 from . import geometry as g
-from ._validate import check_positive
+from ._validate import check_int_range, check_positive
 
 __all__ = [
     "PX_MIN_PERCENT",
@@ -270,7 +270,7 @@ def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, sa
     oa_in_b = g.transfer_points(camera, pose_a, pose_b, np.zeros(2), dem)
     k, s = g.photo_axis_towards(ob_in_a)
     kb, sb = g.photo_axis_towards(oa_in_b)
-    t = np.linspace(-h, h, int(samples))
+    t = np.linspace(-h, h, check_int_range("samples", samples, 2, 10_001))
     edge_b = np.empty((t.size, 2))
     edge_b[:, kb] = sb * h
     edge_b[:, 1 - kb] = t
@@ -376,6 +376,7 @@ def measure_flying_height(camera: g.Camera, pose: g.Pose, dem, *, points_m=None,
     dict with ``H_radio_m``, ``Z_points_m`` (ndarray), ``Z_S_m`` (the estimate
     of the exposure's absolute height) and ``points_m`` (the points used).
     """
+    n_points = check_int_range("n_points", n_points, 1, 10_000)
     Xs, Ys = pose.X_m, pose.Y_m
     Zg = float(np.asarray(dem.height(np.array([Xs]), np.array([Ys])))[0])
     H_radio = pose.Z_m - Zg

@@ -227,12 +227,12 @@ class Rectification:
         return self.max_residual_mm <= self.tolerance_mm
 
     def table(self, control_names=None, check_names=None) -> pd.DataFrame:
-        """One row per point: role, residual dx, dy and its length, plan mm, and whether it is within 0.4 mm."""
+        """One row per point: role, residual dx, dy and its length (plan mm, to 0.0001 mm) and whether it is within 0.4 mm."""
         nc, nk = len(self.control_lengths_mm), len(self.check_lengths_mm)
         names = list(control_names or [f"control {k + 1}" for k in range(nc)])
         names += list(check_names or [f"check {k + 1}" for k in range(nk)])
-        R = np.vstack([self.fit.residuals, self.check_residuals_mm.reshape(-1, 2)])
-        L = np.r_[self.control_lengths_mm, self.check_lengths_mm]
+        R = np.round(np.vstack([self.fit.residuals, self.check_residuals_mm.reshape(-1, 2)]), 4) + 0.0
+        L = np.round(np.r_[self.control_lengths_mm, self.check_lengths_mm], 4) + 0.0
         return pd.DataFrame({"role": ["control"] * nc + ["check"] * nk, "dx, mm": R[:, 0], "dy, mm": R[:, 1],
                              "|d|, mm": L, "≤ 0.4 mm": L <= self.tolerance_mm},
                             index=pd.Index(names, name="point"))
@@ -461,6 +461,35 @@ def _best_similarity_fixed_rotation(lev, plan, theta_deg, centre_index=None):
     return s, t
 
 
+def _best_tilt(P, Q, f, st, tmax):
+    """The screen tilt ε (with the best enlargement and shift for it) along ``st``'s direction: (ε, misfit)."""
+    from scipy.optimize import minimize_scalar
+
+    th = math.radians(st.theta_deg)
+    rot = np.array([[math.cos(th), math.sin(th)], [-math.sin(th), math.cos(th)]])
+
+    def misfit(eps):
+        lv = _level(P, f, eps, st.tilt_dir_deg)
+        s, t = _best_similarity_fixed_rotation(lv, Q, st.theta_deg)
+        r = Q - (s * (lv @ rot) + t)
+        return float(np.sum(r * r))
+
+    opt = minimize_scalar(misfit, bounds=(-tmax, tmax), method="bounded", options={"xatol": 1e-7})
+    return float(opt.x), float(opt.fun)
+
+
+def _fine_turn(P, Q, f, st, tmax, span_deg: float = 20.0):
+    """Turn the tilt's direction within ±``span_deg`` to where the best tilt matches the points best."""
+    from scipy.optimize import minimize_scalar
+
+    d0 = st.tilt_dir_deg
+    opt = minimize_scalar(lambda d: _best_tilt(P, Q, f, replace(st, tilt_dir_deg=d0 + d), tmax)[1],
+                          bounds=(-span_deg, span_deg), method="bounded", options={"xatol": 1e-3})
+    if opt.fun < _best_tilt(P, Q, f, st, tmax)[1]:
+        return replace(st, tilt_dir_deg=math.remainder(d0 + float(opt.x), 360.0))
+    return st
+
+
 def transformer_sequence(photo_mm, plan_mm, f_mm: float, *, centre_index: int = 0, start: TransformerState | None = None,
                          cycles: int = 3, tolerance_mm: float = TOLERANCE_MM, max_tilt_deg: float = 30.0) -> TransformerRun:
     """The photo transformer's sequence of motions (guide §12 step 3, figure 20), repeated ``cycles`` times.
@@ -490,7 +519,9 @@ def transformer_sequence(photo_mm, plan_mm, f_mm: float, *, centre_index: int = 
        planchet (θ) to the image;
     2. *scale*: the enlargement about the central point;
     3. *hh*: :func:`principal_horizontal` through the crossings of corresponding lines;
-    4. *turn*: the tilt acts along the perpendicular of hh (λ_t);
+    4. *turn*: the tilt acts along the perpendicular of hh (λ_t) — kept only
+       if it matches the points better; in later cycles, when the misses
+       are too small to draw hh well, the turn is refined by trial (±20°);
     5. *tilt*: the screen's tilt ε and, with it, the enlargement and the
        centring.
     """
@@ -542,28 +573,23 @@ def transformer_sequence(photo_mm, plan_mm, f_mm: float, *, centre_index: int = 
         hh = principal_horizontal(img, Q)
         record("hh", cyc, st, hh=None if hh is None else (hh[0], hh[1]),
                hh_points=None if hh is None else hh[2])
-        # 4. turn: the tilt acts perpendicular to hh (hh's direction taken into the photo's frame)
+        # 4. turn: the tilt acts perpendicular to hh (hh's direction taken into the photo's frame); the operator
+        #    keeps the turn only if tilting along it matches the points better than along the old direction
+        #    (when the misses are already small, the crossings of nearly identical lines are unreliable)
         if hh is not None:
             phi = math.degrees(math.atan2(hh[1][1], hh[1][0]))
             new_dir = phi - st.theta_deg + 90.0
             # keep the current tilt's sense: the same tilt along the opposite direction is −ε
             if math.cos(math.radians(new_dir - st.tilt_dir_deg)) < 0:
                 new_dir += 180.0
-            st = replace(st, tilt_dir_deg=math.remainder(new_dir, 360.0))
+            cand = replace(st, tilt_dir_deg=math.remainder(new_dir, 360.0))
+            if _best_tilt(P, Q, f, cand, tmax)[1] <= _best_tilt(P, Q, f, st, tmax)[1]:
+                st = cand
+        if cyc > 1:  # later cycles: the misses are too small to draw hh well — turn a little by trial
+            st = _fine_turn(P, Q, f, st, tmax)
         record("turn", cyc, st)
         # 5. tilt the screen, rescale and re-centre
-        from scipy.optimize import minimize_scalar
-
-        def misfit(eps, _st=st):
-            lv = _level(P, f, eps, _st.tilt_dir_deg)
-            s, t = _best_similarity_fixed_rotation(lv, Q, _st.theta_deg)
-            th = math.radians(_st.theta_deg)
-            c_, s_ = math.cos(th), math.sin(th)
-            r = Q - (s * (lv @ np.array([[c_, s_], [-s_, c_]])) + t)
-            return float(np.sum(r * r))
-
-        opt = minimize_scalar(misfit, bounds=(-tmax, tmax), method="bounded", options={"xatol": 1e-7})
-        eps = float(opt.x)
+        eps, _ = _best_tilt(P, Q, f, st, tmax)
         lv = _level(P, f, eps, st.tilt_dir_deg)
         s, t = _best_similarity_fixed_rotation(lv, Q, st.theta_deg)
         st = replace(st, eps_deg=eps, scale=s, tx_mm=float(t[0]), ty_mm=float(t[1]))

@@ -44,16 +44,37 @@ How a pixel is computed
    the frame sides are burnt in (black wedges with a white centre line on
    the x and y axes).
 
+Objects with height
+-------------------
+With ``objects=True`` (the default, for a site that has them:
+:attr:`aerophoto.site.Site.objects`) every ray is also cut with what stands
+on the ground — houses, crowns, the chimney, the mast, the water tower, the
+embankment and the bridge exactly (convex polyhedra and ellipsoids), the
+forest canopy by marching its height field — and the nearest hit wins.  So a
+tall object leans away from the nadir point by δh = r·h/H (guide §4) and hides
+the ground behind it; :attr:`Photo.surface` says what each pixel shows
+(:data:`aerophoto.site.objects.SURFACES`) and :attr:`Photo.object_id` which
+object.  The ground stays the texture sampled at the hit (its relief shading
+is the texture's: sun in the south-west, 45° high).  Objects are shaded by the
+same light (:class:`Sun`); with ``sun=Sun(azimuth_deg, elevation_deg)`` they are
+shaded by that sun and **cast shadows** on the ground, on each other and on
+the canopy (:attr:`Photo.shadow`).  A wrapper of the site without ``objects``
+(:class:`aerophoto.terrain.RescaledRelief`) renders bare ground.  The extra
+cost: see ``benchmarks/bench_render.py`` (``render_512`` against
+``render_512_bare``).
+
 Public API
 ----------
 ``render(site, camera, pose, n_px=512, *, vignetting=0.15, fiducials=True,
-level=None, background=0.5, keep_ground=False, tol_m=1e-3, number=None) -> Photo``
+level=None, background=0.5, keep_ground=False, tol_m=1e-3, number=None, objects=True, sun=None) -> Photo``
+``trace(site, camera, pose, xy_mm, *, objects=True) -> Hits`` — what the rays of any photo points hit
+``Sun(azimuth_deg=225, elevation_deg=45)`` — the light (azimuth clockwise from north)
 ``render_shot(site, shot, n_px=512, **kw) -> Photo`` (a :class:`aerophoto.simulate.Shot`)
 ``render_strip(site, strip, n_px=512, **kw) -> list[Photo]``
 ``Photo``: ``image`` (n, n) float32 0…1, ``camera``, ``pose``, ``pixel_mm``,
 ``mm_to_pixel``, ``pixel_to_mm``, ``pixel_centres_mm()``, ``project(XYZ)``,
 ``points(catalogue=None)``, ``value_at(xy_mm)``, ``light_falloff()``,
-``valid``, ``ground_m``, ``level``.
+``valid``, ``ground_m``, ``level``, ``surface``, ``object_id``, ``shadow``, ``objects``, ``sun``.
 
 This module is data only (layer 3).  A photo's view — the image in photo mm
 with its points in the guide's symbols, updated in place — is
@@ -72,10 +93,77 @@ import pandas as pd
 from . import geometry as g
 from ._validate import check_int_range, check_range
 
-__all__ = ["Photo", "render", "render_shot", "render_strip"]
+__all__ = ["Photo", "Sun", "Hits", "render", "render_shot", "render_strip", "trace", "AMBIENT"]
 
 COARSE_STEP = 8
 MAX_PX = 4096
+#: brightness of a face turned away from the sun or in shadow, as a share of level ground in full sun
+AMBIENT = 0.35
+
+
+@dataclass(frozen=True)
+class Sun:
+    """The sun: where it stands, for shading objects and casting their shadows.
+
+    Parameters
+    ----------
+    azimuth_deg : float
+        Azimuth of the sun, degrees clockwise from north (geographic), 0 ≤ A < 360;
+        225 = south-west (the light of the site's texture).
+    elevation_deg : float
+        Height of the sun above the horizon, degrees, 1 ≤ h ≤ 90.
+    """
+
+    azimuth_deg: float = 225.0
+    elevation_deg: float = 45.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "azimuth_deg", check_range("azimuth_deg", self.azimuth_deg, 0.0, 360.0,
+                                                             hi_open=True, unit="degrees"))
+        object.__setattr__(self, "elevation_deg", check_range("elevation_deg", self.elevation_deg, 1.0, 90.0,
+                                                               unit="degrees"))
+
+    @property
+    def direction(self) -> np.ndarray:
+        """Unit vector from the ground towards the sun (X east, Y north, Z up)."""
+        a, e = math.radians(self.azimuth_deg), math.radians(self.elevation_deg)
+        return np.array([math.sin(a) * math.cos(e), math.cos(a) * math.cos(e), math.sin(e)])
+
+    @property
+    def shadow_azimuth_deg(self) -> float:
+        """The direction shadows fall in, degrees clockwise from north."""
+        return (self.azimuth_deg + 180.0) % 360.0
+
+    def shadow_length_m(self, h_m):
+        """Length of the shadow of a height h on level ground, L = h / tg(elevation), metres."""
+        return np.asarray(h_m, dtype=float) / math.tan(math.radians(self.elevation_deg))
+
+
+#: the light of the site's texture (its relief shading): objects are shaded by it when no sun is given
+TEXTURE_LIGHT = Sun(225.0, 45.0)
+
+
+@dataclass(frozen=True, eq=False)
+class Hits:
+    """What rays hit: the point, the kind of surface and the object.
+
+    Attributes
+    ----------
+    XYZ_m : ndarray (N, 3)
+        The first point on the surface along each ray, metres.
+    surface : ndarray (N,) uint8
+        :data:`aerophoto.site.objects.SURFACES` code (0 ground, 1 roof, 2 wall, 3 tree crown, 4 forest canopy,
+        5 structure, 6 embankment).
+    object_id : ndarray (N,) int64
+        The row of ``site.objects.table()`` hit, −1 for the ground and the canopy.
+    normal : ndarray (N, 3)
+        Unit normal of the surface there (up for the ground).
+    """
+
+    XYZ_m: np.ndarray
+    surface: np.ndarray
+    object_id: np.ndarray
+    normal: np.ndarray
 
 
 # --------------------------------------------------------------------------- the photo
@@ -108,6 +196,16 @@ class Photo:
         The photo's number (e.g. from a simulated shot).
     dem_evaluations : int
         Full-resolution DEM evaluations the intersection needed (for profiling).
+    surface : ndarray (n_px, n_px) uint8 or None
+        What each pixel shows (:data:`aerophoto.site.objects.SURFACES`; 0 = ground), when rendered with objects.
+    object_id : ndarray (n_px, n_px) int32 or None
+        Which object each pixel shows (row of ``site.objects.table()``; −1 = ground or canopy).
+    shadow : ndarray (n_px, n_px) bool or None
+        Pixels in a cast shadow (rendered with a ``sun``).
+    objects : bool
+        Whether the objects with height were rendered (then :attr:`ground_m` holds the surface hit).
+    sun : Sun or None
+        The sun the photo was rendered with (None: the texture's light, no cast shadows).
     """
 
     image: np.ndarray
@@ -122,6 +220,11 @@ class Photo:
     ground_m: np.ndarray | None = None
     number: int | None = None
     dem_evaluations: int = 0
+    surface: np.ndarray | None = None
+    object_id: np.ndarray | None = None
+    shadow: np.ndarray | None = None
+    objects: bool = False
+    sun: Sun | None = None
 
     def __repr__(self) -> str:
         p = self.pose
@@ -191,8 +294,11 @@ class Photo:
         columns ``x_mm``, ``y_mm`` (exact projection), ``row``, ``col``
         (fractional pixel position) and ``visible``: inside the frame and
         not hidden by the terrain (the ray from S through the image point
-        meets the DEM within ``occlusion_tol_m`` of the point).  Points
-        behind the camera get NaN coordinates and ``visible`` False.
+        meets the DEM within ``occlusion_tol_m`` of the point) — nor, on a
+        photo rendered with objects, by a house, a crown or the canopy (the
+        ray's first hit, :func:`trace`).  Points behind the camera get NaN
+        coordinates and ``visible`` False.  ``catalogue=site.all_points``
+        includes the objects' roof corners and tops.
         """
         cat = self.site.catalogue if catalogue is None else catalogue
         df = cat.copy()
@@ -207,7 +313,10 @@ class Photo:
         inside = np.all(np.abs(xy) <= self.camera.half_mm, axis=1)
         visible = inside.copy()
         if inside.any():
-            back = g.photo_to_dem(self.camera, self.pose, xy[inside], self.site)
+            if self.objects:
+                back = trace(self.site, self.camera, self.pose, xy[inside]).XYZ_m
+            else:
+                back = g.photo_to_dem(self.camera, self.pose, xy[inside], self.site)
             visible[inside] = np.linalg.norm(back - P[inside], axis=1) <= occlusion_tol_m
         df["x_mm"] = xy[:, 0]
         df["y_mm"] = xy[:, 1]
@@ -309,6 +418,8 @@ def render(
     keep_ground: bool = False,
     tol_m: float = 1e-3,
     number: int | None = None,
+    objects: bool = True,
+    sun: Sun | None = None,
 ) -> Photo:
     """Photograph the site with a frame camera at an exterior orientation, exactly.
 
@@ -338,6 +449,12 @@ def render(
         (1e-6 ≤ tol ≤ 1).
     number : int or None
         A photo number to carry along.
+    objects : bool
+        Ray-cast the site's objects with height (houses, trees, canopy, …) when it has them
+        (``site.objects``); False photographs the bare ground.
+    sun : Sun or None
+        Shade the objects by this sun and cast their shadows; None shades them by the
+        texture's light (south-west, 45°) without cast shadows.
 
     Returns
     -------
@@ -353,6 +470,8 @@ def render(
     v = check_range("vignetting", vignetting, 0.0, 1.0, hi_open=True)
     bg = check_range("background", background, 0.0, 1.0)
     tol = check_range("tol_m", tol_m, 1e-6, 1.0, unit="m")
+    if sun is not None and not isinstance(sun, Sun):
+        raise ValueError(f"sun = {sun!r} must be an aerophoto.render.Sun or None")
     if level is None:
         lev = site.level_for(_ground_pixel_m(site, camera, pose, n))
     else:
@@ -426,6 +545,23 @@ def render(
     Xg = coords[1] * s
     Yg = coords[0] * s
 
+    # 2b. what stands on the ground: the nearest hit of every ray
+    objs = getattr(site, "objects", None) if objects else None
+    hits = None
+    if objs is not None:
+        D = np.empty((n * n, 3))
+        D[:, 0] = -ax
+        D[:, 1] = -ay
+        D[:, 2] = -1.0
+        k, pix = _box_pixel_pairs(objs.bbox, camera, pose, n)
+        hits = _first_hits(site, objs, pose.centre, D, Sz - Z, k, pix)
+        moved = hits.surface > 0
+        u = hits.u[moved]
+        Xg[moved] = Sx - ax[moved] * u
+        Yg[moved] = Sy - ay[moved] * u
+        Z = Z.copy()
+        Z[moved] = Sz - u
+
     # 3. brightness
     t = site.texel_m(lev)
     tex = site.texture_level(lev)
@@ -435,6 +571,20 @@ def render(
     img *= np.float32(1.0 / 255.0)
     x0, x1, y0, y1 = site.extent_m
     valid = (Xg >= x0) & (Xg <= x1) & (Yg >= y0) & (Yg <= y1)
+    shadow = None
+    if hits is not None:
+        light = (sun or TEXTURE_LIGHT).direction
+        on = hits.surface > 0
+        lit = np.ones(n * n, np.float32)
+        lit[on] = _shading(hits.normal[on], light)
+        own = on & np.isfinite(hits.albedo)  # faces with a brightness of their own (not the texture)
+        img[own] = hits.albedo[own]
+        if sun is not None:
+            P = np.column_stack([Xg, Yg, Z])
+            shadow = _in_shadow(objs, site, P, hits.object_id, light, camera, pose, n)
+            lit[shadow] = np.minimum(lit[shadow], np.float32(AMBIENT))
+            shadow = shadow.reshape(n, n)
+        img *= lit
     img = img.reshape(n, n)
     valid = valid.reshape(n, n)
     if v > 0:
@@ -442,15 +592,263 @@ def render(
     if not valid.all():
         img[~valid] = bg
     if fiducials:
-        dark, light = _fiducial_mask(n)
+        dark, light_mask = _fiducial_mask(n)
         img[dark] = 0.0
-        img[light] = 1.0
+        img[light_mask] = 1.0
     ground = None
     if keep_ground:
         ground = np.stack([Xg, Yg, Z], axis=-1).reshape(n, n, 3)
+    surface = object_id = None
+    if hits is not None:
+        surface = hits.surface.reshape(n, n)
+        object_id = hits.object_id.astype(np.int32).reshape(n, n)
     return Photo(image=img, camera=camera, pose=pose, site=site, valid=valid, level=lev, vignetting=v,
                  fiducials=bool(fiducials), dem_residual_m=residual, ground_m=ground, number=number,
-                 dem_evaluations=n_eval[0])
+                 dem_evaluations=n_eval[0], surface=surface, object_id=object_id, shadow=shadow,
+                 objects=hits is not None, sun=sun)
+
+
+# --------------------------------------------------------------------------- objects with height
+@dataclass(frozen=True, eq=False)
+class _RayHits:
+    u: np.ndarray  # depth below S along each ray (Z = Z_S − u)
+    surface: np.ndarray  # SURFACES code
+    object_id: np.ndarray  # −1 for ground and canopy
+    normal: np.ndarray  # (N, 3), up for the ground
+    albedo: np.ndarray  # a face's own brightness, NaN where the texture shows (ground, canopy, textured faces)
+
+
+def _shading(normal, light) -> np.ndarray:
+    from .site.objects import shading
+
+    return np.minimum(shading(normal, light, AMBIENT), np.float32(1.6))
+
+
+def _project_boxes(boxes, camera, pose) -> np.ndarray:
+    """Photo-mm rectangles (x0, x1, y0, y1) of 3-D boxes (X0, X1, Y0, Y1, Z0, Z1); NaN for boxes behind S."""
+    b = np.asarray(boxes, float)
+    corners = np.stack([np.stack([b[:, i], b[:, j], b[:, k]], axis=1)
+                        for i in (0, 1) for j in (2, 3) for k in (4, 5)], axis=1)  # (K, 8, 3)
+    R = g.rotation_matrix(pose)
+    front = np.all((corners - pose.centre) @ R[:, 2] < 0, axis=1)
+    out = np.full((len(b), 4), np.nan)
+    if front.any():
+        xy = g.ground_to_photo(camera, pose, corners[front])
+        out[front] = np.column_stack([xy[..., 0].min(1), xy[..., 0].max(1), xy[..., 1].min(1), xy[..., 1].max(1)])
+    return out
+
+
+def _box_pixel_pairs(boxes, camera, pose, n) -> tuple:
+    """(box, pixel) pairs: the pixel centres of an n×n photo inside each box's projected rectangle."""
+    rect = _project_boxes(boxes, camera, pose)
+    h, p = camera.half_mm, camera.frame_mm / n
+    ok = np.all(np.isfinite(rect), axis=1)
+    c0 = np.ceil((rect[:, 0] + h) / p - 0.5)
+    c1 = np.floor((rect[:, 1] + h) / p - 0.5)
+    r0 = np.ceil((h - rect[:, 3]) / p - 0.5)
+    r1 = np.floor((h - rect[:, 2]) / p - 0.5)
+    c0, r0 = np.clip(np.nan_to_num(c0, nan=n), 0, n), np.clip(np.nan_to_num(r0, nan=n), 0, n)
+    c1, r1 = np.clip(np.nan_to_num(c1, nan=-1), -1, n - 1), np.clip(np.nan_to_num(r1, nan=-1), -1, n - 1)
+    nc = np.where(ok, c1 - c0 + 1, 0).clip(0).astype(np.int64)
+    nr = np.where(ok, r1 - r0 + 1, 0).clip(0).astype(np.int64)
+    cnt = nr * nc
+    k = np.repeat(np.arange(len(rect)), cnt)
+    local = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+    ncr = np.repeat(nc, cnt)
+    rows = np.repeat(r0.astype(np.int64), cnt) + local // np.maximum(ncr, 1)
+    cols = np.repeat(c0.astype(np.int64), cnt) + local % np.maximum(ncr, 1)
+    return k, rows * n + cols
+
+
+def _box_point_pairs(boxes, camera, pose, xy_mm) -> tuple:
+    """(box, point) pairs: the photo points inside each box's projected rectangle."""
+    rect = _project_boxes(boxes, camera, pose)
+    xy = np.asarray(xy_mm, float).reshape(-1, 2)
+    ks, ps = [], []
+    step = max(1, int(4e6 // max(len(rect), 1)))
+    for a in range(0, len(xy), step):
+        q = xy[a:a + step]
+        inside = ((q[:, None, 0] >= rect[None, :, 0]) & (q[:, None, 0] <= rect[None, :, 1])
+                  & (q[:, None, 1] >= rect[None, :, 2]) & (q[:, None, 1] <= rect[None, :, 3]))
+        pi, ki = np.nonzero(inside)
+        ks.append(ki)
+        ps.append(pi + a)
+    return (np.concatenate(ks) if ks else np.zeros(0, np.int64)), (np.concatenate(ps) if ps else np.zeros(0, np.int64))
+
+
+def _first_hits(site, objs, S, D, u_ground, k, ray) -> _RayHits:
+    """The nearest of the ground (depth ``u_ground``), the objects (pairs ``k``–``ray``) and the canopy, per ray."""
+    from .site.objects import hit_ellipsoids, hit_polyhedra, march_canopy
+
+    N = len(u_ground)
+    u = np.asarray(u_ground, float).copy()
+    surface = np.zeros(N, np.uint8)
+    obj = np.full(N, -1, np.int64)
+    normal = np.zeros((N, 3))
+    normal[:, 2] = 1.0
+    albedo = np.full(N, np.nan, np.float32)
+    n_poly = objs.n_polyhedra
+    poly = k < n_poly
+    cand = []
+    if poly.any():
+        kp, rp = k[poly], ray[poly]
+        uu, pl = hit_polyhedra(objs.planes, kp, S, D[rp])
+        ok = uu < u[rp]
+        cand.append((rp[ok], uu[ok], kp[ok], pl[ok], np.zeros((int(ok.sum()), 3))))
+    if (~poly).any():
+        ke, re = k[~poly], ray[~poly]
+        e = ke - n_poly
+        uu, nrm = hit_ellipsoids(objs.ell_centre[e], objs.ell_radii[e], S, D[re])
+        ok = uu < u[re]
+        cand.append((re[ok], uu[ok], ke[ok], np.full(int(ok.sum()), -1), nrm[ok]))
+    if cand:
+        r_ = np.concatenate([c[0] for c in cand])
+        u_ = np.concatenate([c[1] for c in cand])
+        k_ = np.concatenate([c[2] for c in cand])
+        p_ = np.concatenate([c[3] for c in cand])
+        n_ = np.concatenate([c[4] for c in cand])
+        order = np.lexsort((u_, r_))
+        r_, u_, k_, p_, n_ = r_[order], u_[order], k_[order], p_[order], n_[order]
+        first = np.ones(len(r_), bool)
+        first[1:] = r_[1:] != r_[:-1]
+        r_, u_, k_, p_, n_ = r_[first], u_[first], k_[first], p_[first], n_[first]
+        u[r_] = u_
+        obj[r_] = k_
+        isp = p_ >= 0
+        rp, kp, pp = r_[isp], k_[isp], p_[isp]
+        normal[rp] = objs.planes[kp, pp, :3]
+        surface[rp] = objs.face[kp, pp]
+        top = objs.planes[kp, pp, 2] > 0.5
+        alb = np.where(top, objs.albedo[kp, 0], objs.albedo[kp, 1])
+        albedo[rp] = np.where(objs.textured[kp, pp], np.nan, alb)
+        re = r_[~isp]
+        normal[re] = n_[~isp]
+        surface[re] = 3
+        albedo[re] = objs.ell_albedo[k_[~isp] - n_poly]
+    if objs.canopy_dm.size and objs.canopy_max_m > 0:
+        _canopy_hits(site, objs, S, D, u, surface, obj, normal, albedo, u_ground, march_canopy)
+    return _RayHits(u, surface, obj, normal, albedo)
+
+
+def _canopy_hits(site, objs, S, D, u, surface, obj, normal, albedo, u_ground, march) -> None:
+    """Cut the rays that pass over the forest with the canopy (in place).  ``D`` has D_z = −1 (u is a depth)."""
+    top = objs.canopy_max_m + 1.0
+    S = np.asarray(S, float)
+    ug = np.asarray(u_ground)
+    # the ray's piece from ``top`` above its ground hit down to it is top·tg θ long horizontally: look for forest
+    # that near its ground hit (rays grouped by that reach, in whole 8 m cells)
+    Gx = S[0] + ug * D[:, 0]
+    Gy = S[1] + ug * D[:, 1]
+    tg = np.sqrt(np.max(D[:, 0] ** 2 + D[:, 1] ** 2, initial=0.0))
+    cand = np.flatnonzero(objs.near_canopy(Gx, Gy, reach_m=top * tg + 2.0))
+    if not len(cand):
+        return
+    cells = np.ceil((top * np.hypot(D[cand, 0], D[cand, 1]) + 2.0) / 8.0).astype(np.int64)
+    near = np.zeros(len(cand), bool)
+    for c in np.unique(cells):
+        sel = np.flatnonzero(cells == c)
+        near[sel] = objs.near_canopy(Gx[cand[sel]], Gy[cand[sel]], reach_m=8.0 * c)
+    cand = cand[near]
+    if not len(cand):
+        return
+    G = np.column_stack([Gx[cand], Gy[cand], S[2] - ug[cand]])
+    T = G - top * D[cand]  # where the ray is ``top`` above its ground hit
+    zT = site.height(T[:, 0], T[:, 1])  # the ground may rise under the ray's upper part
+    z_start = np.maximum(G[:, 2], zT) + top
+    u0 = np.maximum(S[2] - z_start, 0.0)
+    # the ground along the short piece of ray: linear from the point under its start to its ground hit
+    P0 = S + u0[:, None] * D[cand]
+    z0 = site.height(P0[:, 0], P0[:, 1])
+    uc = march(objs, (z0, G[:, 2]), S, D[cand], u0, ug[cand])
+    hit = uc < u[cand]
+    if not hit.any():
+        return
+    idx = cand[hit]
+    u[idx] = uc[hit]
+    surface[idx] = 4
+    obj[idx] = -1
+    albedo[idx] = np.nan
+    P = S + u[idx, None] * D[idx]
+    d = objs.texel_m  # the canopy's normal from its slope over ± one texel (the gentle ground's slope left out)
+    c = objs.canopy_at
+    gx = (c(P[:, 0] + d, P[:, 1]) - c(P[:, 0] - d, P[:, 1])) / (2 * d)
+    gy = (c(P[:, 0], P[:, 1] + d) - c(P[:, 0], P[:, 1] - d)) / (2 * d)
+    nrm = np.column_stack([-gx, -gy, np.ones(len(idx))])
+    normal[idx] = nrm / np.linalg.norm(nrm, axis=1, keepdims=True)
+
+
+def _in_shadow(objs, site, P, obj, light, camera, pose, n) -> np.ndarray:
+    """Which pixels' points P (N, 3) lie in the shadow of an object or of the canopy (the sun along ``light``)."""
+    from .site.objects import hit_ellipsoids, hit_polyhedra, march_canopy
+
+    N = len(P)
+    out = np.zeros(N, bool)
+    L = np.asarray(light, float)
+    # shadow volumes: each object's box swept away from the sun down to 5 m below its lowest ground
+    b = objs.bbox
+    drop = (b[:, 5] - (b[:, 4] - 5.0)) / L[2]
+    sx, sy = -L[0] * drop, -L[1] * drop
+    vol = np.column_stack([b[:, 0] + np.minimum(sx, 0), b[:, 1] + np.maximum(sx, 0), b[:, 2] + np.minimum(sy, 0),
+                           b[:, 3] + np.maximum(sy, 0), b[:, 4] - 5.0, b[:, 5]])
+    k, pix = _box_pixel_pairs(vol, camera, pose, n)
+    keep = obj[pix] != k  # a face's own object shades it through the face's turn, not as a cast shadow
+    k, pix = k[keep], pix[keep]
+    eps = 0.05
+    n_poly = objs.n_polyhedra
+    poly = k < n_poly
+    if poly.any():
+        uu, _ = hit_polyhedra(objs.planes, k[poly], P[pix[poly]], L, min_u=eps)
+        out[pix[poly][np.isfinite(uu)]] = True
+    if (~poly).any():
+        e = k[~poly] - n_poly
+        uu, _ = hit_ellipsoids(objs.ell_centre[e], objs.ell_radii[e], P[pix[~poly]], L, min_u=eps)
+        out[pix[~poly][np.isfinite(uu)]] = True
+    if objs.canopy_dm.size and objs.canopy_max_m > 0:
+        reach = (objs.canopy_max_m + 3.0) / max(math.tan(math.asin(min(L[2], 1.0))), 1e-3)
+        cand = np.flatnonzero(~out & objs.near_canopy(P[:, 0], P[:, 1], reach_m=reach + 2.0))
+        if len(cand):
+            u_end = np.full(len(cand), (objs.canopy_max_m + 3.0) / L[2])
+            u0 = np.full(len(cand), 0.5 / L[2])
+            E = P[cand] + u_end[:, None] * L
+            ground = (site.height(P[cand, 0], P[cand, 1]), site.height(E[:, 0], E[:, 1]))  # linear under the ray
+            uc = march_canopy(objs, ground, P[cand], np.broadcast_to(L, (len(cand), 3)), u0, u_end)
+            out[cand[np.isfinite(uc)]] = True
+    return out
+
+
+def trace(site, camera: g.Camera, pose: g.Pose, xy_mm, *, objects: bool = True) -> Hits:
+    """What the rays of photo points hit first: the terrain or, with ``objects``, a house, a crown, the canopy, ….
+
+    Parameters
+    ----------
+    xy_mm : array_like (..., 2)
+        Photo points, mm.
+    objects : bool
+        Cut the rays with the site's objects (when it has them); False: the DEM only.
+
+    Returns
+    -------
+    Hits with arrays of shape (..., 3) and (...) — the rays of a rendered photo's
+    pixel centres hit exactly what its pixels show.
+    """
+    xy = np.asarray(xy_mm, dtype=float)
+    shape = xy.shape[:-1]
+    flat = xy.reshape(-1, 2)
+    G = g.photo_to_dem(camera, pose, flat, site)
+    N = len(flat)
+    objs = getattr(site, "objects", None) if objects else None
+    if objs is None or N == 0:
+        nrm = np.zeros((N, 3))
+        nrm[:, 2] = 1.0
+        return Hits(G.reshape(shape + (3,)), np.zeros(shape, np.uint8), np.full(shape, -1, np.int64),
+                    nrm.reshape(shape + (3,)))
+    S = pose.centre
+    D = (G - S) / (S[2] - G[:, 2])[:, None]  # per unit depth: D_z = −1
+    k, ray = _box_point_pairs(objs.bbox, camera, pose, flat)
+    h = _first_hits(site, objs, S, D, S[2] - G[:, 2], k, ray)
+    P = S + h.u[:, None] * D
+    return Hits(P.reshape(shape + (3,)), h.surface.reshape(shape), h.object_id.reshape(shape),
+                h.normal.reshape(shape + (3,)))
 
 
 def render_shot(site, shot, n_px: int = 512, **kwargs) -> Photo:

@@ -277,6 +277,36 @@ class LabServer(Server):
         return f"{self.base}/lab/workspaces/{ws}/tree/{notebook}?reset&token={self.token}"
 
 
+class StudentLabServer(LabServer):
+    """The student's JupyterLab exactly as the README starts it: ``aerophoto-course lab NOTEBOOK -- …``.
+
+    ``root_dir`` is the folder the student works in (it holds ``workbook/``); the server options of
+    :class:`LabServer` (address, port, token, private settings) follow the ``--``.
+    """
+
+    kind = "student-lab"
+
+    def __init__(self, root_dir: Path, notebook: str = "workbook/00_start_here.ipynb", **kw):
+        super().__init__(root_dir, **kw)
+        self.notebook = notebook
+
+    def command(self) -> list[str]:
+        lab = super().command()
+        assert lab[1:3] == ["-m", "jupyterlab"], lab
+        return [_bin_python(), "-m", "aerophoto.course", "lab", self.notebook, "--", *lab[3:]]
+
+
+def lab_chrome(page) -> dict:
+    """What JupyterLab offers around the notebook: main menus, notebook toolbar buttons, side-bar tabs (titles)."""
+    return page.evaluate("""() => ({
+      menus: Array.from(document.querySelectorAll('.lm-MenuBar-itemLabel')).map((e) => e.textContent.trim()),
+      toolbar: Array.from(document.querySelectorAll('.jp-NotebookPanel-toolbar [title], .jp-NotebookPanel-toolbar button'))
+               .map((e) => ((e.getAttribute('title') || '') + ' ' + e.textContent).trim()).filter((t) => t),
+      sidebar: Array.from(document.querySelectorAll('.jp-SideBar .lm-TabBar-tab'))
+               .map((e) => e.getAttribute('title') || e.textContent.trim()),
+    })""")
+
+
 class VoilaServer(Server):
     """Voilà serving the notebooks folder, started from the repository's top folder.
 

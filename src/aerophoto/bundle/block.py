@@ -158,11 +158,6 @@ class Measurements:
             raise ValueError(f"the {nc} control points lie on one line in plan; the valid range is at least "
                              f"{MIN_CONTROL} control points not on one line")
         per_point = np.bincount(self.obs_point, minlength=P)
-        lonely = np.flatnonzero((per_point < 2) & ~is_c)
-        if len(lonely):
-            ids = self.point_ids[lonely[:5]].tolist()
-            raise ValueError(f"{len(lonely)} point(s) (ids {ids}…) are measured on fewer than 2 photos; "
-                             "the valid range is at least 2 photos for every point that is not control")
         tied = (per_point >= 2) | is_c
         ties = np.bincount(self.obs_photo[tied[self.obs_point]], minlength=n)
         bad = np.flatnonzero(ties < MIN_TIES_PER_PHOTO)
@@ -170,6 +165,11 @@ class Measurements:
             j = bad[0]
             raise ValueError(f"photo {int(self.photo_ids[j])} has {int(ties[j])} tie point(s) (points also measured "
                              f"on another photo, or control); the valid range is at least {MIN_TIES_PER_PHOTO}")
+        lonely = np.flatnonzero((per_point < 2) & ~is_c)
+        if len(lonely):
+            ids = self.point_ids[lonely[:5]].tolist()
+            raise ValueError(f"{len(lonely)} point(s) (ids {ids}…) are measured on fewer than 2 photos; "
+                             "the valid range is at least 2 photos for every point that is not control")
         # connectivity: photos joined through shared points
         parent = np.arange(n)
 
@@ -268,8 +268,13 @@ class Measurements:
         return self._subset(keep, used)
 
     def as_tie(self, point_id) -> "Measurements":
-        """A copy in which control point ``point_id`` loses its ground coordinates (a rejected control point)."""
+        """A copy in which control point ``point_id`` loses its ground coordinates (a rejected control point);
+        if it is measured on fewer than two photos it is removed altogether."""
         k = self.index_of_point(point_id)
+        if np.sum(self.obs_point == k) < 2:
+            keep_pts = np.ones(self.n_points, bool)
+            keep_pts[k] = False
+            return self._subset(self.obs_point != k, keep_pts)
         kind = self.point_kind.copy()
         kind[k] = "tie"
         return self.replace(point_kind=kind)

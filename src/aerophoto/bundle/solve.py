@@ -7,11 +7,26 @@ number of unknowns in the block").  Each measured photo coordinate gives one
 equation — the collinearity equation (:mod:`.collinearity`) — weighted by its a
 priori RMS error σ; each control point gives three more, its measured X, Y, Z
 weighted by their σ.  With ``v`` the residuals divided by their σ the
-adjustment minimises Σ v² (or a robust ρ(v), below) by sparse non-linear least
-squares: :func:`scipy.optimize.least_squares` (trust-region reflective, LSMR
-inner solver) with the analytic Jacobian as a sparse matrix — each row touches
-six photo columns and three point columns, so a 400-photo block's Jacobian has
-a few hundred thousand non-zeros in a matrix of ~10⁹ cells.
+adjustment minimises Σ v² (or a robust ρ(v), below).  Each row of the Jacobian
+touches six photo columns and three point columns, so a 400-photo block's
+Jacobian has a few hundred thousand non-zeros in a matrix of ~10⁸ cells.  Two
+solvers reach the same minimum (``method``):
+
+* ``"schur"`` (default) — Levenberg–Marquardt on the reduced normal equations:
+  the points are eliminated point by point and only the photos' 6n × 6n system
+  is factored (Cholesky).  This is what photogrammetric packages have always
+  done, and it is fast and steady even on weakly controlled blocks.
+* ``"scipy"`` — :func:`scipy.optimize.least_squares` (trust-region reflective)
+  with the analytic Jacobian as a sparse matrix (its pattern is
+  :meth:`_Problem.sparsity`, the ``jac_sparsity`` of a finite-difference run)
+  and the LSMR inner solver.  It needs tight LSMR tolerances to converge and is
+  4–30 times slower on the chapter's blocks (benchmarks/bench_bundle.py); it is
+  kept as the independent check and for the robust losses scipy offers.
+
+No dedicated bundle-adjustment library is used: pyceres/pycolmap would add a
+compiled dependency for blocks that the reduced system solves in seconds, and
+the chapter needs the normal-equation blocks anyway for the covariances and
+the redundancy numbers.
 
 Precision.  At the solution the normal matrix N = JᵀJ has the block structure
 
@@ -43,7 +58,8 @@ from .block import Measurements
 from .collinearity import project, project_jacobian
 
 __all__ = ["LOSSES", "METHODS", "Adjustment", "Precision", "adjust", "precision", "Snooping", "data_snooping",
-           "CRITICAL_W", "image_critical", "error_ellipse"]
+           "CRITICAL_W", "image_critical", "error_ellipse",
+           "point_covariance", "rms_expectation"]
 
 #: robust losses accepted by :func:`adjust` (``"soft_l1"`` and ``"cauchy"`` with ``method="scipy"`` only)
 LOSSES = ("linear", "huber", "soft_l1", "cauchy")
@@ -126,13 +142,14 @@ class _Problem:
         return sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(self.n_rows, self.n_cols))
 
     # ------------------------------------------------------------ the normal equations in blocks
-    def normal(self, eo, xyz, weights=None):
+    def normal(self, eo, xyz, weights=None, weights_ctrl=None):
         """Blocks of the normal equations at (eo, xyz).
 
         Returns (A, B, r_img, r_ctrl, U, V, Wo, g_c, g_p): A (N, 2, 6) and B (N, 2, 3) the weighted
         derivatives of the computed photo coordinates; r the weighted residuals; U (n, 6, 6), V (P, 3, 3)
         and Wo (N, 6, 3) = AᵀB per observation; g_c (n, 6), g_p (P, 3) the right-hand sides Jᵀr.
-        ``weights`` (N,) multiplies each observation's weight (robust re-weighting).
+        ``weights`` (N,) multiplies each image observation's weight, ``weights_ctrl`` (P, 3) each control
+        coordinate's (robust re-weighting).
         """
         m = self.m
         ph, pt = m.obs_photo, m.obs_point
@@ -143,17 +160,18 @@ class _Problem:
         r_img = (m.xy_mm - xy) * w[:, None]
         r_ctrl = np.zeros((self.P, 3))
         r_ctrl[self.ctrl] = (m.control_XYZ_m[self.ctrl] - xyz[self.ctrl]) / m.control_sigma_m[self.ctrl]
+        wc2 = self.wc2 if weights_ctrl is None else self.wc2 * weights_ctrl
         U = np.zeros((self.n, 6, 6))
         np.add.at(U, ph, np.einsum("nri,nrj->nij", A, A))
         V = np.zeros((self.P, 3, 3))
         np.add.at(V, pt, np.einsum("nri,nrj->nij", B, B))
-        V[:, [0, 1, 2], [0, 1, 2]] += self.wc2
+        V[:, [0, 1, 2], [0, 1, 2]] += wc2
         Wo = np.einsum("nri,nrj->nij", A, B)
         g_c = np.zeros((self.n, 6))
         np.add.at(g_c, ph, np.einsum("nri,nr->ni", A, r_img))
         g_p = np.zeros((self.P, 3))
         np.add.at(g_p, pt, np.einsum("nri,nr->ni", B, r_img))
-        g_p += r_ctrl * np.sqrt(self.wc2)
+        g_p += r_ctrl * np.sqrt(self.wc2) * (1.0 if weights_ctrl is None else weights_ctrl)
         return A, B, r_img, r_ctrl, U, V, Wo, g_c, g_p
 
     def reduced(self, U, V, Wo, lam=0.0):
@@ -349,18 +367,23 @@ def _schur_lm(prob: _Problem, x0, loss, k, max_iter, tol):
     def cost_of(x, weights):
         r = prob.residuals(x)
         ri = r[: 2 * prob.N].reshape(-1, 2)
+        rc = r[2 * prob.N:]
         if weights is not None:
-            ri = ri * np.sqrt(weights)[:, None]
-        return float(np.sum(ri**2) + np.sum(r[2 * prob.N:] ** 2))
+            ri = ri * np.sqrt(weights[0])[:, None]
+            rc = rc * np.sqrt(weights[1][prob.ctrl].ravel())
+        return float(np.sum(ri**2) + np.sum(rc**2))
 
     eo, xyz = prob.split(x)
     it = 0
     for it in range(1, max_iter + 1):
         if loss == "huber":
-            r = prob.residuals(x)[: 2 * prob.N].reshape(-1, 2)
-            weights = _huber_weights(r, k)
+            r = prob.residuals(x)
+            wc = np.ones((P, 3))
+            rc = np.abs(r[2 * prob.N:].reshape(-1, 3))
+            wc[prob.ctrl] = np.where(rc <= k, 1.0, k / np.maximum(rc, 1e-300))
+            weights = (_huber_weights(r[: 2 * prob.N].reshape(-1, 2), k), wc)
         cost = cost_of(x, weights)
-        A, B, r_img, r_ctrl, U, V, Wo, g_c, g_p = prob.normal(eo, xyz, weights)
+        A, B, r_img, r_ctrl, U, V, Wo, g_c, g_p = prob.normal(eo, xyz, *(weights or (None, None)))
         accepted = False
         for _ in range(30):
             S, Vinv, Y = prob.reduced(U, V, Wo, lam)
@@ -432,6 +455,55 @@ def precision(meas: Measurements, eo, xyz_m, *, _problem=None) -> Precision:
     c = prob.ctrl
     red_ctrl[c] = 1.0 - np.einsum("pii->pi", cov_points[c]) * prob.wc2[c]
     return Precision(cov_points, cov_photos, 1.0 - h, red_ctrl)
+
+
+def point_covariance(meas: Measurements, eo, xyz_m, point_index) -> np.ndarray:
+    """Full a priori covariance (3k × 3k, m²) of the points ``point_index`` (k row indices), cross terms included.
+
+    C_pq = δ_pq·V_p⁻¹ + G_pᵀ S⁻¹ G_q with G_q = Σ over the observations b of point q of W_b V_q⁻¹ placed at
+    the rows of photo j_b (see the module notes).  The cross terms carry what all the points share — the
+    block's datum from its control, its bending — and decide how far an RMS over many points may stray.
+    """
+    prob = _Problem(meas)
+    eo = np.asarray(eo, dtype=float).reshape(prob.n, 6)
+    xyz = np.asarray(xyz_m, dtype=float).reshape(prob.P, 3)
+    idx = np.asarray(point_index, dtype=int).ravel()
+    _, _, _, _, U, V, Wo, _, _ = prob.normal(eo, xyz)
+    S, Vinv, Y = prob.reduced(U, V, Wo)
+    Cc = np.linalg.inv(S)
+    pos = np.full(prob.P, -1)
+    pos[idx] = np.arange(len(idx))
+    G = np.zeros((prob.n, 6, len(idx), 3))
+    sel = np.flatnonzero(pos[meas.obs_point] >= 0)
+    np.add.at(G, (meas.obs_photo[sel], slice(None), pos[meas.obs_point[sel]]), Y[sel])
+    G = G.reshape(6 * prob.n, 3 * len(idx))
+    C = G.T @ Cc @ G
+    for k, p in enumerate(idx):
+        C[3 * k: 3 * k + 3, 3 * k: 3 * k + 3] += Vinv[p]
+    return C
+
+
+def rms_expectation(cov, components) -> tuple:
+    """Expected RMS of errors with covariance ``cov`` over the selected ``components``, and its standard deviation.
+
+    Parameters
+    ----------
+    cov : (3k, 3k) covariance of k points' X, Y, Z (:func:`point_covariance`)
+    components : which coordinates: e.g. (0, 1) for plan, (2,) for height
+
+    Returns
+    -------
+    (rms, sd) : for plan the RMS is √(mean over points of dX² + dY²); E[Σd²] = tr C, Var[Σd²] = 2·tr C² for
+    Gaussian errors, so rms = √(tr C / k) and sd ≈ √(2 tr C²) / (2 k rms) (to first order).
+    """
+    cov = np.asarray(cov, dtype=float)
+    k = cov.shape[0] // 3
+    sel = np.array([3 * i + c for i in range(k) for c in components])
+    Cs = cov[np.ix_(sel, sel)]
+    tr = float(np.trace(Cs))
+    rms = math.sqrt(tr / k)
+    sd = math.sqrt(2.0 * float(np.sum(Cs * Cs))) / (2.0 * k * rms) if rms > 0 else 0.0
+    return rms, sd
 
 
 def error_ellipse(cov_xy, p: float | None = None) -> tuple:
@@ -529,6 +601,7 @@ def data_snooping(meas: Measurements, eo0, xyz0_m, *, critical: float = CRITICAL
         else:
             rows.append((rnd, "control", -1, int(m.point_ids[i_c]), float(wc[i_c])))
             new = m.as_tie(m.point_ids[i_c])
+            xyz = xyz[np.array([m.index_of_point(p) for p in new.point_ids], dtype=int)]
         adj = adjust(new, eo, xyz, max_iter=max_iter)
         rounds += 1
     rej = pd.DataFrame(rows, columns=["round", "kind", "photo", "point", "w"])

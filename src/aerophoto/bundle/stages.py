@@ -35,6 +35,7 @@ Model units: the first base of a strip is 1 (arbitrary scale).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -134,13 +135,11 @@ def intersect(S1, r1, S2, r2) -> np.ndarray:
 
 def _base_frame(u):
     """Rotation whose first column is the base direction u (normal case of the pair)."""
-    x = u / np.linalg.norm(u)
-    z0 = np.array([0.0, 0.0, 1.0])
-    y = np.cross(z0, x)
-    if np.linalg.norm(y) < 1e-9:
-        y = np.array([0.0, 1.0, 0.0])
-    y /= np.linalg.norm(y)
-    z = np.cross(x, y)
+    x = u / math.sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2])
+    y = np.array([-x[1], x[0], 0.0])  # (0, 0, 1) × x
+    ny = math.hypot(y[0], y[1])
+    y = np.array([0.0, 1.0, 0.0]) if ny < 1e-9 else y / ny
+    z = np.array([x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]])
     return np.column_stack([x, y, z])
 
 
@@ -180,7 +179,7 @@ class RelativeOrientation:
 
 
 def relative_orientation(xy_left, xy_right, f_mm: float, R_left=None, *, reject_k: float = 4.0,
-                         max_iter: int = 30) -> RelativeOrientation:
+                         max_iter: int = 12) -> RelativeOrientation:
     """Dependent relative orientation (зависимое взаимное ориентирование) from conjugate points.
 
     Five elements — the base components by, bz (bx = 1) and the right photo's ω, φ, κ relative to the
@@ -210,7 +209,7 @@ def relative_orientation(xy_left, xy_right, f_mm: float, R_left=None, *, reject_
                 J[:, j] = (_parallax(p + h, Rl, xl[used], xr[used], f_mm)[0] - q) / 1e-7
             dp = np.linalg.lstsq(J, -q, rcond=None)[0]
             p = p + dp
-            if np.max(np.abs(dp)) < 1e-12:
+            if np.max(np.abs(dp)) < 1e-10:  # 1e-10 of the base and rad: far below any measuring error
                 break
         q_all, u, Rr = _parallax(p, Rl, xl, xr, f_mm)
         if kk == 0:

@@ -30,6 +30,11 @@ def _parser() -> argparse.ArgumentParser:
     p = sub.add_parser("workbook", help="copy the student book into workbook/ (self-study)")
     p.add_argument("--dest", type=Path, default=None, help="folder (default: workbook/ beside notebooks/)")
 
+    p = sub.add_parser("lab", help="JupyterLab for the student's workbook, without nbgrader's authoring tools")
+    p.add_argument("notebook", nargs="?", type=Path, default=None,
+                   help="notebook to open (default: workbook/00_start_here.ipynb)")
+    p.add_argument("jupyter_args", nargs=argparse.REMAINDER, help="after --: passed on to JupyterLab")
+
     p = sub.add_parser("teacher", help="the solved teacher's copy of every chapter (for projecting)")
     p.add_argument("dest", nargs="?", type=Path, default=None, help="folder (default: <course>/teacher)")
 
@@ -57,6 +62,9 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--student", action="append", help="only this student (repeatable)")
     p.add_argument("--force", action="store_true", help="re-grade submissions already graded")
     p.add_argument("--timeout", type=int, default=None, help="per-cell limit, s (default: the config's, 120)")
+    p.add_argument("--jobs", "-j", type=int, default=1,
+                   help="grade this many submissions at once, each job in its own process and sandbox uid "
+                        "(default 1; up to 14; the grades are the same)")
 
     p = sub.add_parser("gradebook", help="export the grades and flags as CSV")
     p.add_argument("--out", type=Path, default=None, help="CSV file (default: <course>/grades.csv)")
@@ -93,6 +101,13 @@ def main(argv=None) -> int:
 def _dispatch(args, out) -> int:
     from .versions import strip_solutions_in, write_teacher, write_workbook
 
+    if args.cmd == "lab":
+        from .lab import main as lab
+
+        nb, rest = args.notebook, [a for a in args.jupyter_args if a != "--"]
+        if nb is not None and str(nb).startswith("-"):  # `lab -- --no-browser`: no notebook given
+            nb, rest = None, [str(nb), *rest]
+        return lab(nb, rest, out=out)
     if args.cmd == "workbook":
         done = write_workbook(args.dest, args.notebooks, out=out)
         n_new = sum(a == "written" for a, _ in done)
@@ -125,7 +140,12 @@ def _dispatch(args, out) -> int:
         scan = course.import_submissions(args.folder)
         return 1 if scan.failed else 0
     if args.cmd == "autograde":
-        results = course.autograde(args.student, args.assignment, force=args.force)
+        from .sandbox import MAX_JOBS
+
+        if not 1 <= args.jobs <= MAX_JOBS:
+            out(f"autograde: --jobs {args.jobs} is not valid; expected 1 … {MAX_JOBS}")
+            return 2
+        results = course.autograde(args.student, args.assignment, force=args.force, jobs=args.jobs)
         if not results:
             out(f"autograde: no submissions in {course.root / 'submitted'} — run aerophoto-course import first")
             return 1

@@ -60,7 +60,7 @@ def _build():
     from nbgrader.preprocessors import Execute
     from traitlets import Any, Bool, Integer, Unicode
 
-    from .sandbox import SandboxKernelManager
+    from .sandbox import NOBODY, SandboxKernelManager
 
     class SandboxExecute(Execute):
         """nbgrader's Execute with the kernel in the sandbox (see the module notes)."""
@@ -69,6 +69,7 @@ def _build():
         unsafe_no_sandbox = Bool(False).tag(config=True)
         grading = Bool(True).tag(config=True)
         limits = Any(None).tag(config=True)
+        uid = Integer(NOBODY).tag(config=True)  # run as root: the uid the kernel drops to (one per grading job)
         max_restarts = Integer(2).tag(config=True)
         startup_timeout = Integer(120).tag(config=True)
         shutdown_kernel = Unicode("immediate").tag(config=True)
@@ -83,7 +84,7 @@ def _build():
         def create_kernel_manager(self):
             self.km = SandboxKernelManager(config=self.config, record_book=self.record_book,
                                            limits=self.the_limits, unsafe_no_sandbox=self.unsafe_no_sandbox,
-                                           grading=self.grading, parent=None)
+                                           grading=self.grading, uid=self.uid, parent=None)
             self._km_ref = self.km
             return self.km
 

@@ -28,7 +28,7 @@ from .common import (COURSE_ID, Flag, GradedTask, chapters, course_config, defau
                      default_notebooks_dir, digits, ensure_path, graded_tasks, last_error, nb_bytes,
                      nbformat_major, need_nbgrader, notebook_problem, read_nb, read_roster, stderr_to,
                      template_path, write_atomic)
-from .sandbox import Limits
+from .sandbox import MAX_JOBS, NOBODY, Limits, sandbox_uid
 
 
 class CourseBusy(RuntimeError):
@@ -139,6 +139,8 @@ class Course:
             raise SystemExit(f"--roster {roster}: no such file (a CSV with columns student_id,record_book)")
         roster = Path(roster) if roster else self.root / "roster.csv"
         self.roster = read_roster(roster) if roster.exists() else {}
+        self._roster_path = roster if roster.exists() else None
+        self.sandbox_uid = NOBODY  # run as root: the uid the kernels drop to (one per parallel grading job)
         self._log = _course_logger(self.root)
         self._same_code: dict = {}
 
@@ -153,7 +155,9 @@ class Course:
 
     @property
     def db_url(self) -> str:
-        return f"sqlite:///{self.root / 'gradebook.db'}"
+        # parallel grading jobs (autograde --jobs) write into one sqlite file: wait for its lock (up to 60 s)
+        # instead of sqlite's default 5 s
+        return f"sqlite:///{self.root / 'gradebook.db'}?timeout=60"
 
     @property
     def limits(self) -> Limits:
@@ -182,6 +186,8 @@ class Course:
             cfg.SandboxExecute.limits = self.limits.as_dict()
         cfg.SandboxExecute.record_book = record_book
         cfg.SandboxExecute.unsafe_no_sandbox = self.unsafe_no_sandbox
+        cfg.SandboxExecute.uid = int(self.sandbox_uid)
+        cfg.CourseDirectory.db_url = self.db_url
         cfg.HTMLExporter.sanitize_html = True  # feedback shows a student's outputs: no script from them
         return cfg
 
@@ -368,65 +374,109 @@ class Course:
                     pairs.append((sdir.name, adir.name))
         return pairs
 
-    def autograde(self, students=None, assignments=None, *, force: bool = False) -> list[GradeResult]:
-        """Grade every submitted (student, chapter), one at a time, in the sandbox; trusted scores.
+    def autograde(self, students=None, assignments=None, *, force: bool = False, jobs: int = 1) -> list[GradeResult]:
+        """Grade every submitted (student, chapter) in the sandbox; trusted scores.
 
         A file that is not a notebook is not given to nbgrader; an error never stops the batch; a
-        submission already graded and not changed since is skipped unless ``force``.
+        submission already graded and not changed since is skipped unless ``force``.  ``jobs`` > 1 grades
+        that many submissions at once, each job in a worker process of its own with a sandbox uid of its own
+        (:func:`~.sandbox.sandbox_uid`); the grades are the same as one at a time (each submission is graded
+        on its own, for its student's variant), and the results come back in the same order.
         """
+        if not isinstance(jobs, int) or isinstance(jobs, bool) or not 1 <= jobs <= MAX_JOBS:
+            raise ValueError(f"jobs = {jobs!r} is not valid; expected an integer in 1 … {MAX_JOBS}")
         if not self.unsafe_no_sandbox:
             from .sandbox import require
 
             require()
         with self.lock("autograde"):
-            return self._autograde(students, assignments, force=force)
+            return self._autograde(students, assignments, force=force, jobs=jobs)
 
-    def _autograde(self, students, assignments, *, force: bool) -> list[GradeResult]:
+    def _needs_grading(self, sid: str, a: str, force: bool) -> GradeResult | None:
+        """The result of a submission that is not to be graded now (missing, corrupt, up to date), else None."""
+        sub_path, graded_path = self.path("submitted", a, sid), self.path("autograded", a, sid)
+        report = self.report_path(a, sid)
+        if not sub_path.exists():
+            return GradeResult(sid, a, "missing")
+        if (problem := notebook_problem(sub_path)) is not None:
+            return GradeResult(sid, a, "corrupt", error=problem)
+        if (not force and graded_path.exists() and report.exists() and self.path("source", a).exists()
+                and graded_path.stat().st_mtime >= sub_path.stat().st_mtime
+                and report.stat().st_mtime >= graded_path.stat().st_mtime
+                and graded_path.stat().st_mtime >= self.path("source", a).stat().st_mtime):
+            return GradeResult(sid, a, "up-to-date")
+        return None
+
+    def _grade_one(self, sid: str, a: str) -> GradeResult:
+        """nbgrader autograde of one submission in the sandbox, then the trusted check (the caller holds the lock)."""
         from nbgrader.converters import Autograde
 
+        r = GradeResult(sid, a, "graded")
+        t0 = time.perf_counter()
+        try:
+            with contextlib.suppress(FileNotFoundError):
+                self.report_path(a, sid).unlink()
+            res = self._run(Autograde, record_book=self.record_book(sid), assignment_id=a, student_id=sid,
+                            force=True, create_student=True)
+            if not res.get("success"):
+                r.status, r.error = "failed", last_error(res)
+            else:
+                self._trusted(sid, a)
+        except Exception as exc:  # never stop the batch
+            r.status, r.error = "failed", f"{type(exc).__name__}: {exc}"
+        r.seconds = time.perf_counter() - t0
+        return r
+
+    def _finish(self, r: GradeResult) -> GradeResult:
+        """Score and flags of a result, read from the gradebook and the reports (in the lock holder's process)."""
+        if r.status in ("graded", "up-to-date"):
+            r.score, r.max_score = self._score(r.assignment, r.student)
+        else:
+            r.score, r.max_score = 0.0, self._max(r.assignment)
+        r.flags = self.flags(r.student, r.assignment)
+        return r
+
+    def _say(self, k: int, n: int, r: GradeResult) -> None:
+        note = f" — {r.error}" if r.error else ""
+        fl = f" [{len(r.flags)} flag(s): {', '.join(sorted({f.code for f in r.flags}))}]" if r.flags else ""
+        self.out(f"[{k}/{n}] {r.student} · {r.assignment}: {r.status} {r.score:g}/{r.max_score:g} "
+                 f"({r.seconds:.1f} s){fl}{note}")
+
+    def _autograde(self, students, assignments, *, force: bool, jobs: int = 1) -> list[GradeResult]:
         pairs = self.submissions(students, assignments)
         needed = sorted({a for _, a in pairs})
         missing = [a for a in needed if not self._in_gradebook(a) or not self.path("release", a).exists()]
         if missing:
             self.out(f"autograde: generating {', '.join(missing)} first")
             self._generate(missing)
-        results = []
         t_all = time.perf_counter()
         self._same_code.clear()
-        for k, (sid, a) in enumerate(pairs, 1):
-            prefix = f"[{k}/{len(pairs)}] {sid} · {a}:"
-            sub_path, graded_path = self.path("submitted", a, sid), self.path("autograded", a, sid)
-            r = GradeResult(sid, a, "graded")
-            report = self.report_path(a, sid)
-            if not sub_path.exists():
-                r.status = "missing"
-            elif (problem := notebook_problem(sub_path)) is not None:
-                r.status, r.error = "corrupt", problem
-            elif (not force and graded_path.exists() and report.exists() and self.path("source", a).exists()
-                  and graded_path.stat().st_mtime >= sub_path.stat().st_mtime
-                  and report.stat().st_mtime >= graded_path.stat().st_mtime
-                  and graded_path.stat().st_mtime >= self.path("source", a).stat().st_mtime):
-                r.status = "up-to-date"
+        done: dict = {}
+        todo = []
+        for sid, a in pairs:
+            r = self._needs_grading(sid, a, force)
+            if r is None:
+                todo.append((sid, a))
             else:
-                t0 = time.perf_counter()
-                try:
-                    with contextlib.suppress(FileNotFoundError):
-                        report.unlink()
-                    res = self._run(Autograde, record_book=self.record_book(sid), assignment_id=a, student_id=sid,
-                                    force=True, create_student=True)
-                    if not res.get("success"):
-                        r.status, r.error = "failed", last_error(res)
-                    else:
-                        self._trusted(sid, a)
-                except Exception as exc:  # never stop the batch
-                    r.status, r.error = "failed", f"{type(exc).__name__}: {exc}"
-                r.seconds = time.perf_counter() - t0
-            r.score, r.max_score = self._score(a, sid) if r.status in ("graded", "up-to-date") else (0.0, self._max(a))
-            r.flags = self.flags(sid, a)
-            results.append(r)
-            note = f" — {r.error}" if r.error else ""
-            fl = f" [{len(r.flags)} flag(s): {', '.join(sorted({f.code for f in r.flags}))}]" if r.flags else ""
-            self.out(f"{prefix} {r.status} {r.score:g}/{r.max_score:g} ({r.seconds:.1f} s){fl}{note}")
+                done[(sid, a)] = r
+        n_jobs = max(1, min(jobs, len(todo)))
+        if n_jobs == 1:
+            for k, (sid, a) in enumerate(pairs, 1):
+                r = done.get((sid, a)) or self._grade_one(sid, a)
+                done[(sid, a)] = self._finish(r)
+                self._say(k, len(pairs), done[(sid, a)])
+        else:
+            k = 0
+            for sid, a in pairs:  # the ones not graded now, first
+                if (sid, a) in done:
+                    k += 1
+                    self._say(k, len(pairs), self._finish(done[(sid, a)]))
+            self.out(f"autograde: {len(todo)} submission(s) in {n_jobs} parallel jobs")
+            for r in _parallel(self, todo, n_jobs):
+                k += 1
+                done[(r.student, r.assignment)] = self._finish(r)
+                self._say(k, len(pairs), r)
+        results = [done[p] for p in pairs]
         n_fail = sum(r.status == "failed" for r in results)
         self.out(f"autograde: {len(results)} submission(s) in {time.perf_counter() - t_all:.0f} s, "
                  f"{n_fail} could not be graded, {sum(bool(r.flags) for r in results)} flagged")
@@ -526,3 +576,85 @@ class Course:
         from .reports import feedback
 
         return feedback(self, students, assignments)
+
+
+# --------------------------------------------------------------------------------------------------
+# parallel grading: autograde --jobs N
+
+
+def _worker_spec(course: Course) -> dict:
+    return {"root": str(course.root), "notebooks_dir": str(course.notebooks_dir),
+            "roster": str(course._roster_path) if course._roster_path else None, "timeout": course.timeout,
+            "limits": course._limits.as_dict() if course._limits is not None else None,
+            "unsafe_no_sandbox": course.unsafe_no_sandbox}
+
+
+def _worker(spec: dict, slot: int, tasks, results) -> None:
+    """One grading job (a process of its own): grade the (student, chapter) pairs from ``tasks`` until None.
+
+    Runs without the course lock: the process that started it holds it for the whole run.  Its kernels drop
+    to the slot's uid (run as root), so its process limit is its own.
+    """
+    import dataclasses
+
+    try:
+        course = Course(spec["root"], spec["notebooks_dir"], roster=spec["roster"], timeout=spec["timeout"],
+                        limits=Limits(**spec["limits"]) if spec["limits"] else None,
+                        unsafe_no_sandbox=spec["unsafe_no_sandbox"], out=lambda s: None)
+        course.sandbox_uid = sandbox_uid(slot)
+    except BaseException as exc:  # report the failure for every pair this job takes
+        course, why = None, f"the grading job could not start ({type(exc).__name__}: {exc})"
+    while True:
+        item = tasks.get()
+        if item is None:
+            return
+        sid, a = item
+        if course is None:
+            r = GradeResult(sid, a, "failed", error=why)
+        else:
+            try:
+                r = course._grade_one(sid, a)
+            except BaseException as exc:
+                r = GradeResult(sid, a, "failed", error=f"{type(exc).__name__}: {exc}")
+        results.put(dataclasses.asdict(r))
+
+
+def _parallel(course: Course, pairs: list, jobs: int):
+    """Grade ``pairs`` in ``jobs`` worker processes; yields each :class:`GradeResult` as it is done.
+
+    Workers are fresh interpreters (``spawn``: nothing of this process's threads, kernels or open gradebook
+    is inherited); a pair goes to whichever job is free.  A worker that dies fails its pair, never the batch.
+    """
+    import multiprocessing as mp
+    import queue as queue_mod
+
+    ctx = mp.get_context("spawn")
+    tasks, results = ctx.Queue(), ctx.Queue()
+    for p in pairs:
+        tasks.put(p)
+    for _ in range(jobs):
+        tasks.put(None)
+    spec = _worker_spec(course)
+    procs = [ctx.Process(target=_worker, args=(spec, slot, tasks, results), daemon=True,
+                         name=f"aerophoto-grader-{slot}") for slot in range(jobs)]
+    for proc in procs:
+        proc.start()
+    left = {tuple(p) for p in pairs}
+    try:
+        while left:
+            try:
+                d = results.get(timeout=5)
+            except queue_mod.Empty:
+                if any(proc.is_alive() for proc in procs):
+                    continue
+                for sid, a in sorted(left):  # every worker is gone: what is left could not be graded
+                    yield GradeResult(sid, a, "failed", error="the grading job ended before grading it")
+                return
+            left.discard((d["student"], d["assignment"]))
+            yield GradeResult(**{k: v for k, v in d.items() if k != "flags"})
+    finally:
+        for proc in procs:
+            proc.join(timeout=30)
+            if proc.is_alive():
+                proc.kill()
+                proc.join(timeout=10)

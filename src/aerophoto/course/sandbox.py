@@ -35,9 +35,11 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 __all__ = ["Limits", "SandboxUnavailable", "available", "require", "SandboxKernelManager", "SandboxKernelClient",
-           "kernel_exit_reason", "NOBODY"]
+           "kernel_exit_reason", "NOBODY", "MAX_JOBS", "sandbox_uid"]
 
 NOBODY = 65534
+MAX_JOBS = 14
+"""Parallel grading jobs at most (``autograde --jobs``): one sandbox uid each (see :func:`sandbox_uid`)."""
 _MB = 1024 * 1024
 
 
@@ -69,6 +71,21 @@ class Limits:
 
     def as_dict(self) -> dict:
         return asdict(self)
+
+
+def sandbox_uid(slot: int = 0) -> int:
+    """The uid a root-run sandbox drops to, for grading job ``slot`` (0 … MAX_JOBS − 1).
+
+    Slot 0 is nobody (65534).  Parallel jobs need a uid each: RLIMIT_NPROC counts every process of a uid, so
+    with one shared uid a fork bomb in one submission would stop the other jobs' kernels from starting, and
+    grades would depend on what ran beside them.  Slots 1 … 13 take 65533 down to 65521 — in the range Debian
+    policy reserves and never allocates (65000–65533) and above systemd's dynamic users (61184–65519), so no
+    account owns them.  (Run by an ordinary user, each sandbox is a user namespace of its own and its process
+    count is its own; the slot does not matter.)
+    """
+    if not isinstance(slot, int) or isinstance(slot, bool) or not 0 <= slot < MAX_JOBS:
+        raise ValueError(f"slot = {slot!r} is not valid; expected an integer in 0 … {MAX_JOBS - 1}")
+    return NOBODY - slot
 
 
 class SandboxUnavailable(RuntimeError):
@@ -238,8 +255,9 @@ class Box:
         return [_tool("prlimit") or "prlimit", f"--as={lim.memory_mb * _MB}", f"--cpu={lim.cpu_s}:{lim.cpu_s + 5}",
                 f"--fsize={lim.fsize_mb * _MB}", f"--nofile={lim.nofile}", f"--nproc={lim.nproc}", "--core=0", "--"]
 
-    def wrap(self, cmd: list[str], *, env: dict) -> list[str]:
-        """``cmd`` (the kernel's command line) inside bubblewrap, with the limits, as nobody."""
+    def wrap(self, cmd: list[str], *, env: dict, uid: int = NOBODY) -> list[str]:
+        """``cmd`` (the kernel's command line) inside bubblewrap, with the limits, as ``uid`` (run as root:
+        nobody by default; see :func:`sandbox_uid`)."""
         lim = self.limits
         args = [_bwrap() or "bwrap"]
         if _is_root():
@@ -285,7 +303,7 @@ class Box:
             args += ["--setenv", k, v]
         args += ["--", *self.limit_args()]
         if _is_root():
-            args += [_tool("setpriv") or "setpriv", f"--reuid={NOBODY}", f"--regid={NOBODY}", "--clear-groups",
+            args += [_tool("setpriv") or "setpriv", f"--reuid={int(uid)}", f"--regid={int(uid)}", "--clear-groups",
                      "--no-new-privs"]
         return args + list(cmd)
 
@@ -330,7 +348,6 @@ def _kernel_classes():
         max_message_bytes = Integer(32 * _MB).tag(config=True)
 
         def _create_connected_socket(self, channel, identity=None):
-            from jupyter_client.channelsabc import ChannelABC  # noqa: F401  (jupyter_client is there)
             from jupyter_client.connect import channel_socket_types
 
             url = self._make_url(channel)
@@ -351,11 +368,13 @@ def _kernel_classes():
 
         Configurable (nbgrader config or keyword arguments): ``record_book`` (the student's number, the
         kernel's ``AEROPHOTO_RECORD_BOOK``), ``limits`` (:class:`Limits`), ``grading`` (sets
-        ``AEROPHOTO_GRADING=1``: check cells emit the submitted values), ``unsafe_no_sandbox`` (a developer's
-        escape hatch: no bubblewrap, the caller's rights — never the default).
+        ``AEROPHOTO_GRADING=1``: check cells emit the submitted values), ``uid`` (run as root: the uid the
+        kernel drops to, :func:`sandbox_uid`), ``unsafe_no_sandbox`` (a developer's escape hatch: no
+        bubblewrap, the caller's rights — never the default).
         """
 
         record_book = Unicode(None, allow_none=True).tag(config=True)
+        uid = Integer(NOBODY).tag(config=True)
         grading = Bool(True).tag(config=True)
         unsafe_no_sandbox = Bool(False).tag(config=True)
         limits = Any(None).tag(config=True)
@@ -419,7 +438,7 @@ def _kernel_classes():
             cmd = super().format_kernel_cmd(extra_arguments)
             if self.unsafe_no_sandbox:
                 return (self.box.limit_args() if _tool("prlimit") else []) + cmd
-            return self.box.wrap(cmd, env=self._grading_env())
+            return self.box.wrap(cmd, env=self._grading_env(), uid=self.uid)
 
         def client(self, **kw):
             kc = super().client(**kw)

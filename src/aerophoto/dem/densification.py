@@ -243,7 +243,8 @@ def block_layout(terrain, *, strips: int = 7, per_strip: int = 10, f_mm: float =
 
 
 def _image_jacobians(camera, pose, P):
-    """x (k, 2) and the derivatives of the images of P (k, 3): by the point (k, 2, 3), by small camera turns (k, 2, 3)."""
+    """x (k, 2) and the derivatives of the images of P (k, 3): by the point and by small turns of the camera,
+    each (k, 2, 3)."""
     x0 = g.ground_to_photo(camera, pose, P)
     S = np.array([pose.X_m, pose.Y_m, pose.Z_m])
     d = P - S
@@ -405,7 +406,8 @@ STUDY_CASES = (
 
 
 def lysenko_study(terrain, *, mp_mm: float = ARTICLE_BLOCK["mp_mm"], f_mm: float = 100.0, scale: float = 4500.0,
-                  b_mm: float = ARTICLE_BLOCK["b_mm"], cases=STUDY_CASES, trials: int = 20, seed: int = 0) -> pd.DataFrame:
+                  b_mm: float = ARTICLE_BLOCK["b_mm"], cases=STUDY_CASES, trials: int = 20,
+                  seed: int = 0) -> pd.DataFrame:
     """Lysenko's formula against simulated blocks (article 000's camera and base; m_p = √2·σ).
 
     Each case is a :func:`block_layout` over ``terrain`` with p_x chosen so that the base is ``b_mm``;
@@ -416,6 +418,7 @@ def lysenko_study(terrain, *, mp_mm: float = ARTICLE_BLOCK["mp_mm"], f_mm: float
     frame = 180.0
     px = 100.0 * (1.0 - check_positive("b_mm", b_mm, unit="mm", hi=frame - 1e-6) / frame)
     sigma = check_positive("mp_mm", mp_mm, unit="mm", hi=10.0) / PARALLAX_READING
+    seed = check_int_range("seed", seed, 0, 2**63 - 1)
     rows = []
     for label, kw in cases:
         bp = block_precision(block_layout(terrain, f_mm=f_mm, scale=scale, px_percent=px, **kw), sigma,

@@ -103,34 +103,26 @@ def grid_nodes(sheet: Sheet, spacing_m: float) -> tuple:
 
 
 # --------------------------------------------------------------------------- structural lines
-def _d8_receivers(Z: np.ndarray) -> np.ndarray:
-    """Flat index of each cell's steepest-descent neighbour (D8), −1 for a pit or an edge outflow."""
-    ny, nx = Z.shape
-    Zp = np.pad(Z, 1, constant_values=np.inf)
-    idx = np.pad(np.arange(Z.size).reshape(Z.shape), 1, constant_values=-1)
-    best = np.full(Z.shape, -1)
-    drop_best = np.zeros(Z.shape)
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            if dx == 0 and dy == 0:
-                continue
-            nb = Zp[1 + dy:1 + dy + ny, 1 + dx:1 + dx + nx]
-            drop = (Z - nb) / math.hypot(dx, dy)
-            better = drop > drop_best
-            drop_best = np.where(better, drop, drop_best)
-            best = np.where(better, idx[1 + dy:1 + dy + ny, 1 + dx:1 + dx + nx], best)
-    return best.ravel()
+def _principal_curvatures(Z: np.ndarray, cell: float) -> tuple:
+    """Gradient and principal curvatures of a raster Z[j, i] (rows = Y): (gx, gy, l1, e1, l2, e2).
 
+    l1 ≥ l2 are the eigenvalues of the Hessian (1/m), e1, e2 their unit eigenvectors as (ex, ey) arrays.
+    """
+    gy, gx = np.gradient(Z, cell)
+    gyy, gyx = np.gradient(gy, cell)
+    gxy, gxx = np.gradient(gx, cell)
+    h = (gxy + gyx) / 2.0
+    half_tr = (gxx + gyy) / 2.0
+    disc = np.sqrt(np.maximum(half_tr**2 - (gxx * gyy - h * h), 0.0))
+    l1, l2 = half_tr + disc, half_tr - disc
 
-def _accumulation(Z: np.ndarray) -> tuple:
-    """(cells draining through each cell, receivers): D8 flow accumulation of a raster."""
-    rec = _d8_receivers(Z)
-    acc = np.ones(Z.size)
-    for k in np.argsort(-Z.ravel(), kind="stable"):
-        t = rec[k]
-        if t >= 0:
-            acc[t] += acc[k]
-    return acc.reshape(Z.shape), rec
+    def vec(lam):
+        vx = np.where(np.abs(h) > 1e-15, h, np.where(np.abs(gxx - lam) <= np.abs(gyy - lam), 1.0, 0.0))
+        vy = np.where(np.abs(h) > 1e-15, lam - gxx, np.where(np.abs(gxx - lam) <= np.abs(gyy - lam), 0.0, 1.0))
+        n = np.hypot(vx, vy)
+        return vx / n, vy / n
+
+    return gx, gy, l1, vec(l1), l2, vec(l2)
 
 
 def _thin(P: np.ndarray, spacing: float) -> np.ndarray:
@@ -167,10 +159,10 @@ class StructuralLines:
     ----------
     sheet : :class:`Sheet`
     cell_m : float — the raster the lines were traced on, m
-    valley_xy, ridge_xy : ndarray (k, 2) — cells on thalwegs / on watersheds, in order of importance
-        (largest drainage area first), m
-    valley_segments, ridge_segments : ndarray (k, 2, 2) — the lines as segments, cell to its
-        downhill (uphill) neighbour on the line, for drawing, m
+    valley_xy, ridge_xy : ndarray (k, 2) — cells on thalwegs / on watersheds, the most sharply curved
+        first, m
+    valley_segments, ridge_segments : ndarray (k, 2, 2) — the lines as segments between neighbouring
+        line cells, for drawing, m
     peaks_xy, pits_xy : ndarray (k, 2) — characteristic points: local maxima and minima, m
     """
 
@@ -186,8 +178,7 @@ class StructuralLines:
     def points(self, spacing_m: float) -> np.ndarray:
         """Points (k, 2) along the lines and at the characteristic points, no two closer than ``spacing_m``.
 
-        Characteristic points first, then the lines from the largest drainage down — as an operator
-        measures them from one end of each line to the other.
+        Characteristic points first, then the line cells from the most sharply curved down.
         """
         d = check_range("spacing_m", spacing_m, self.cell_m / 2.0, self.sheet.size_m, unit="m")
         cand = np.vstack([self.peaks_xy, self.pits_xy, _interleave(self.valley_xy, self.ridge_xy)])
@@ -205,55 +196,67 @@ def _interleave(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.array(out).reshape(-1, 2)
 
 
-def structural_lines(terrain, sheet: Sheet, *, cell_m: float = 10.0, min_area_m2: float = 30_000.0,
-                     margin_m: float = 200.0) -> StructuralLines:
+def structural_lines(terrain, sheet: Sheet, *, cell_m: float = 10.0, smooth_cells: float = 1.5,
+                     min_curvature_per_m: float = 2e-5, margin_m: float = 200.0) -> StructuralLines:
     """Trace the thalwegs and watersheds of ``terrain`` on ``sheet`` (the operator's structural lines).
 
-    A thalweg is where water gathers: the cells through which at least ``min_area_m2`` of ground drains
-    by steepest descent (D8 flow accumulation on a raster of ``cell_m``).  A watershed is the same on the
-    surface turned upside down.  The raster reaches ``margin_m`` beyond the sheet so lines entering it
-    are found; only what lies on the sheet is returned.
+    On a raster of ``cell_m`` (smoothed by a Gaussian of ``smooth_cells`` cells, as an operator sees the
+    shape of the ground rather than its grain), a cell lies on a **thalweg** where the ground curves up
+    across the line — the larger principal curvature exceeds ``min_curvature_per_m`` — and the height
+    is lowest across it: the slope along that principal direction vanishes within the cell.  A
+    **watershed** is the same with the ground curving down.  Characteristic points are the local maxima
+    (peaks) and minima (pits) of the raster.  The raster reaches ``margin_m`` beyond the sheet; what
+    lies on the sheet is returned, the most sharply curved line cells first.
 
     Parameters
     ----------
     terrain : a :class:`aerophoto.geometry.Terrain`
     sheet : :class:`Sheet`
     cell_m : raster cell, m (size/500 ≤ cell ≤ size/10)
-    min_area_m2 : drainage area that makes a line, m² (≥ 4 cells)
+    smooth_cells : Gaussian smoothing, cells (0 ≤ σ ≤ 10)
+    min_curvature_per_m : least curvature across a line, 1/m (> 0; 2·10⁻⁵ is a slope change of 0.2 %
+        per 100 m)
     margin_m : 0 ≤ margin ≤ size
     """
+    from scipy.ndimage import gaussian_filter, maximum_filter, minimum_filter
+
     terrain = g.as_terrain(terrain)
     cell = check_range("cell_m", cell_m, sheet.size_m / 500.0, sheet.size_m / 10.0, unit="m")
-    area = check_range("min_area_m2", min_area_m2, 4 * cell * cell, 1e9, unit="m²")
+    sm = check_range("smooth_cells", smooth_cells, 0.0, 10.0)
+    kmin = check_positive("min_curvature_per_m", min_curvature_per_m, unit="1/m", hi=1.0)
     margin = check_range("margin_m", margin_m, 0.0, sheet.size_m, unit="m")
     x0, x1, y0, y1 = sheet.extent_m
     xs = np.arange(x0 - margin, x1 + margin + cell / 2, cell)
     ys = np.arange(y0 - margin, y1 + margin + cell / 2, cell)
     XX, YY = np.meshgrid(xs, ys)
     Z = np.asarray(terrain.height(XX, YY), dtype=float)
-    thr = area / (cell * cell)
+    Zs = gaussian_filter(Z, sm, mode="nearest") if sm > 0 else Z
+    gx, gy, l1, e1, l2, e2 = _principal_curvatures(Zs, cell)
+    on_sheet = sheet.inside(np.column_stack([XX.ravel(), YY.ravel()])).reshape(Z.shape)
+    masks = {"valley": (l1 > kmin) & (np.abs(gx * e1[0] + gy * e1[1]) <= l1 * cell / 2.0),
+             "ridge": (l2 < -kmin) & (np.abs(gx * e2[0] + gy * e2[1]) <= -l2 * cell / 2.0)}
+    strength = {"valley": l1, "ridge": -l2}
     out = {}
-    for name, surface in (("valley", Z), ("ridge", -Z)):
-        acc, rec = _accumulation(surface)
-        a = acc.ravel()
-        on = a >= thr
-        order = np.flatnonzero(on)[np.argsort(-a[on], kind="stable")]
-        P = np.column_stack([XX.ravel()[order], YY.ravel()[order]])
-        keep = sheet.inside(P)
-        out[f"{name}_xy"] = P[keep]
-        src = np.flatnonzero(on & (rec >= 0))
-        src = src[on[rec[src]]]
-        seg = np.stack([np.column_stack([XX.ravel()[src], YY.ravel()[src]]),
-                        np.column_stack([XX.ravel()[rec[src]], YY.ravel()[rec[src]]])], axis=1)
-        inside = sheet.inside(seg[:, 0]) | sheet.inside(seg[:, 1])
+    for name, mask in masks.items():
+        keep = mask & on_sheet
+        order = np.argsort(-strength[name][keep], kind="stable")
+        out[f"{name}_xy"] = np.column_stack([XX[keep], YY[keep]])[order]
+        segs = []
+        jj, ii = np.nonzero(mask)
+        ny, nx = mask.shape
+        for dj, di in ((0, 1), (1, 0), (1, 1), (1, -1)):  # each neighbouring pair of line cells once
+            j2, i2 = jj + dj, ii + di
+            ok = (j2 < ny) & (i2 >= 0) & (i2 < nx)
+            ok[ok] = mask[j2[ok], i2[ok]]
+            segs.append(np.stack([np.column_stack([xs[ii[ok]], ys[jj[ok]]]),
+                                  np.column_stack([xs[i2[ok]], ys[j2[ok]]])], axis=1))
+        seg = np.concatenate(segs) if segs else np.zeros((0, 2, 2))
+        inside = sheet.inside(seg[:, 0]) & sheet.inside(seg[:, 1])
         out[f"{name}_segments"] = seg[inside]
-    from scipy.ndimage import maximum_filter, minimum_filter
-
-    peaks = (Z == maximum_filter(Z, size=3, mode="nearest")) & (Z > minimum_filter(Z, size=3, mode="nearest"))
-    pits = (Z == minimum_filter(Z, size=3, mode="nearest")) & (Z < maximum_filter(Z, size=3, mode="nearest"))
-    for name, mask in (("peaks_xy", peaks), ("pits_xy", pits)):
-        P = np.column_stack([XX[mask], YY[mask]])
-        out[name] = P[sheet.inside(P)]
+    peaks = (Zs == maximum_filter(Zs, size=3, mode="nearest")) & (Zs > minimum_filter(Zs, size=3, mode="nearest"))
+    pits = (Zs == minimum_filter(Zs, size=3, mode="nearest")) & (Zs < maximum_filter(Zs, size=3, mode="nearest"))
+    for name, mask in (("peaks_xy", peaks & on_sheet), ("pits_xy", pits & on_sheet)):
+        out[name] = np.column_stack([XX[mask], YY[mask]])
     return StructuralLines(sheet, cell, out["valley_xy"], out["ridge_xy"], out["valley_segments"],
                            out["ridge_segments"], out["peaks_xy"], out["pits_xy"])
 
@@ -286,27 +289,50 @@ class DEM:
         return len(self.nodes_m)
 
     @functools.cached_property
+    def _values(self) -> np.ndarray:
+        return np.column_stack([self.nodes_m[:, 2], self.true_Z_m])
+
+    @functools.cached_property
     def _interp(self):
-        values = np.column_stack([self.nodes_m[:, 2], self.true_Z_m])
-        if self.kind == "grid":
-            from scipy.interpolate import RegularGridInterpolator
+        from scipy.interpolate import RegularGridInterpolator
 
-            xs, ys = self._grid
-            return RegularGridInterpolator((ys, xs), values.reshape(len(ys), len(xs), 2), bounds_error=False,
-                                           fill_value=None)
-        from scipy.interpolate import LinearNDInterpolator
+        xs, ys = self._grid
+        return RegularGridInterpolator((ys, xs), self._values.reshape(len(ys), len(xs), 2), bounds_error=False,
+                                       fill_value=None)
 
-        return LinearNDInterpolator(self._tri, values)
+    @functools.cached_property
+    def _trifinder(self):
+        # matplotlib's trapezoid map: robust for points on the triangles' edges (a regular raster over a grid
+        # has many), where a directed walk may fall back to searching every triangle
+        from matplotlib.tri import Triangulation
+
+        return Triangulation(self.nodes_m[:, 0], self.nodes_m[:, 1], self._tri.simplices).get_trifinder()
 
     def heights(self, X, Y) -> np.ndarray:
         """Both interpolations at X, Y (broadcast), shape (..., 2): through the measured node heights
-        ([..., 0], the DEM) and through the true ones ([..., 1], the DEM without measurement errors), m."""
+        ([..., 0], the DEM) and through the true ones ([..., 1], the DEM without measurement errors), m.
+
+        A TIN is evaluated with barycentric weights in the Delaunay triangle holding each point, found
+        with matplotlib's trapezoid-map triangle finder (NaN outside the hull).
+        """
         X, Y = np.broadcast_arrays(np.asarray(X, dtype=float), np.asarray(Y, dtype=float))
         if self.kind == "grid":
-            out = self._interp(np.column_stack([Y.ravel(), X.ravel()]))
-        else:
-            out = self._interp(X.ravel(), Y.ravel())
-        return np.asarray(out).reshape(X.shape + (2,))
+            return np.asarray(self._interp(np.column_stack([Y.ravel(), X.ravel()]))).reshape(X.shape + (2,))
+        P = np.column_stack([X.ravel(), Y.ravel()])
+        simplex = np.asarray(self._trifinder(P[:, 0], P[:, 1]))
+        inside = simplex >= 0
+        tri = self._tri.simplices[np.where(inside, simplex, 0)]
+        A, B, C = (self.nodes_m[tri[:, k], :2] for k in range(3))
+        v0, v1, v2 = B - A, C - A, P - A
+        d00, d01, d11 = (v0 * v0).sum(1), (v0 * v1).sum(1), (v1 * v1).sum(1)
+        d20, d21 = (v2 * v0).sum(1), (v2 * v1).sum(1)
+        den = d00 * d11 - d01 * d01
+        wb = (d11 * d20 - d01 * d21) / den
+        wc = (d00 * d21 - d01 * d20) / den
+        V = self._values
+        out = ((1.0 - wb - wc)[:, None] * V[tri[:, 0]] + wb[:, None] * V[tri[:, 1]] + wc[:, None] * V[tri[:, 2]])
+        out[~inside] = np.nan
+        return out.reshape(X.shape + (2,))
 
     def height(self, X, Y) -> np.ndarray:
         """The DEM's height at ground points X, Y (broadcast), m; NaN outside a TIN's hull."""
@@ -319,6 +345,8 @@ class DEM:
 
 
 def _measured(Z: np.ndarray, mz_m: float, seed: int, stream: int) -> np.ndarray:
+    seed = check_int_range("seed", seed, 0, 2**63 - 1)
+    stream = check_int_range("stream", stream, 0, 2**63 - 1)
     if mz_m == 0:
         return Z.copy()
     rng = np.random.default_rng([int(seed), int(stream)])
@@ -404,33 +432,43 @@ def grid_with_lines(terrain, sheet: Sheet, spacing_m: float, lines: StructuralLi
 
 
 def structural_dem(terrain, sheet: Sheet, spacing_m: float, lines: StructuralLines, *, mz_m: float = 0.0,
-                   seed: int = 0) -> DEM:
-    """The structural model at about the density of a grid of step d (the article's 164 vs 152 points).
+                   seed: int = 0, n_nodes: int | None = None) -> DEM:
+    """The structural model at the density of a grid of step d (the article's 164 vs 152 points per pair).
 
-    Points on the structural lines and at the characteristic points 0.8·d apart, a sparse fill grid
-    of step 2·d between them and the sheet's edge at step d (so the TIN covers the sheet).
+    Points on the structural lines and at the characteristic points d apart, the sheet's edge at
+    step d (so the TIN covers the sheet), and the rest of the budget — ``n_nodes``, default the
+    node count of :func:`grid_nodes` at step d — filling the largest gaps first (each new point the
+    candidate, on a raster of d/2, farthest from every point so far).
     """
     d = check_range("spacing_m", spacing_m, sheet.size_m / 400.0, sheet.size_m / 2.0, unit="m")
-    L = lines.points(max(0.8 * d, lines.cell_m / 2.0))
-    fx = _edge_axis(sheet.X0_m, sheet.size_m, 2 * d)
-    fy = _edge_axis(sheet.Y0_m, sheet.size_m, 2 * d)
-    F = np.column_stack([a.ravel() for a in np.meshgrid(fx, fy)])
-    ex, ey = grid_nodes(sheet, d)
+    gx, gy = grid_nodes(sheet, d)
+    target = len(gx) * len(gy) if n_nodes is None else check_int_range("n_nodes", n_nodes, 4, MAX_NODES)
     x0, x1, y0, y1 = sheet.extent_m
-    E = np.vstack([np.column_stack([ex, np.full_like(ex, y0)]), np.column_stack([ex, np.full_like(ex, y1)]),
-                   np.column_stack([np.full_like(ey, x0), ey]), np.column_stack([np.full_like(ey, x1), ey])])
-    edge_or_fill = np.unique(np.vstack([E, F]), axis=0)
-    on_edge = (np.isclose(edge_or_fill[:, 0], x0) | np.isclose(edge_or_fill[:, 0], x1)
-               | np.isclose(edge_or_fill[:, 1], y0) | np.isclose(edge_or_fill[:, 1], y1))
-    if len(L):
+    E = np.vstack([np.column_stack([gx, np.full_like(gx, y0)]), np.column_stack([gx, np.full_like(gx, y1)]),
+                   np.column_stack([np.full(len(gy) - 2, x0), gy[1:-1]]),
+                   np.column_stack([np.full(len(gy) - 2, x1), gy[1:-1]])])
+    L = lines.points(max(d, lines.cell_m / 2.0))
+    L = L[~((np.isclose(L[:, 0], x0) | np.isclose(L[:, 0], x1) | np.isclose(L[:, 1], y0) | np.isclose(L[:, 1], y1)))]
+    L = L[: max(0, target - len(E))]
+    P = np.vstack([L, E])
+    kinds = [np.full(len(L), "line"), np.full(len(E), "boundary")]
+    need = target - len(P)
+    if need > 0:
+        cx, cy = _edge_axis(x0, sheet.size_m, d / 2.0), _edge_axis(y0, sheet.size_m, d / 2.0)
+        C = np.column_stack([a.ravel() for a in np.meshgrid(cx[1:-1], cy[1:-1])])
         from scipy.spatial import cKDTree
 
-        dist, _ = cKDTree(L).query(edge_or_fill)
-        keep = on_edge | (dist > 0.6 * d)
-        edge_or_fill, on_edge = edge_or_fill[keep], on_edge[keep]
-    P = np.vstack([L, edge_or_fill])
-    kinds = np.concatenate([np.full(len(L), "line"), np.where(on_edge, "boundary", "grid")])
-    return tin_dem(terrain, P, kinds=kinds, mz_m=mz_m, seed=seed, stream=2)
+        dist, _ = cKDTree(P).query(C)
+        fill = []
+        for _ in range(min(need, len(C))):
+            k = int(np.argmax(dist))
+            if dist[k] <= 0:
+                break
+            fill.append(k)
+            dist = np.minimum(dist, np.hypot(C[:, 0] - C[k, 0], C[:, 1] - C[k, 1]))
+        P = np.vstack([P, C[fill]])
+        kinds.append(np.full(len(fill), "grid"))
+    return tin_dem(terrain, P, kinds=np.concatenate(kinds), mz_m=mz_m, seed=seed, stream=2)
 
 
 # --------------------------------------------------------------------------- contours and accuracy
@@ -609,15 +647,16 @@ def evaluate(terrain, sheet: Sheet, dem: DEM, interval_m: float, *, cell_m: floa
     return SheetResult(dem, x, y, Zd, Z_true, float(interval_m), lines, contour_accuracy(terrain, lines), Z0)
 
 
-def spacing_study(terrain, sheet: Sheet, spacings_m=(20.0, 30.0, 50.0, 75.0, 100.0, 150.0), *, mz_m: float = 0.12,
-                  interval_m: float = 0.5, cell_m: float = 5.0, seed: int = 0, lines: StructuralLines | None = None
-                  ) -> pd.DataFrame:
+def spacing_study(terrain, sheet: Sheet, spacings_m=(20.0, 30.0, 50.0, 100.0, 150.0), *, mz_m: float = 0.12,
+                  interval_m: float = 0.5, cell_m: float = 5.0, seed: int = 0, lines: StructuralLines | None = None,
+                  progress=None) -> pd.DataFrame:
     """RMS of contour heights against the grid step d: the regular grid, the grid with structural lines, and
     the structural model at about the grid's density — each with node errors m_z and without.
 
     Returns one row per step: ``d, m``; ``nodes (grid)``, ``nodes (grid + lines)``, ``nodes (structural)``;
     ``grid``, ``grid + lines``, ``structural`` (with m_z) and the same three with ``, m_z = 0``;
-    ``predicted grid`` — √(m_interp² + 4/9·m_z²) from the error-free grid.
+    ``predicted grid`` — √(m_interp² + 4/9·m_z²) from the error-free grid.  ``progress``, if given, is
+    called with a line of text after each step (e.g. ``print``).
     """
     terrain = g.as_terrain(terrain)
     lines = structural_lines(terrain, sheet) if lines is None else lines
@@ -638,6 +677,8 @@ def spacing_study(terrain, sheet: Sheet, spacings_m=(20.0, 30.0, 50.0, 75.0, 100
                     if name == "grid":
                         row["predicted grid"] = r.predicted_m
         rows.append(row)
+        if progress is not None:
+            progress(f"d = {float(d):g} m done ({len(rows)}/{len(spacings_m)})")
     cols = ["d, m", "nodes (grid)", "nodes (grid + lines)", "nodes (structural)", "grid", "grid + lines", "structural",
             "predicted grid", "grid, m_z = 0", "grid + lines, m_z = 0", "structural, m_z = 0"]
     return pd.DataFrame(rows)[cols]

@@ -21,10 +21,14 @@ _SUBMODULES = (
     "plan_correction",  # mutual projective grids: a new photo's changes carried onto the old plan (chapter 09)
     "control",  # control design on a block and the resection with its danger circle (chapter 10)
     "rectification",  # the photo transformer's sequence converging on the base (chapter 11)
+    "bundle_views",  # static figures of chapters 14, 15: block layout, sparsity, error ellipses, accumulation
     "block_accuracy",  # the error map of a block against its control layout and measuring error (chapter 14)
     "dem_contours",  # contours from a DEM of the site against the true ground (chapter 16)
     "error_budget",  # the live error budget of map updating (chapter 17)
+    "stereo",  # the floating mark over a stereo pair's anaglyph; base, height and focal length (chapter 07)
+    "stereo_figures",  # the stereoscope and its check, parallax profile, height model, prints at true size (07)
     "site_views",  # views of the virtual world: the site as a map, a rendered photo (PhotoView)
+    "measure",  # the measuring tool: readings of pricked points on a photo or plan by clicking (chapters 03, 04)
 )
 
 __all__ = list(_SUBMODULES)

@@ -110,7 +110,7 @@ class BlockErrorView:
     def __init__(self, result: BlockMap | None = None, ax=None, *, quantity: str = "plan"):
         if ax is None:
             fig = plots.figure(figsize=(9.6, 4.4))
-            ax_map, ax_prof = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1.0]})
+            ax_map, ax_prof = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1.0], "wspace": 0.55})
         else:
             ax_map, ax_prof = ax
             fig = ax_map.figure
@@ -125,7 +125,7 @@ class BlockErrorView:
         (self.ctrl,) = a.plot([], [], "^", color=C["control"], ms=9, mec="black", mew=0.6,
                               label="control points (опознаки)", ls="none")
         (self.centres,) = a.plot([], [], ".", color=C["grey"], ms=4, label="photo centres", ls="none")
-        self.cbar = fig.colorbar(self.pts, ax=a, fraction=0.04, pad=0.02)
+        self.cbar = fig.colorbar(self.pts, cax=a.inset_axes([1.02, 0.0, 0.035, 1.0]))
         a.legend(loc="upper right", fontsize=9)
         p = ax_prof
         p.set_xlabel("along the strips, km")
@@ -146,7 +146,7 @@ class BlockErrorView:
         self.pts.set_offsets(bp.XYZ_m[tie, :2] / 1000.0)
         self.pts.set_array(val[tie])
         self.pts.set_clim(0.0, vmax)
-        self.cbar.set_label(f"predicted {'plan' if q == 'plan' else 'height'} error, m")
+        self.cbar.set_label(f"{'plan' if q == 'plan' else 'height'} error, m")
         c = bp.XYZ_m[~tie]
         self.ctrl.set_data(c[:, 0] / 1000.0, c[:, 1] / 1000.0)
         self.centres.set_data(bp.centres_m[:, 0] / 1000.0, bp.centres_m[:, 1] / 1000.0)

@@ -93,8 +93,8 @@ def control_design_model(m_eps_arcmin: float = 4.5, m_allowed_mm: float = 0.35, 
     n_z = zk.zhukov_max_bases(m_allowed_mm, k_i=m / M, b_mm=b_mm, m_eps_arcmin=m_eps_arcmin)
     m_n = zk.zhukov_error_mm(max(n_z, 1), k_i=m / M, b_mm=b_mm, m_eps_arcmin=m_eps_arcmin)
     spacing = max(n_z, 1) if scheme == "sparse" else 1
-    design = c.design_control(centres, spacing)
-    dense = c.design_control(centres, 1).n_points
+    design = c.design_control(centres, spacing, strip_spacing_m=block.By_m)
+    dense = c.design_control(centres, 1, strip_spacing_m=block.By_m).n_points
     fps = block.footprints(0.0)[:, :, :2] / 1000.0
     return ControlDesignResult(fps, centres / 1000.0, design, dense, int(n_z), float(m_n),
                                dict(m_eps_arcmin=m_eps_arcmin, m_allowed_mm=m_allowed_mm, m=m, n_strips=n_strips,
@@ -388,5 +388,5 @@ def marking_figure(photo, *, zoom_mm: float = 7.0):
         zx.set_xlim(x - zoom_mm, x + zoom_mm)
         zx.set_ylim(y - zoom_mm, y + zoom_mm)
         zx.add_patch(Circle((x, y), c.PRICKING_MM, fill=True, color="#E8112D"))
-        zx.set_title(f"point {p['id']} enlarged: the dot is the 0.1 mm pricking tolerance")
+        zx.set_title(f"point {p['id']} enlarged; red dot: 0.1 mm")
     return fig

@@ -24,7 +24,7 @@ from matplotlib.collections import LineCollection
 
 from .. import dem
 from .. import plots
-from ..widgets import LiveDemo, Param
+from ..widgets import LiveDemo, Param, error_html
 
 __all__ = ["SHEETS", "INTERVALS", "SheetCache", "sheet_cache", "ContourFrame", "contour_frame", "ContourView",
            "ContourDemo", "spacing_study_figure"]
@@ -106,7 +106,7 @@ class ContourFrame:
 
 
 def contour_frame(sheet: str | tuple = SHEETS[0][1], spacing_m: float = 30.0, structural: bool = False,
-                  mz_m: float = 0.12, interval_m: float = 0.5, *, seed: int = 0) -> ContourFrame:
+                  mz_m: float = 0.12, interval_m: float = 0.5, *, seed: int = 0, cell_m: float = 5.0) -> ContourFrame:
     """Build and evaluate the DEM of a sheet (the demo's model; also for static figures).
 
     Parameters
@@ -116,6 +116,7 @@ def contour_frame(sheet: str | tuple = SHEETS[0][1], spacing_m: float = 30.0, st
     structural : add the structural lines (points d/2 apart) and triangulate
     mz_m : RMS measurement error of the node heights, m
     interval_m : contour interval h, m (one of :data:`INTERVALS`)
+    cell_m : the raster the DEM is evaluated and contoured on, m (the demo's preview uses 10 m)
     """
     if isinstance(sheet, str):
         labels = dict(SHEETS)
@@ -125,7 +126,7 @@ def contour_frame(sheet: str | tuple = SHEETS[0][1], spacing_m: float = 30.0, st
     h = float(interval_m)
     if h not in dict((v, k) for k, v in INTERVALS):
         raise ValueError(f"interval_m = {interval_m!r} is not one of the valid choices {[v for _k, v in INTERVALS]}")
-    cache = sheet_cache(float(sheet[0]), float(sheet[1]))
+    cache = sheet_cache(float(sheet[0]), float(sheet[1]), 1000.0, float(cell_m))
     site = _site()
     if structural:
         d = float(spacing_m)
@@ -150,8 +151,8 @@ class ContourView:
 
     def __init__(self, frame: ContourFrame | None = None, ax=None, *, colorbar: bool = True):
         if ax is None:
-            fig = plots.figure(figsize=(7.0, 6.2), layout="none")
-            ax = fig.add_axes([0.1, 0.08, 0.72, 0.84])
+            fig = plots.figure(figsize=(7.0, 6.2) if colorbar else (6.2, 6.2), layout="none")
+            ax = fig.add_axes([0.1, 0.08, 0.72, 0.84] if colorbar else [0.12, 0.08, 0.84, 0.84])
             cax = fig.add_axes([0.85, 0.08, 0.03, 0.84]) if colorbar else None
         else:
             fig, cax = ax.figure, None
@@ -160,7 +161,7 @@ class ContourView:
         self.image = ax.imshow(np.zeros((2, 2)), extent=(0, 1000, 0, 1000), origin="lower", cmap="RdBu_r",
                                vmin=-ERROR_CLIM_M, vmax=ERROR_CLIM_M, interpolation="nearest")
         if cax is not None:
-            cb = fig.colorbar(self.image, cax=cax)
+            cb = fig.colorbar(self.image, cax=cax, ticks=[-ERROR_CLIM_M, 0.0, ERROR_CLIM_M])
             cb.set_label("DEM − true height, m")
         self.true_lc = LineCollection([], colors=_C["grey"], linewidths=0.8, linestyles="dashed")
         self.dem_lc = LineCollection([], colors=_C["blue"], linewidths=1.3)
@@ -171,6 +172,8 @@ class ContourView:
         self.nodes = ax.scatter([], [], s=4, c=_C["black"], zorder=4, linewidths=0)
         ax.set_xlim(0, 1000)
         ax.set_ylim(0, 1000)
+        ax.set_xticks([0, 500, 1000])  # few tick labels: text is much of a redraw's cost
+        ax.set_yticks([0, 500, 1000])
         ax.set_aspect("equal")
         ax.set_xlabel("x from the sheet's corner, m")
         ax.set_ylabel("y, m")
@@ -200,12 +203,30 @@ def legend_html() -> str:
              (_VALLEY, "solid", "thalwegs (тальвеги)"), (_RIDGE, "solid", "watersheds (водоразделы)"))
     rows = "".join(f"<div><span style='display:inline-block;width:28px;border-top:3px {ls} {col};"
                    f"vertical-align:middle;margin-right:6px'></span>{lab}</div>" for col, ls, lab in items)
+    bar = ("<span style='display:inline-block;width:120px;height:10px;vertical-align:middle;margin:0 4px;"
+           "background:linear-gradient(to right,#053061,#4393c3,#f7f7f7,#d6604d,#67001f)'></span>")
     return (f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{rows}"
-            "<div>● DEM nodes; colour: DEM − true height (red: DEM too high)</div></div>")
+            f"<div>colour: DEM − true height, −{ERROR_CLIM_M:g} m{bar}+{ERROR_CLIM_M:g} m (red: DEM too high)</div>"
+            "<div>● DEM nodes</div></div>")
+
+
+def _running_loop():
+    """The kernel's running asyncio event loop, or None (a plain script or test)."""
+    import asyncio
+
+    try:
+        return asyncio.get_running_loop()
+    except RuntimeError:
+        return None
 
 
 class ContourDemo(LiveDemo):
-    """Live contours of a DEM of the site: grid step, structural lines, measurement error, interval, sheet."""
+    """Live contours of a DEM of the site: grid step, structural lines, measurement error, interval, sheet.
+
+    While a slider is dragged the DEM is evaluated and contoured on a ``preview_cell_m`` raster; once the
+    slider has rested ``settle_s`` seconds, on the full ``cell_m`` raster.  ``demo.set(...)`` always renders
+    in full.
+    """
 
     title = "Contours from a DEM against the true ground (article 000)"
     hint = ("Blue: contours drawn from the DEM; dashed grey: where they should be. Coarsen the grid until the "
@@ -222,12 +243,50 @@ class ContourDemo(LiveDemo):
               default=SHEETS[0][0], group="Map"),
     )
 
+    cell_m = 5.0
+    preview_cell_m = 10.0
+    settle_s = 0.35
+
     def build(self):
-        self.view = ContourView()
+        self._pending = None
+        self._preview = False
+        self.view = ContourView(colorbar=False)  # the colour scale is in the HTML legend (no redraw)
         self.fig = self.view.fig
 
     def compute(self, spacing_m, structural, mz_m, interval_m, sheet):
-        return contour_frame(sheet, spacing_m, structural == "on", mz_m, interval_m)
+        cell = self.preview_cell_m if self._preview else self.cell_m
+        return contour_frame(sheet, spacing_m, structural == "on", mz_m, interval_m, cell_m=cell)
+
+    def on_slider(self) -> str:
+        """A slider moved: the coarse raster now, the full one when the slider rests."""
+        if self._pending is not None:
+            self._pending.cancel()
+            self._pending = None
+        loop = _running_loop()
+        if loop is None:  # a script or a test: full resolution at once
+            self.update()
+            return ""
+        self._preview = True
+        try:
+            self.update()
+        finally:
+            self._preview = False
+        self._pending = loop.call_later(self.settle_s, self._settle)
+        return "<span style='color:#777777'>preview (10 m raster) — full resolution when the slider rests</span>"
+
+    def _settle(self) -> None:
+        self._pending = None
+        try:
+            self.update()
+            self.status.value = ""
+        except Exception as exc:  # never let a callback die silently
+            self.status.value = error_html(exc)
+
+    def close(self) -> None:
+        if self._pending is not None:
+            self._pending.cancel()
+            self._pending = None
+        super().close()
 
     def render(self, frame: ContourFrame):
         self.view.update(frame)

@@ -11,6 +11,9 @@ vertical photo to the image on the tilted one, radial from c) and, beside
 them, the guide's approximate δα.  :class:`DisplacementDemo` binds sliders for
 f, 1:m, α, λ and the relief amplitude to both; :class:`ReliefDemo` (chapter 03)
 and :class:`TiltDemo` (chapter 04) are the same demo with a different emphasis.
+Every demo opens on the guide's worked example (variant 00: f = 100 mm, 1:12 000,
+λ = −60°) — never on a student's own variant — and its sliders cover every
+variant of the guide's scheme (f up to 1100 mm, m up to 30 000).
 """
 
 from __future__ import annotations
@@ -349,7 +352,9 @@ class DisplacementView:
 
 def _params(show: str = "both", alpha: float = 3.0, relief: float = 60.0) -> tuple:
     return (
-        Param("f_mm", "f, mm", 70, 500, 10, 100, group="Camera", help="focal length f"),
+        # the ranges cover every variant of the guide's scheme (f = 100 + 10i ≤ 1090 mm, m = 12000 + 100i ≤ 21 900);
+        # the defaults are the guide's worked example, variant 00 (f = 100 mm, 1:12 000, λ = −60°)
+        Param("f_mm", "f, mm", 70, 1100, 10, 100, group="Camera", help="focal length f"),
         Param("m", "m (scale 1:m)", 5000, 30000, 500, 12000, group="Camera",
               help="scale denominator of the photo over the mean plane; H = f·m"),
         Param("alpha_deg", "α, °", 0, 15, 0.25, alpha, group="Orientation", help="tilt of the optical axis"),

@@ -11,6 +11,7 @@ the table of every quantity of the guide's calculation beside the figure.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -20,14 +21,20 @@ from matplotlib.collections import PolyCollection
 from .. import flight
 from .. import plots
 from ..widgets import LiveDemo, Param
+from .own import after, task_label
 
 __all__ = ["FlightPlanView", "FlightPlanDemo", "format_value", "plan_table_html", "guide_example_html",
-           "MAX_CENTRES"]
+           "MAX_CENTRES", "OWN_TABLE_TASKS", "own_plan_table", "own_side_allowance", "own_overlaps"]
 
-#: at most this many photo centres are drawn; beyond it every s-th strip and photo is shown
-MAX_CENTRES = 6000
+#: the overview draws at most this many strips and photos per strip (every s-th beyond it, with a note in the
+#: title): about 15 px apart on the overview, so the strips of the largest plans (41 strips × 66 photos for
+#: variant 57, ~10⁶ photos at the sliders' extremes) stay apart instead of merging into one block
+MAX_STRIPS_DRAWN = 24
+MAX_PHOTOS_DRAWN = 32
+#: at most this many photo centres are drawn (the last strip and photo are always drawn: + 1 each)
+MAX_CENTRES = (MAX_STRIPS_DRAWN + 1) * (MAX_PHOTOS_DRAWN + 1)
 #: at most this many footprints per strip on the overview
-MAX_FOOTPRINTS_PER_STRIP = 120
+MAX_FOOTPRINTS_PER_STRIP = MAX_PHOTOS_DRAWN
 
 
 def format_value(v) -> str:
@@ -98,6 +105,60 @@ def guide_example_html(audit=None) -> str:
             + plots.html_table(right, caption="Printed vs computed (guide §2, variant 00)", highlight=hl,
                                notes=notes)
             + "</div></div>")
+
+
+#: the graded task that asks for each result of the plan (chapter 01); the other rows are the variant's inputs
+OWN_TABLE_TASKS = {
+    "H_m": "task-01-1", "Px_percent": "task-01-1", "Py_percent": "task-01-1", "bx_cm": "task-01-1",
+    "by_cm": "task-01-1", "Bx_km": "task-01-1", "By_km": "task-01-1",
+    "K": "task-01-2", "n": "task-01-2", "N": "task-01-2",
+    "LS_km": "task-01-3", "TS_h": "task-01-3", "tmax_s": "task-01-3", "tau_s": "task-01-3",
+}
+
+
+def own_plan_table(variant, passed) -> pd.DataFrame:
+    """The plan of the student's own variant, step by step as in the guide — each result once its task has passed.
+
+    ``passed`` is a function task id → bool: the notebook passes ``aerophoto.checks.passed``.  The rows a task
+    asks for (:data:`OWN_TABLE_TASKS`; P_y, b_x, b_y go with task 01.1, from which they follow) say
+    "answer task 01.k first" until that task has passed in the session; S and h, products of the inputs, are
+    always shown.  Values rounded as the guide prints them (:meth:`aerophoto.flight.FlightPlan.table`).
+    """
+    df = flight.plan(variant).table(rounded=True)
+    values = []
+    for attr, value in zip(flight.TABLE_ATTRS, df["value"]):
+        task = OWN_TABLE_TASKS.get(attr)
+        values.append(value if task is None or passed(task) else f"answer task {task_label(task)} first")
+    df["value"] = values
+    return df
+
+
+def own_side_allowance(variant, passed):
+    """The guide's side-overlap allowance beside the exact one for the student's plan, once tasks 01.1–01.2 passed.
+
+    ``passed``: as in :func:`own_plan_table`.  Returns :func:`aerophoto.guide.s02.side_allowance_table` of the
+    variant's plan, or a :class:`~aerophoto.demos.own.Locked` note (the table holds B_y and K, graded values).
+    """
+    from ..guide import s02
+
+    return after(passed, ["task-01-1", "task-01-2"], lambda: s02.side_allowance_table(flight.plan(variant)),
+                 "this table holds your strip spacing B_y and your number of strips K.")
+
+
+def own_overlaps(variant, passed):
+    """The forward and side overlaps of the student's plan on the lowest and the highest ground, once 01.1 passed.
+
+    A DataFrame (rows: lowest ground Z_min, highest ground Z_max; columns: forward, side, %) from
+    :func:`aerophoto.flight.overlaps_at`, or a :class:`~aerophoto.demos.own.Locked` note: on the lowest ground
+    the forward overlap is P_x, a graded value.
+    """
+    def table():
+        p = flight.plan(variant)
+        rows = [(name, *flight.overlaps_at(p, Z)) for name, Z in (("lowest ground Z_min", p.Zmin_m),
+                                                                 ("highest ground Z_max", p.Zmax_m))]
+        return pd.DataFrame(rows, columns=["ground", "forward, %", "side, %"]).set_index("ground").round(2)
+
+    return after(passed, ["task-01-1"], table, "on the lowest ground the forward overlap is your P_x.")
 
 
 def _rect(x0, y0, x1, y1):
@@ -181,32 +242,41 @@ class FlightPlanView:
         K, n = lay.K, lay.n
         Lx, Ly = p.Lx_km, p.Ly_km
         area = _rect(0, 0, Lx, Ly)
-        # overview -------------------------------------------------------------
+        # overview: every strip and photo, or for large plans a schematic of every s-th ---------------------
         self.area.set_data(area[:, 0], area[:, 1])
-        s = max(1, math.ceil(math.sqrt(K * n / MAX_CENTRES))) if K * n > MAX_CENTRES else 1
-        ks, js = np.arange(0, K, s), np.arange(0, n, s)
-        self.stride = s
+        sk, sj = _stride(K, MAX_STRIPS_DRAWN), _stride(n, MAX_PHOTOS_DRAWN)
+        sk += sk > 1 and sk % 2 == 0   # an odd step: the drawn strips still alternate east and west
+        ks, js = np.arange(0, K, sk), np.arange(0, n, sj)
+        if K > 1 and ks[-1] != K - 1:
+            ks = np.append(ks, K - 1)   # the last strip too: the drawn strips span the area
+        if n > 1 and js[-1] != n - 1:
+            js = np.append(js, n - 1)
+        self.stride = max(sk, sj)
         self.centres.set_offsets(lay.centres_km(ks, js))
         self.shown = len(ks) * len(js)
-        route = lay.route_km(turn_points=12)
-        if K > 400:   # keep the path light: the flight lines are drawn by the centres anyway
-            route = route[:: max(1, len(route) // 8000)]
+        x0r, x1r = lay.photo_x_km[0], lay.photo_x_km[-1]
+        if sk == 1:   # the whole route with its turns
+            route = lay.route_km(turn_points=12)
+        else:         # the drawn flight lines only (turns between strips that are not drawn would mislead)
+            route = np.vstack([np.array([[x0r, y], [x1r, y], [np.nan, np.nan]]) for y in lay.strip_y_km[ks]])
         self.route.set_data(route[:, 0], route[:, 1])
         dirs = lay.directions()
-        xm = (lay.photo_x_km[0] + lay.photo_x_km[-1]) / 2
-        east, west = ks[dirs[ks] > 0], ks[dirs[ks] < 0]
+        xm = (x0r + x1r) / 2
+        ka = ks[:: _stride(len(ks), 12)]   # at most a dozen direction arrows
+        east, west = ka[dirs[ka] > 0], ka[dirs[ka] < 0]
         self.arrows_e.set_data(np.full(len(east), xm), lay.strip_y_km[east])
         self.arrows_w.set_data(np.full(len(west), xm), lay.strip_y_km[west])
-        jf = np.arange(0, n, _stride(n, MAX_FOOTPRINTS_PER_STRIP))
-        self.footprints.set_verts(list(lay.footprints_km(np.arange(min(K, 2)), jf)))
+        self.footprints.set_verts(list(lay.footprints_km(ks[:2], js)))
         half = p.footprint_side_km / 2
-        xs = np.concatenate([[0, Lx], route[:, 0]])
-        ys = np.concatenate([[0, Ly], route[:, 1]])
+        finite = route[np.isfinite(route[:, 0])]
+        xs = np.concatenate([[0, Lx], finite[:, 0]])
+        ys = np.concatenate([[0, Ly], finite[:, 1]])
         pad = 0.04 * max(Lx, Ly)
         self.ax_plan.set_xlim(min(xs.min(), lay.photo_x_km[0] - half) - pad, max(xs.max(), Lx) + pad)
         self.ax_plan.set_ylim(min(ys.min(), lay.strip_y_km[0] - half) - pad,
                               max(ys.max(), lay.strip_y_km[-1] + half) + pad)
-        shown = "" if s == 1 else f" (1 in {s}² drawn)"
+        drawn = [f"1 in {st} {what}" for st, what in ((sk, "strips"), (sj, "photos")) if st > 1]
+        shown = f"\n(schematic: {' and '.join(drawn)} drawn)" if drawn else ""
         self.ax_plan.set_title(f"K = {K} strips × n = {n} = N = {_count_text(p.N)} photos{shown}", fontsize=10)
         # detail ---------------------------------------------------------------
         kz, jz = np.arange(min(K, 3)), np.arange(min(n, 4))
@@ -215,7 +285,9 @@ class FlightPlanView:
         c = lay.centres_km(kz, jz)
         self.z_centres.set_data(c[:, 0], c[:, 1])
         self.z_area.set_data(area[:, 0], area[:, 1])
-        self.z_route.set_data(route[:, 0], route[:, 1])
+        first = dataclasses.replace(lay, strip_y_km=lay.strip_y_km[: min(K, 4)])   # the detail's strips, turns
+        z_route = first.route_km(turn_points=12)
+        self.z_route.set_data(z_route[:, 0], z_route[:, 1])
         x0, x1 = lay.photo_x_km[jz[0]] - half, lay.photo_x_km[jz[-1]] + half
         y0, y1 = lay.strip_y_km[kz[0]] - half, lay.strip_y_km[kz[-1]] + half
         m = 0.06 * max(x1 - x0, y1 - y0)

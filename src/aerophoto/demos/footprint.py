@@ -18,7 +18,7 @@ from .. import geometry as g
 from .. import plots
 from ..widgets import LiveDemo, Param
 
-__all__ = ["FootprintResult", "footprint_model", "FootprintView", "FootprintDemo"]
+__all__ = ["FootprintResult", "footprint_model", "FootprintView", "FootprintDemo", "own_footprint"]
 
 
 @dataclass(frozen=True)
@@ -199,13 +199,19 @@ class FootprintView:
 
 
 class FootprintDemo(LiveDemo):
-    """Live camera footprint: vary f, scale, tilt, swing and heading."""
+    """Live camera footprint: vary f, scale, tilt, swing and heading.
+
+    It opens on the guide's worked example (variant 00: f = 100 mm, 1:12 000, α = 3°, λ = −60°), never on the
+    student's own variant, whose H, on and oc are task 00.1 (:func:`own_footprint` shows those once it passed).
+    The sliders cover every variant of the guide's scheme: f up to 1100 mm (f = 100 + 10i ≤ 1090 mm),
+    m up to 50 000 (m = 12 000 + 100i ≤ 21 900).
+    """
 
     title = "What the camera sees: footprint, o, n and c"
     hint = ("Tilt the camera (α) and watch the footprint turn into a trapezoid while n and c move "
             "away from o along the principal vertical.")
     params = (
-        Param("f_mm", "f, mm", 70, 500, 10, 100, group="Camera", help="focal length f"),
+        Param("f_mm", "f, mm", 70, 1100, 10, 100, group="Camera", help="focal length f"),
         Param("m", "m (scale 1:m)", 2000, 50000, 500, 12000, group="Camera", help="photo scale denominator"),
         Param("alpha_deg", "α, °", 0, 20, 0.5, 3, group="Orientation", help="tilt of the optical axis"),
         Param("lambda_deg", "λ, °", -180, 180, 5, -60, group="Orientation",
@@ -223,3 +229,18 @@ class FootprintDemo(LiveDemo):
     def render(self, result):
         self.view.update(result)
         self.table.value = plots.html_table(result.table(), caption="Elements of the photo", float_format="{:,.1f}")
+
+
+def own_footprint(variant, passed):
+    """The footprint demo on the student's own camera and tilt — once task 00.1 (H, on, oc) has passed.
+
+    ``passed`` is the notebook's ``aerophoto.checks.passed``.  Returns a :class:`FootprintDemo` started at the
+    variant's f, m, α and λ (the guide's scheme as it is, f up to 1090 mm), or a
+    :class:`~aerophoto.demos.own.Locked` note: the demo's table shows H, on and oc.
+    """
+    from .own import after
+
+    return after(passed, ["task-00-1"],
+                 lambda: FootprintDemo(f_mm=variant.f_mm, m=variant.m, alpha_deg=variant.alpha_deg,
+                                       lambda_deg=variant.lambda_deg),
+                 "the demo's table shows your H, on and oc.")

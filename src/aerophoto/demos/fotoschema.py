@@ -30,12 +30,29 @@ Static figures for the notebook: :func:`correction_sheet` (the корректу�
 лист with the ΔI values written along each cut), :func:`sheet_figure` (the
 finished sheet with the guide's marginalia, at true scale on an ISO paper
 size) and :func:`export_sheet` (PNG and PDF, never overwriting silently).
+
+The student's own fotoschema (chapter 05's tasks, :mod:`aerophoto.tasks.ch05`):
+:func:`own_sheet_figure` draws it for measuring (the glued prints, the cuts,
+the numbered check points and the four points of the mean scale — no
+mismatch and no scale: those are the student's answers);
+:func:`student_sheet` returns the finished sheet of a variant signed with the
+mean scale and the student's name and record book (for the report);
+:func:`finished_sheet` shows and writes it in the notebook once the task is
+answered.
+
+The demo opens on the guide's worked example, variant 00 (f = 100 mm,
+1:12 000), and its sliders reach every variant (f up to 1100 mm, m up to
+22 000).  A strip of four photos, like the guide's four prints, fits the
+10 × 5 km site at every scale; at large H = f·m a tilt could carry the
+photos off the site, and then the tilt is reduced to the largest that keeps
+them on it — the table says so (:func:`aerophoto.tasks._own.tilt_that_fits`).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import datetime
+import functools
 import math
 import time
 from dataclasses import dataclass
@@ -62,13 +79,23 @@ __all__ = [
     "sheet_figure",
     "export_sheet",
     "PAPER_MM",
+    "TRIM_MM",
+    "sheet_size_mm",
+    "sheet_paper",
+    "own_prints",
+    "own_sheet_image",
+    "own_sheet_figure",
+    "student_sheet",
+    "finished_sheet",
 ]
 
 #: ISO A paper sizes, landscape (width, height) in mm
 PAPER_MM = {"A4": (297.0, 210.0), "A3": (420.0, 297.0), "A2": (594.0, 420.0), "A1": (841.0, 594.0),
             "A0": (1189.0, 841.0)}
 
-N_PHOTOS = 5
+#: photos in the demo's strip: the guide's four prints (guide §1: "по контактным аэроснимкам 4 шт."), which fit
+#: the 10 × 5 km site at every variant's scale (five do not beyond 1:19 500)
+N_PHOTOS = 4
 
 
 def default_ground(relief_m: float = 30.0):
@@ -92,6 +119,8 @@ class FotoschemaResult:
     strip : the simulated strip
     ground : the terrain (the site with rescaled relief)
     timings_s : dict of the stages' durations, seconds
+    note : a remark on the inputs (a tilt reduced so the photos stay on the site), "" if none
+    alpha_max_deg : the largest tilt actually flown, degrees
     """
 
     fs: mo.Fotoschema
@@ -102,6 +131,8 @@ class FotoschemaResult:
     strip: object
     ground: object
     timings_s: dict
+    note: str = ""
+    alpha_max_deg: float = 0.0
 
     def table(self) -> pd.DataFrame:
         """The headline numbers: RMS m, worst cut-out, number of points, mean scale vs design, verdict."""
@@ -143,10 +174,18 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
         1024 px, with light fall-off and fiducial marks) instead of sampling the
         ground directly
     """
+    from ..tasks._own import tilt_that_fits
+
     t0 = time.perf_counter()
     gr = default_ground(relief_m) if ground is None else ground
     cam = g.Camera(f_mm)
-    imp = sim.Imperfections(max_tilt_deg=alpha_max_deg, seed=int(seed))
+    alpha = tilt_that_fits(gr, cam, m, px_percent, n_photos, alpha_max_deg)
+    note = ""
+    if alpha < alpha_max_deg - 1e-9:
+        H = g.flying_height_m(f_mm, m)
+        note = (f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at H = {H:,.0f} m a larger tilt would carry "
+                "the photos off the 10 × 5 km site").replace(",", " ")
+    imp = sim.Imperfections(max_tilt_deg=alpha, seed=int(seed))
     strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos, imperfections=imp)
     t1 = time.perf_counter()
     fs = mo.assemble(strip, gr, cut_shape=cut_shape, points_m=mo.catalogue_points(gr))
@@ -159,7 +198,7 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
     image, extent = mo.sheet_raster(fs, gr, px_per_mm, photos=photos)
     t3 = time.perf_counter()
     return FotoschemaResult(fs, image, extent, float(px_per_mm), bool(preview), strip, gr,
-                            {"fly": t1 - t0, "assemble": t2 - t1, "glue": t3 - t2})
+                            {"fly": t1 - t0, "assemble": t2 - t1, "glue": t3 - t2}, note, float(alpha))
 
 
 # =========================================================================== the view
@@ -314,8 +353,10 @@ class FotoschemaDemo(LiveDemo):
     hint = ("Raise the relief or the tilt and watch cut-outs (−, vermillion) and duplicates (+, blue) appear along "
             "the cuts; a longer focal length flies higher at the same scale and shrinks the relief mismatches.")
     params = (
-        Param("f_mm", "f, mm", 70, 350, 10, 100, group="Camera", help="focal length f; H = f·m"),
-        Param("m", "m (scale 1:m)", 8000, 16000, 500, 12000, group="Camera", help="photo scale denominator"),
+        Param("f_mm", "f, mm", 70, 1100, 10, 100, group="Camera",
+              help="focal length f; H = f·m (the variants reach 1090 mm)"),
+        Param("m", "m (scale 1:m)", 8000, 22000, 100, 12000, group="Camera",
+              help="photo scale denominator (the variants reach 21 900)"),
         Param("px_percent", "p_x, %", 56, 80, 1, 60, group="Flight", help="forward overlap"),
         Param("alpha_max_deg", "α max, °", 0, 5, 0.25, 1, group="Flight",
               help="largest tilt of the photos (each is tilted at random up to this)"),
@@ -355,6 +396,8 @@ class FotoschemaDemo(LiveDemo):
         H_m = g.flying_height_m(fs.camera.f_mm, fs.m_design)
         notes = [f"H = f·m = {H_m:,.0f} m above the mean ground".replace(",", " "),
                  "ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip"]
+        if result.note:
+            notes.insert(0, "⚠ " + result.note)
         self.table.value = (plots.html_table(result.table(), caption="Seams and scale (guide §6)",
                                              float_format="{:.3g}", notes=notes)
                             + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm",
@@ -484,27 +527,68 @@ def _paper_for(w_mm: float, h_mm: float) -> tuple[str, tuple]:
     raise ValueError(f"a {w_mm:.0f} × {h_mm:.0f} mm sheet does not fit A0; the valid range is up to 1189 × 841 mm")
 
 
+#: the sheet is trimmed this far outside the working area's upper and lower boundary lines, mm
+#: (guide §6 after step 9: 0.5–1.0 cm; step 5 says 1–1.5 cm — the book takes the 1 cm both allow)
+TRIM_MM = 10.0
+#: the page's margins around the trimmed mosaic, mm: above (title, scale), below (scale bar, year, names), sides
+_TOP_MM, _BOTTOM_MM, _SIDE_MM = 48.0, 42.0, 6.0
+
+
+def sheet_size_mm(fs: mo.Fotoschema, *, working_area: bool = True) -> tuple:
+    """(width, height) of the mosaic on the sheet, mm: the prints' extent, trimmed 1 cm outside the working area."""
+    x0, x1, y0, y1 = fs.extent_mm
+    if working_area:
+        lines = fs.working_area_lines()
+        y1 = min(y1, float(lines[0][:, 1].max()) + TRIM_MM)
+        y0 = max(y0, float(lines[1][:, 1].min()) - TRIM_MM)
+    return x1 - x0, y1 - y0
+
+
+def sheet_paper(fs: mo.Fotoschema, *, working_area: bool = True) -> tuple:
+    """The smallest ISO A sheet (landscape) that holds the fotoschema at true size with its marginalia: (name, (w, h) mm)."""
+    w, h = sheet_size_mm(fs, working_area=working_area)
+    return _paper_for(w + 2 * _SIDE_MM, h + _TOP_MM + _BOTTOM_MM)
+
+
 def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", checked_by: str = "",
-                 year: int | None = None, place: str = "", english: bool = True):
+                 year: int | None = None, place: str = "", english: bool = True, scale_m: float | None = None,
+                 working_area: bool = True):
     """The finished fotoschema with its marginalia (зарамочное оформление), guide §6 step 9 and appendix.
 
     The mosaic is drawn at true size — one sheet millimetre is one millimetre
     of paper — on the smallest ISO A sheet (landscape) that holds it with the
-    margins, so the PDF prints at the fotoschema's scale.  Above it the title
+    margins (:func:`sheet_paper`), so the PDF prints at the fotoschema's scale.
+    With ``working_area`` (default) the boundary lines of the working area are
+    drawn in ink along the middle of the side overlaps and the mosaic is trimmed
+    1 cm outside them (guide §6, after step 9).  Above it the title
     "ФОТОСХЕМА" (and "Photo mosaic" if ``english``) and the mean scale
-    "М 1:m" rounded to hundreds as in the guide's appendix; under it a scale
-    bar, the year it was made and "Выполнил / made by", "Проверил / checked by".
+    "М 1:m" rounded to hundreds as in the guide's appendix ("M 1: 13000"); under
+    it a scale bar, the year it was made and "Выполнил / made by",
+    "Проверил / checked by".
+
+    Parameters
+    ----------
+    scale_m : the mean scale denominator to sign the sheet with (the one the
+        student computed by (6.1)); default: the fotoschema's own, from the
+        exact positions of its four points (:attr:`aerophoto.mosaic.ScaleCheck.m`)
 
     Returns
     -------
-    matplotlib.figure.Figure (not attached to pyplot; save it with :func:`export_sheet`)
+    matplotlib.figure.Figure (not attached to pyplot; save it with :func:`export_sheet`);
+    ``fig.aerophoto_paper`` is the sheet's name ("A3").
     """
     from matplotlib.figure import Figure
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    x0, x1, y0, y1 = fs.extent_mm
-    w, h = x1 - x0, y1 - y0
-    top, bottom, side = 48.0, 42.0, 10.0  # the guide trims 1–1.5 cm beyond the working area
+    x0, x1, _y0, _y1 = fs.extent_mm
+    w, h = sheet_size_mm(fs, working_area=working_area)
+    if working_area:
+        lines = fs.working_area_lines()
+        y1 = min(fs.extent_mm[3], float(lines[0][:, 1].max()) + TRIM_MM)
+        y0 = y1 - h
+    else:
+        lines, y0, y1 = None, fs.extent_mm[2], fs.extent_mm[3]
+    top, bottom, side = _TOP_MM, _BOTTOM_MM, _SIDE_MM
     name, (pw, ph) = _paper_for(w + 2 * side, h + top + bottom)
     import matplotlib as mpl
 
@@ -520,6 +604,9 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     base = bottom + (ph - top - bottom - h) / 2.0
     ax = fig.add_axes((left / pw, base / ph, w / pw, h / ph))
     ax.imshow(image, cmap="gray", vmin=0, vmax=1, origin="lower", extent=extent_mm, interpolation="antialiased")
+    if lines is not None:
+        for ln in lines:
+            ax.plot(ln[:, 0], ln[:, 1], color="black", lw=0.8)
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_axis_off()
@@ -532,7 +619,9 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     fig.add_artist(Rectangle((fx(left - 2), fy(base - 2)), fx(w + 4), fy(h + 4), fill=False, lw=1.2,
                              transform=fig.transFigure))
     yr = datetime.date.today().year if year is None else int(year)
-    m_txt = f"{fs.scale.m_rounded:,}".replace(",", " ")
+    m_sign = fs.scale.m if scale_m is None else float(scale_m)
+    m_rounded = int(round(m_sign / 100.0) * 100)
+    m_txt = f"{m_rounded:,}".replace(",", " ")
     cx = 0.5
     fig.text(cx, fy(ph - 16), "ФОТОСХЕМА", ha="center", va="center", fontsize=26, fontweight="bold")
     if english:
@@ -540,10 +629,10 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
                  f"{fs.numbers[0]}–{fs.numbers[-1]})", ha="center", va="center", fontsize=13)
     fig.text(cx, fy(base + h + 8), f"М 1:{m_txt}", ha="center", va="center", fontsize=15, fontweight="bold")
     # scale bar: a round ground length close to a fifth of the mosaic
-    ground_len = w / 5.0 * fs.scale.m / 1000.0
+    ground_len = w / 5.0 * m_sign / 1000.0
     step = 10 ** math.floor(math.log10(ground_len))
     bar_m = max(step, round(ground_len / step) * step)
-    bar_mm = bar_m * 1000.0 / fs.scale.m
+    bar_mm = bar_m * 1000.0 / m_sign
     by = base - 12.0
     bx = left
     from matplotlib.lines import Line2D
@@ -589,3 +678,164 @@ def export_sheet(fig, folder, stem: str = "fotoschema", *, overwrite: bool = Fal
     fig.savefig(paths["png"], dpi=dpi, format="png")
     fig.savefig(paths["pdf"], format="pdf")
     return paths
+
+
+# =========================================================================== the student's own fotoschema
+@functools.lru_cache(maxsize=2)
+def _own_prints(i: int, f_mm: float, frame_mm: float, m: float, px_percent: float, n_px: int) -> tuple:
+    from .. import render
+    from ..tasks import _own
+
+    strip, site = _own._own_strip(i, f_mm, frame_mm, m, px_percent)
+    return tuple(render.render_strip(site, strip, n_px))
+
+
+def own_prints(variant, n_px: int = 1024) -> tuple:
+    """The student's four prints (:func:`aerophoto.render.render_strip` of their own strip), cached per variant.
+
+    ``n_px`` × ``n_px`` pixels each (1024: 0.18 mm a pixel on the 18 cm frame).
+    """
+    from .._validate import check_int_range
+
+    n = check_int_range("n_px", n_px, 64, 4096)
+    return _own_prints(int(variant.i), float(variant.f_mm), float(variant.frame_mm), float(variant.m),
+                       float(variant.px_percent), n)
+
+
+@functools.lru_cache(maxsize=4)
+def _own_sheet_image(variant, px_per_mm: float) -> tuple:
+    from ..tasks.ch05 import own_fotoschema
+
+    own = own_fotoschema(variant)
+    return mo.sheet_raster(own.fs, own.site, px_per_mm, photos=list(own_prints(variant)))
+
+
+def own_sheet_image(variant, px_per_mm: float = 5.0) -> tuple:
+    """The student's fotoschema glued from their rendered prints: ``(image, extent_mm)`` (:func:`aerophoto.mosaic.sheet_raster`).
+
+    At 5 px/mm the sheet of four prints is about 2000 × 900 pixels (0.6 s to glue, after 1–2.5 s to render
+    the prints); cached per variant.
+    """
+    from .._validate import check_range
+
+    r = check_range("px_per_mm", px_per_mm, 0.5, 10.0, unit="px/mm")
+    return _own_sheet_image(variant, float(r))
+
+
+def own_sheet_figure(variant, ax=None, *, px_per_mm: float = 5.0):
+    """The student's fotoschema for measuring: prints, cuts, numbered check points, the four points of the scale.
+
+    Shows what the student works **from** — where the cuts run, where the
+    details were pricked along them (numbered as in the readings of task 05.1),
+    and the points 36a … 39b of the mean scale (task 05.2) — and nothing they
+    must compute: no mismatch ΔI and no scale.  Returns the Figure.
+    """
+    from ..tasks.ch05 import own_fotoschema
+
+    own = own_fotoschema(variant)
+    fs = own.fs
+    image, extent = own_sheet_image(variant, px_per_mm)
+    fig, ax = plots.new_axes(ax, figsize=(11.0, 5.6))
+    C = plots.COLORS
+    ax.imshow(image, cmap="gray", vmin=0, vmax=1, origin="lower", extent=extent, interpolation="antialiased")
+    ax.set_aspect("equal")
+    ax.grid(False)
+    for s in fs.seams:
+        ax.plot(s.cut_mm[:, 0], s.cut_mm[:, 1], color=C["orange"], lw=1.6)
+    d = own.details
+    ax.plot(d.contour_mm[:, 0], d.contour_mm[:, 1], linestyle="none", marker="o", ms=5, mfc="none", mew=1.4,
+            color=C["yellow"], label="details pricked along the cuts (task 05.1)")
+    for p, k in zip(d.contour_mm, d.point):
+        ax.annotate(str(k), p, xytext=(-3, 0), textcoords="offset points", ha="right", va="center", fontsize=8,
+                    color="black", bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.75))
+    for s in fs.seams:
+        top = s.cut_mm[np.argmax(s.cut_mm[:, 1])]
+        ax.annotate(f"cut {s.numbers[0]}/{s.numbers[1]}", top, xytext=(0, 4), textcoords="offset points",
+                    ha="center", va="bottom", fontsize=10, color=C["orange"], fontweight="bold")
+    P = fs.scale.sheet_mm
+    ax.plot(P[:, 0], P[:, 1], linestyle="none", marker="s", ms=9, mfc="none", mew=2.0, color=C["skyblue"],
+            label="points of the mean scale (task 05.2)")
+    for name, p in zip(fs.scale.names, P):
+        ax.annotate(name, p, xytext=(6, 6), textcoords="offset points", fontsize=11, fontweight="bold",
+                    color="black", bbox=dict(boxstyle="round,pad=0.15", fc="white", ec=C["skyblue"], alpha=0.85))
+    o = fs.principal_points_mm()
+    ax.plot(o[:, 0], o[:, 1], "+", color=C["vermillion"], ms=11, mew=2.0, label="principal points o")
+    for n, p in zip(fs.numbers, o):
+        ax.annotate(str(n), p, xytext=(5, -14), textcoords="offset points", fontsize=11, fontweight="bold",
+                    color=C["vermillion"])
+    x0, x1, y0, y1 = fs.extent_mm
+    ax.set_xlim(x0 - 2, x1 + 2)
+    ax.set_ylim(y0 - 2, y1 + 10)
+    ax.set_xlabel("along the strip, mm (from the principal point of photo %d)" % fs.numbers[0])
+    ax.set_ylabel("across, mm")
+    m_txt = f"{fs.m_design:,.0f}".replace(",", " ")
+    ax.set_title(f"Your fotoschema: photos {fs.numbers[0]}–{fs.numbers[-1]}, f = {fs.camera.f_mm:g} mm, "
+                 f"photos at 1:{m_txt}")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize=9, frameon=False)
+    return fig
+
+
+def _made_by(variant, name: str) -> str:
+    name = str(name or "").strip()
+    rb = getattr(variant, "record_book", "")
+    rb = "" if not rb or str(rb).startswith("(") else f"record book {rb}"
+    return ", ".join(x for x in (name, rb) if x)
+
+
+def student_sheet(variant, made_by: str = "", *, checked_by: str = "", year: int | None = None,
+                  scale_m: float | None = None, px_per_mm: float = 5.0):
+    """The finished fotoschema of a variant with the appendix's marginalia (for the student's report).
+
+    The student's own strip glued from their prints (:func:`own_sheet_image`),
+    trimmed to the working area, at true size on the A sheet that holds it
+    (A3 for every variant), titled, signed "М 1:m" with the mean scale rounded
+    to hundreds, the year, "made by" ``made_by`` and the variant's record
+    book, "checked by" ``checked_by``.
+
+    Parameters
+    ----------
+    variant : the student's Variant (its record book goes on the sheet)
+    made_by : the student's name
+    scale_m : the mean scale to sign with; default the reference value of task 05.2 (6.1 from the
+        student's readings, :func:`aerophoto.tasks.ch05.answers_of`) — the instructor's and the report's side
+    """
+    from ..tasks.ch05 import answers_of, own_fotoschema
+
+    own = own_fotoschema(variant)
+    image, extent = own_sheet_image(variant, px_per_mm)
+    m_sign = answers_of(variant)["m_mean"] if scale_m is None else float(scale_m)
+    return sheet_figure(own.fs, image, extent, made_by=_made_by(variant, made_by), checked_by=checked_by,
+                        year=year, scale_m=m_sign)
+
+
+def finished_sheet(variant, made_by: str = "", *, answered: bool, checked_by: str = "", folder=None,
+                   preview_dpi: int = 60):
+    """Show and write the student's finished sheet — once task 05.2 (the mean scale it is signed with) is answered.
+
+    ``answered`` is the notebook's ``checks.passed("task-05-2")``.  Without it
+    a line says what to do first (the sheet carries the mean scale, a graded
+    value).  With it the sheet (:func:`student_sheet`) is written as PNG and
+    PDF at true size into ``folder`` (default: a fresh temporary folder; an
+    existing file is never overwritten) and shown.  Returns the shown figure
+    (:class:`aerophoto.plots.StaticFigure`) or None.
+    """
+    import tempfile
+
+    if not answered:
+        print("Answer task 05.2 first: the sheet is signed with the mean scale you compute there.")
+        return None
+    fig = student_sheet(variant, made_by, checked_by=checked_by)
+    rb = "".join(c for c in str(getattr(variant, "record_book", "")) if c.isalnum() or c in "-_") or f"v{variant.i:02d}"
+    files = export_sheet(fig, folder if folder is not None else tempfile.mkdtemp(prefix="fotoschema-"),
+                         f"fotoschema_{rb}")
+    print(f"{fig.aerophoto_paper} sheet at true size written to:", *files.values(), sep="\n  ")
+    return plots.static(fig, alt=f"Your finished fotoschema on an {fig.aerophoto_paper} sheet: the glued prints "
+                                 f"{own_numbers(variant)} trimmed to the working area, titled ФОТОСХЕМА, signed with "
+                                 "its mean scale, the year, and who made and who checked it", dpi=preview_dpi)
+
+
+def own_numbers(variant) -> str:
+    """The photo numbers of the student's strip as text ("36–39")."""
+    from ..tasks._own import FIRST_NUMBER, N_PHOTOS
+
+    return f"{FIRST_NUMBER}–{FIRST_NUMBER + N_PHOTOS - 1}"

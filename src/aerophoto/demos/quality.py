@@ -285,13 +285,18 @@ class RoughMosaicView:
 
 
 class QualityDemo(LiveDemo):
-    """Live rough mosaic: the flight's imperfections → the prints on the plan and the §3 verdicts."""
+    """Live rough mosaic: the flight's imperfections → the prints on the plan and the §3 verdicts.
+
+    It opens on the guide's camera (f = 100 mm, variant 00), never on the student's own: the crab limit in its
+    table is task 02.2's answer.  f reaches 1100 mm, every variant of the guide's scheme (f = 100 + 10i mm);
+    at 1:10 000 even f = 1100 mm with the sliders' worst imperfections keeps every print on the site.
+    """
 
     title = "Is the survey fit for use? The rough mosaic and the checks of guide §3"
     hint = ("Push an imperfection past its tolerance — crab, tilt, height scatter, a bent route, a small overlap — "
             "and watch the print, pair or strip turn vermillion and the verdict change.")
     params = (
-        Param("f_mm", "f, mm", 70, 250, 10, 100, group="Camera", help="focal length (sets the crab limit)"),
+        Param("f_mm", "f, mm", 70, 1100, 10, 100, group="Camera", help="focal length (sets the crab limit)"),
         Param("px_percent", "p_x, %", 50, 80, 1, 60, group="Plan", help="planned forward overlap"),
         Param("py_percent", "p_y, %", 10, 45, 1, 30, group="Plan", help="planned side overlap"),
         Param("max_tilt_deg", "α max, °", 0, 5, 0.25, 1, group="Imperfections", help="largest tilt"),
@@ -316,25 +321,29 @@ class QualityDemo(LiveDemo):
         self.table.value = verdict_html(result.report)
 
 
-def crab_limit_plot(ax=None, f_mm: float | None = None):
+def crab_limit_plot(ax=None, f_mm: float | None = None, *, f_max_mm: float = 1100.0):
     """The crab-angle tolerance against focal length: the guide's three values and the book's rule.
 
-    Draws φ_max(f) of :func:`aerophoto.quality.crab_limit_deg` for 50–400 mm,
-    the guide's points (100, 5°), (140, 7°), (200, 10°) and, if given, the
-    student's camera.  Returns the Axes.
+    Draws φ_max(f) of :func:`aerophoto.quality.crab_limit_deg` for 50 mm to ``f_max_mm`` (default 1100 mm: every
+    variant of the guide's scheme, f = 100 + 10i mm), the guide's points (100, 5°), (140, 7°), (200, 10°), the
+    range beyond the longest real lenses (≈ 610 mm) shaded, and — only if ``f_mm`` is given — one camera
+    marked.  The chapter's figure marks none: a student's own limit is task 02.2's answer.  Returns the Axes.
     """
     fig, ax = plots.new_axes(ax, figsize=(6.4, 3.4))
     C = plots.COLORS
-    f = np.linspace(50.0, 400.0, 351)
+    f = np.linspace(50.0, float(f_max_mm), 521)
+    ax.axvspan(610.0, float(f_max_mm), color=C["grey"], alpha=0.15, lw=0,
+               label="beyond real lenses (> 610 mm): the rule applied anyway")
     ax.plot(f, [q.crab_limit_deg(x) for x in f], color=C["blue"], label="book's rule: φ_max = f/20, held outside")
-    ax.plot(f, f / 20.0, color=C["grey"], lw=1.0, ls=":", label="the line f/20 continued")
+    g = f[f <= 400.0]
+    ax.plot(g, g / 20.0, color=C["grey"], lw=1.0, ls=":", label="the line f/20 continued")
     fs = sorted(q.CRAB_LIMITS_DEG)
     ax.plot(fs, [q.CRAB_LIMITS_DEG[k] for k in fs], "o", color=C["vermillion"], ms=8, label="guide §3, item 3.3")
     if f_mm is not None:
-        ax.plot([f_mm], [q.crab_limit_deg(f_mm)], "D", color=C["green"], ms=8,
-                label=f"your camera, f = {f_mm:g} mm")
+        ax.plot([f_mm], [q.crab_limit_deg(f_mm)], "D", color=C["green"], ms=8, label=f"camera f = {f_mm:g} mm")
+    ax.set_xlim(0, float(f_max_mm))
     ax.set_xlabel("focal length f, mm")
     ax.set_ylabel("largest crab φ_max, °")
     ax.set_ylim(0, 21)
-    ax.legend(fontsize=9, loc="upper left")
+    ax.legend(fontsize=9, loc="upper right")
     return ax

@@ -8,7 +8,7 @@
   every residual is within 0.4 mm.  The "step" slider walks through the
   sequence; the photo itself is resampled onto the screen at every step
   (:func:`aerophoto.projective.warp_photo`).  While a photo slider is being
-  dragged the photo is rendered at a preview resolution.
+  dragged the photo is made at a preview resolution.
 * :func:`rectified_figure` — a photo rectified on four control points
   (:func:`aerophoto.rectify.rectify_points`) set against the site's truth:
   the residual of every catalogue point, which on hilly ground is the relief
@@ -43,6 +43,7 @@ EXAMPLE = dict(f_mm=108.0, m=15000.0, M=5000.0, offset_m=(-600.0, 150.0))
 PREVIEW_PX, FULL_PX = 160, 320
 #: screen raster pixel, mm on the base
 SCREEN_PIXEL_MM = 1.5
+EXAMPLE_FRAME_MM = 180.0
 
 
 @functools.lru_cache(maxsize=4)
@@ -61,11 +62,30 @@ def _pose(alpha_deg, lambda_deg, kappa_deg, flat=True):
 
 
 @functools.lru_cache(maxsize=8)
-def _photo(alpha_deg, lambda_deg, kappa_deg, n_px, flat=True):
-    from ..render import render
+def _photo(alpha_deg, lambda_deg, kappa_deg, n_px):
+    """The example's photo of the flat site, ``n_px`` across: the site's texture resampled through ground → photo.
 
-    return render(_site(flat), g.Camera(EXAMPLE["f_mm"]), _pose(alpha_deg, lambda_deg, kappa_deg, flat), n_px,
-                  vignetting=0.1)
+    Over flat ground a photo is a projective image of the ground, so the
+    picture is the texture (at the pyramid level of the photo's ground pixel)
+    warped by the homography that :func:`aerophoto.geometry.ground_to_photo`
+    fixes on four ground points — exact for the bare ground, and some ten
+    times quicker than ray-casting it (:func:`aerophoto.render.render`, which
+    the chapter's static figures use, objects with height included).
+    Returns a :class:`aerophoto.projective.Raster` in photo mm.
+    """
+    site = _site(True)
+    cam = g.Camera(EXAMPLE["f_mm"])
+    pose = _pose(alpha_deg, lambda_deg, kappa_deg, True)
+    z = site.base_height_m
+    G = g.photo_to_plane(cam, pose, cam.corners_mm(), z)
+    to_photo = pj.fit_projective(G[:, :2], cam.corners_mm())
+    p = cam.frame_mm / n_px
+    level = site.level_for(p * (pose.Z_m - z) / cam.f_mm)
+    t = site.texel_m(level)
+    tex = site.texture_level(level).astype(np.float32) / np.float32(255.0)
+    pixels = np.array([[t, 0.0, 0.5 * t], [0.0, t, 0.5 * t], [0.0, 0.0, 1.0]])  # texture (col, row) → ground X, Y
+    h = cam.half_mm
+    return pj.warp_raster(tex, pixels, to_photo, (-h, h, -h, h), p, cval=0.5)
 
 
 @functools.lru_cache(maxsize=16)
@@ -163,7 +183,7 @@ def transformer_model(step: int = 0, alpha_deg: float = 3.0, lambda_deg: float =
     pad = 0.25 * float(max(hi - lo))
     ext = (lo[0] - pad, hi[0] + pad, lo[1] - pad, hi[1] + pad)
     px = SCREEN_PIXEL_MM * (2.0 if preview else 1.0)
-    screen = pj.warp_photo(img.image, M, ext, px, frame_mm=img.camera.frame_mm, cval=1.0)
+    screen = pj.warp_photo(img.image, M, ext, px, frame_mm=EXAMPLE_FRAME_MM, cval=1.0)
     return TransformerResult(run, k, photo, base, screen, bool(preview))
 
 
@@ -350,8 +370,11 @@ def rectified_figure(lab, *, relief: bool = True, n_px: int = 512, pixel_mm: flo
     ax1.set_ylabel("y on the base, mm")
     ax2.axvline(rect.extent[0] + half * rect.pixel, color=_C["yellow"], lw=1.5)
     rf_ = residual_field(lab, relief=relief)
+    x0, x1, y0, y1 = rect.extent
+    rf_ = rf_[rf_["x base, mm"].between(x0, x1) & rf_["y base, mm"].between(y0, y1)]
     q = ax1.quiver(rf_["x base, mm"], rf_["y base, mm"], arrows_x * rf_["dx, mm"], arrows_x * rf_["dy, mm"],
-                   rf_["h, m"], angles="xy", scale_units="xy", scale=1.0, cmap="BrBG_r", width=0.005)
+                   rf_["h, m"], angles="xy", scale_units="xy", scale=1.0, cmap="BrBG_r", width=0.006,
+                   edgecolor="k", linewidth=0.4)
     fig.colorbar(q, ax=ax1, shrink=0.7, label="h above the control points, m")
     ax1.set_xlim(rect.extent[0], rect.extent[1])
     ax1.set_ylim(rect.extent[2], rect.extent[3])

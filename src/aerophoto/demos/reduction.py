@@ -17,7 +17,19 @@ draws on tracing paper:
 * :class:`ReductionView` — the strip and the coefficients side by side.
 
 :class:`ReductionDemo` binds sliders for f, the photo scale, the free strip's
-scale, the pricking error, the tilt and the central point to them.
+scale, the pricking error, the tilt and the central point to them.  It opens
+on the guide's worked example, variant 00 (f = 100 mm, 1:12 000), on a strip
+of four photos 36 … 39 as in guide §13, and its sliders reach every variant
+(f up to 1100 mm, m up to 22 000); where a tilt would carry the photos off the
+10 × 5 km site it is reduced to the largest that keeps them on it, and the table
+says so.
+
+For the student's own strip (chapters 06 and 12, :mod:`aerophoto.tasks.ch06`):
+:func:`own_site_figure`, :func:`own_templates_figure` and :func:`own_strip_figure`
+draw what the student works from — their photos over the site, their
+templates, their laid strip — without the error triangles, coefficients or
+corrections they compute.  The student's tables are in the geodetic convention
+(x up, y right along the strip); the laid strip is drawn with those axes.
 """
 
 from __future__ import annotations
@@ -48,6 +60,9 @@ __all__ = [
     "AccumulationView",
     "ReductionDemo",
     "TRIANGLE_ENLARGEMENT",
+    "own_site_figure",
+    "own_templates_figure",
+    "own_strip_figure",
 ]
 
 #: error triangles are drawn this many times larger than they are (about their centroid)
@@ -122,15 +137,19 @@ def strip_design(f_mm: float, m: float, max_tilt_deg: float = 0.0, n_photos: int
 
     Returns ``(site, strip, points)``: :func:`aerophoto.site.get_site`, a
     strip of ``n_photos`` flown along +X through the site's centre at 1:m
-    with p_x = 60 % and tilts up to ``max_tilt_deg`` (seeded), and
+    with p_x = 60 % and tilts up to ``max_tilt_deg`` (seeded; reduced to the
+    largest that keeps the photos on the site, :func:`aerophoto.tasks._own.tilt_that_fits`
+    — compare ``strip.imperfections.max_tilt_deg``), and
     :func:`aerophoto.triangulation.design_points` on it (the site's catalogue
     where it has a point at a design position).
     """
     from .. import simulate, site as site_mod
+    from ..tasks._own import tilt_that_fits
 
     s = site_mod.get_site()
     cam = g.Camera(f_mm)
-    imp = simulate.Imperfections(max_tilt_deg=max_tilt_deg, seed=seed)
+    tilt = tilt_that_fits(s, cam, m, px_percent, n_photos, max_tilt_deg)
+    imp = simulate.Imperfections(max_tilt_deg=tilt, seed=seed)
     strip = simulate.strip_over_site(s, cam, m, px_percent, n_photos, imperfections=imp, first_number=first_number)
     pts = tri.design_points(cam, strip.poses, s, catalogue=s.catalogue,
                             photo_numbers=[sh.number for sh in strip.shots])
@@ -144,21 +163,23 @@ def reduction_model(f_mm: float = 100.0, m: float = 12000.0, scale_ratio: float 
 
     Parameters
     ----------
-    f_mm : focal length f, mm (50 … 350)
-    m : photo scale denominator (1:m), 5000 … 20000
+    f_mm : focal length f, mm (50 … 1100: the variants reach 1090 mm)
+    m : photo scale denominator (1:m), 5000 … 22000 (the variants reach 21 900); a strip of
+        five photos fits the 10 × 5 km site up to 1:19 500, four up to 1:22 000
     scale_ratio : the free strip's scale as a fraction of the plan's (the
         template's arbitrary scale; k ≈ 1/scale_ratio), 0.5 … 1.5
     pricking_mm : RMS pricking error on the photos, mm (guide: 0.1), 0 … 0.5
     centre : the central working centre, 1 … n_photos (numbered along the
         strip; a larger number is taken as the last photo, with a note)
-    max_tilt_deg : largest tilt α of the photos, degrees (0 … 5)
+    max_tilt_deg : largest tilt α of the photos, degrees (0 … 5); reduced, with a note, where the
+        photos would leave the site
     n_photos : photos in the strip, 3 … 7
     seed : seed of the tilts and the pricking errors
     M : plan scale denominator (1:M)
     first_number : the first photo's number (guide §13 numbers its photos 36 … 39)
     """
-    check_range("f_mm", f_mm, 50.0, 350.0, unit="mm")
-    check_range("m", m, 5000.0, 20000.0)
+    check_range("f_mm", f_mm, 50.0, 1100.0, unit="mm")
+    check_range("m", m, 5000.0, 22000.0)
     check_range("scale_ratio", scale_ratio, 0.5, 1.5)
     check_range("pricking_mm", pricking_mm, 0.0, 0.5, unit="mm")
     check_range("max_tilt_deg", max_tilt_deg, 0.0, 5.0, unit="degrees")
@@ -170,6 +191,12 @@ def reduction_model(f_mm: float = 100.0, m: float = 12000.0, scale_ratio: float 
         c = n
     fn = check_int_range("first_number", first_number, 1, 100000)
     _site, strip, pts = strip_design(float(f_mm), float(m), float(max_tilt_deg), n, int(seed), 60.0, fn)
+    flown = strip.imperfections.max_tilt_deg
+    if flown < max_tilt_deg - 1e-9:
+        H = g.flying_height_m(f_mm, m)
+        tilt_note = (f"α max reduced from {max_tilt_deg:g}° to {flown:.2f}°: at H = {H:,.0f} m a larger tilt would "
+                     "carry the photos off the 10 × 5 km site").replace(",", " ")
+        note = f"{note}; {tilt_note}" if note else tilt_note
     tm = tri.measure_templates(strip.camera, strip.poses, pts, pricking_mm=pricking_mm, seed=int(seed))
     fs = tri.lay_free_strip(tm, scale_ratio=scale_ratio, M=M)
     red = tri.reduce_strip(fs, M=M, centre=c - 1)
@@ -192,8 +219,8 @@ class TemplateView:
         self.frame = plots.photo_frame(a, g.Camera(), label="photo frame", lw=1.0)
         self.rays = LineCollection([], colors=plots.COLORS["grey"], linewidths=1.0)
         a.add_collection(self.rays)
-        self.initial = LineCollection([], colors=plots.COLORS["vermillion"], linewidths=2.0,
-                                      label="initial directions")
+        self.initial = LineCollection([], colors=plots.COLORS["orange"], linewidths=2.4,
+                                      label="initial directions (orange)")
         a.add_collection(self.initial)
         self.marks = {k: a.plot([], [], linestyle="none", label=_KIND_LABEL[k], **st)[0] for k, st in _KIND_STYLE.items()}
         (self.own,) = a.plot([], [], "s", color=plots.COLORS["black"], ms=11, mfc=plots.COLORS["yellow"], mew=1.8,
@@ -302,12 +329,18 @@ class StripView:
     """
 
     def __init__(self, free: tri.FreeStrip | None = None, reduction: tri.Reduction | None = None, ax=None,
-                 labels: bool = True, reduction_legend: bool = True):
+                 labels: bool = True, reduction_legend: bool = True, triangles: bool = True, geodetic: bool = False):
         self.fig, self.ax = plots.new_axes(ax, figsize=(8.0, 4.8))
         a = self.ax
         a.set_aspect("equal")
-        a.set_xlabel("free strip x, mm")
-        a.set_ylabel("free strip y, mm")
+        #: draw the error triangles (enlarged); False for a student's own strip, whose triangles are an answer
+        self.show_triangles = bool(triangles)
+        if geodetic:  # the student's tables: x up, y right along the strip (triangulation.geodetic)
+            a.set_xlabel("y on the strip, mm")
+            a.set_ylabel("x on the strip, mm")
+        else:
+            a.set_xlabel("free strip x, mm")
+            a.set_ylabel("free strip y, mm")
         self.rays = LineCollection([], colors=plots.COLORS["grey"], linewidths=0.6, alpha=0.6)
         a.add_collection(self.rays)
         self.triangles = PolyCollection([], facecolors="none", edgecolors=plots.COLORS["vermillion"], linewidths=1.6,
@@ -328,7 +361,7 @@ class StripView:
         self.exaggeration = 1.0
         self.enlargement = TRIANGLE_ENLARGEMENT
         self.note = a.text(0.01, 0.01, "", transform=a.transAxes, fontsize=9, va="bottom")
-        handles = [self.triangles, *self.marks.values()]
+        handles = ([self.triangles] if self.show_triangles else []) + list(self.marks.values())
         if reduction_legend:
             handles += [self.base, self.centre, self.arrows]
         a.legend(handles=handles, loc="upper center", fontsize=8, ncol=3, bbox_to_anchor=(0.5, -0.14), frameon=False)
@@ -342,14 +375,14 @@ class StripView:
         ok = np.all(np.isfinite(P), axis=1)
         lo, hi = P[ok].min(axis=0), P[ok].max(axis=0)
         span = hi - lo
-        if hasattr(free, "triangle_mm"):
+        if hasattr(free, "triangle_mm") and self.show_triangles:
             side = free.max_triangle_side_mm if hasattr(free, "max_triangle_side_mm") else 0.0
             self.enlargement = _nice_factor(0.05 * max(span) / side) if side > 1e-9 else TRIANGLE_ENLARGEMENT
             self.triangles.set_verts(_triangle_polys(free, self.enlargement))
         for k, line in self.marks.items():
             sel = pts.mask(k) & np.all(np.isfinite(P), axis=1)
             line.set_data(P[sel, 0], P[sel, 1])
-        tri_txt = f"triangles ×{self.enlargement:g}"
+        tri_txt = f"triangles ×{self.enlargement:g}" if self.show_triangles else ""
         if reduction is not None:
             C = P[reduction.centre_index]
             self.centre.set_data([C[0]], [C[1]])
@@ -386,22 +419,35 @@ class EndsView(StripView):
     """
 
     def __init__(self, ends: tri.EndsStrip | None = None, ax=None, labels: bool = True):
+        if ax is None:  # the strip and, beside it, the middle centre enlarged: no empty plan between them
+            fig = plots.figure(figsize=(10.5, 4.2))
+            gs = fig.add_gridspec(1, 2, width_ratios=[3.3, 1.2])
+            ax, self.inset = fig.add_subplot(gs[0]), fig.add_subplot(gs[1])
+            self._inset_beside = True
+        else:
+            self.inset = None
+            self._inset_beside = False
         super().__init__(None, None, ax=ax, labels=labels, reduction_legend=False)
         a = self.ax
-        self.inset = a.inset_axes([0.74, 0.42, 0.25, 0.5])
+        if self.inset is None:
+            self.inset = a.inset_axes([0.74, 0.42, 0.25, 0.5])
         from matplotlib.ticker import MaxNLocator
 
         self.inset.xaxis.set_major_locator(MaxNLocator(3))
         self.inset.yaxis.set_major_locator(MaxNLocator(4))
         self.inset.set_aspect("equal")
-        self.inset.tick_params(labelsize=7)
-        self.inset.set_title("middle centre, enlarged", fontsize=8)
+        big = self._inset_beside
+        self.inset.tick_params(labelsize=9 if big else 7)
+        self.inset.set_title("middle centre, enlarged", fontsize=11 if big else 8)
+        if big:
+            self.inset.set_xlabel("plan x, mm", fontsize=10)
         (self.left,) = self.inset.plot([], [], "x", color=plots.COLORS["vermillion"], ms=9, mew=2, label="3′ (left)")
         (self.right,) = self.inset.plot([], [], "+", color=plots.COLORS["blue"], ms=11, mew=2, label="3″ (right)")
         (self.mid,) = self.inset.plot([], [], "s", color=plots.COLORS["black"], ms=7, mfc="none", mew=1.5,
                                       label="3 (mean)")
         (self.truth,) = self.inset.plot([], [], "*", color=plots.COLORS["green"], ms=10, label="truth")
-        self.inset.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
+        self.inset.legend(fontsize=9 if big else 7, loc="upper center", bbox_to_anchor=(0.5, -0.2 if big else -0.12),
+                          ncol=2, frameon=False)
         if ends is not None:
             self.update(ends)
 
@@ -421,8 +467,9 @@ class EndsView(StripView):
         self.inset.set_ylim(c[1] - half, c[1] + half)
         self.ax.set_xlabel("plan x, mm")
         self.ax.set_ylabel("plan y, mm")
-        x0, x1 = self.ax.get_xlim()
-        self.ax.set_xlim(x0, x1 + 0.45 * (x1 - x0))  # room for the inset right of the strip
+        if not self._inset_beside:
+            x0, x1 = self.ax.get_xlim()
+            self.ax.set_xlim(x0, x1 + 0.45 * (x1 - x0))  # room for the inset right of the strip
 
 
 class SiteStripView:
@@ -567,15 +614,17 @@ class ReductionDemo(LiveDemo):
             "residuals do not change. Raise the pricking error: the triangles and the spread of k grow. "
             "Move the centre: the corrections change, the result does not.")
     params = (
-        Param("f_mm", "f, mm", 70, 300, 10, 100, group="Camera", help="focal length f"),
-        Param("m", "m (photo 1:m)", 8000, 20000, 500, 12000, group="Camera", help="photo scale denominator"),
-        Param("max_tilt_deg", "α max, °", 0, 3, 0.25, 0, group="Camera", help="largest tilt of the photos"),
+        Param("f_mm", "f, mm", 70, 1100, 10, 100, group="Camera", help="focal length f (the variants reach 1090 mm)"),
+        Param("m", "m (photo 1:m)", 8000, 22000, 100, 12000, group="Camera",
+              help="photo scale denominator (the variants reach 21 900)"),
+        Param("max_tilt_deg", "α max, °", 0, 3, 0.25, 0, group="Camera",
+              help="largest tilt of the photos (reduced, with a note, where it would carry them off the site)"),
         Param("scale_ratio", "q = free-strip / plan scale", 0.7, 1.3, 0.01, 0.96, group="Free strip",
               help="the template's arbitrary scale; k ≈ 1/q"),
         Param("pricking_mm", "m_p (pricking), mm", 0, 0.4, 0.01, 0.1, group="Free strip",
               help="RMS error of pricking a point on a photo (guide: 0.1 mm)"),
-        Param("centre", "central centre (no.)", 1, 5, 1, 3, kind="int", group="Reduction",
-              help="the working centre the corrections are measured from"),
+        Param("centre", "central centre (photo no.)", 36, 39, 1, 37, kind="int", group="Reduction",
+              help="the working centre the corrections are measured from (guide §13: 37 or 38)"),
         Param("seed", "seed", 0, 20, 1, 0, kind="int", group="Reduction", help="another draw of the pricking errors"),
     )
 
@@ -583,9 +632,14 @@ class ReductionDemo(LiveDemo):
         self.view = ReductionView()
         self.fig = self.view.fig
 
+    #: the strip of guide §13: four photos numbered 36 … 39 (five would not fit the site beyond 1:19 500)
+    n_photos = 4
+    first_number = 36
+
     def compute(self, **v):
         return reduction_model(f_mm=v["f_mm"], m=v["m"], scale_ratio=v["scale_ratio"], pricking_mm=v["pricking_mm"],
-                               centre=v["centre"], max_tilt_deg=v["max_tilt_deg"], n_photos=5, seed=v["seed"])
+                               centre=v["centre"] - self.first_number + 1, max_tilt_deg=v["max_tilt_deg"],
+                               n_photos=self.n_photos, seed=v["seed"], first_number=self.first_number)
 
     def render(self, result: ReductionResult):
         self.view.update(result)
@@ -598,3 +652,67 @@ class ReductionDemo(LiveDemo):
         hl[:, 3] = ~result.reduction.coefficients.ok
         self.table.value = plots.html_table(df, caption="Reduction coefficients (table 12)", float_format="{:.4f}",
                                             notes=notes, highlight=hl)
+
+
+# =========================================================================== the student's own strip
+def own_site_figure(variant, ax=None):
+    """The student's photos 36 … 39 over the virtual site with the points pricked on them (guide figure 21)."""
+    from ..tasks.ch06 import lab_strip
+
+    lab = lab_strip(variant)
+    from .. import site as site_mod
+
+    from matplotlib.ticker import FuncFormatter
+
+    view = SiteStripView(lab.strip, lab.free.points, site=site_mod.get_site(), ax=ax)
+    m_txt = f"{lab.strip.m:,.0f}".replace(",", " ")
+    view.ax.set_title(f"Your strip: photos {lab.strip.shots[0].number}–{lab.strip.shots[-1].number}, "
+                      f"f = {lab.strip.camera.f_mm:g} mm, 1:{m_txt}")
+    # the student's geodetic coordinates (triangulation.geodetic): Y east along the axis, X north up it
+    X0, Y0 = tri.GEODETIC_ORIGIN_M
+    view.ax.xaxis.set_major_formatter(FuncFormatter(lambda val, _pos: f"{val + Y0:.0f}"))
+    view.ax.yaxis.set_major_formatter(FuncFormatter(lambda val, _pos: f"{val + X0:.0f}"))
+    view.ax.tick_params(labelsize=9)
+    view.ax.set_xlabel("Y (east), m")
+    view.ax.set_ylabel("X (north), m")
+    return view.fig
+
+
+def own_templates_figure(variant):
+    """The student's four direction templates (guide figure 22), side by side."""
+    from ..tasks.ch06 import lab_strip
+
+    tm = lab_strip(variant).templates
+    fig = plots.figure(figsize=(13.0, 4.4))
+    axes = fig.subplots(1, tm.n_photos)
+    for t, a in enumerate(axes):
+        TemplateView(tm, t, ax=a, legend=False, labels=False)
+        a.set_xlabel("x, mm", fontsize=10)
+        a.set_ylabel("y, mm" if t == 0 else "", fontsize=10)
+        a.tick_params(labelsize=9)
+    if tm.n_photos:
+        fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", ncol=6, fontsize=10,
+                   frameon=False)
+    return fig
+
+
+def own_strip_figure(variant, ax=None):
+    """The student's templates laid into the free strip (guide figures 23–24): rays, centres and points.
+
+    Drawn in the student's geodetic axes (x up, y right along the strip) and
+    without the error triangles, the coefficients and the corrections — those
+    the student computes from the tables (:class:`aerophoto.tasks.ch06.StripReadings`).
+    """
+    import dataclasses
+
+    from ..tasks.ch06 import lab_strip, tracing_frame
+
+    lab = lab_strip(variant)
+    phi, R, shift = tracing_frame(variant)  # drawn where the tables measure it: the tracing on the table
+    fs = lab.free
+    on_table = dataclasses.replace(fs, centres_mm=fs.centres_mm @ R.T + shift, theta_rad=fs.theta_rad + phi,
+                                   points_mm=fs.points_mm @ R.T + shift, triangle_mm=fs.triangle_mm @ R.T + shift)
+    view = StripView(on_table, None, ax=ax, triangles=False, geodetic=True, reduction_legend=False)
+    view.ax.set_title("Your free strip, laid at a scale of its own")
+    view.note.set_text("")
+    return view.fig

@@ -64,8 +64,8 @@ and says so wherever it is used.  Why:
 3. Which error is m_p: of one image coordinate σ, or of a parallax, the difference of two
    coordinates (√2·σ)?  The simulation decides (aerophoto.dem.block_precision): a block of the
    article's size (70 photos, control spread over it) adjusted with image coordinates measured with
-   σ each gives height errors within a few per cent of the formula with m_p = √2·σ, and 30 % above it
-   with m_p = σ.  So m_p is the RMS error of a measured parallax — the article's comparator measured
+   σ each gives height errors within a few per cent of the formula with m_p = √2·σ, and a third above
+   it with m_p = σ.  So m_p is the RMS error of a measured parallax — the article's comparator measured
    "coordinates and parallaxes" with 0.005 mm.
 4. What the formula cannot know: where the control points are.  It counts r, not their layout; with
    the same r on the block's edge only, the simulated errors are half as large again as it predicts.

@@ -189,7 +189,8 @@ def table5() -> Audit:
         values += [_val(f"table 5, 1:{Mk}", "m_D, m", P["m_D"], mD), _val(f"table 5, 1:{Mk}", "m_d, mm", P["m_d"], md),
                    _val(f"table 5, 1:{Mk}", "v_d, mm", P["v_d"], vd,
                         note="0.56/1.25 = 0.448: computed from the rounded m_d" if Mk == 2000 else "")]
-        rows[f"1:{Mk}"] = {"m_D, m (ground)": round(mD, 4), "m_d, mm (map)": round(md, 4), "v_d, mm (map)": round(vd, 4),
+        rows[f"1:{Mk}"] = {"m_D, m (ground)": round(mD, 4), "m_d, mm (map)": round(md, 4),
+                           "v_d, mm (map)": round(vd, 4),
                            "v_d ≤ 0.4 mm": vd <= b.TOLERANCE_MEAN_MM}
         full = b.budget(**{k: v for k, v in b.ARTICLE_CASES[SCALES.index(Mk)].items()})
         notes.append(f"1:{Mk} with formula (9)'s 0.357 mm instead of 0.35: m_D = {full.total_m:.2f} m, "

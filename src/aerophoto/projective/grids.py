@@ -119,6 +119,11 @@ def unit_square_map(corners) -> plane.Projective2D:
 
 
 # --------------------------------------------------------------------------- homogeneous helpers
+def _cross2(a, b) -> float:
+    """z-component of the cross product of two 2-D vectors."""
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
 def _h(p) -> np.ndarray:
     p = np.asarray(p, dtype=float)
     return np.concatenate([p, np.ones(p.shape[:-1] + (1,))], axis=-1)
@@ -398,8 +403,8 @@ def grid_pair(photo_corners, plan_corners, n: int, method: str = "central") -> G
     """Build the two grids of ``method`` with n cells per side on the photo's and the plan's four points."""
     P = check_quadrilateral("photo_corners", photo_corners)
     Q = check_quadrilateral("plan_corners", plan_corners)
-    cp = np.cross(P[1] - P[0], P[3] - P[0])
-    cq = np.cross(Q[1] - Q[0], Q[3] - Q[0])
+    cp = _cross2(P[1] - P[0], P[3] - P[0])
+    cq = _cross2(Q[1] - Q[0], Q[3] - Q[0])
     if np.sign(cp) != np.sign(cq):
         raise ValueError("photo_corners and plan_corners go round in opposite senses; a photo (positive) and its "
                          "plan have the same orientation — check the order of the points or a mirrored axis")

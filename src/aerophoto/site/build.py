@@ -28,7 +28,13 @@ step                   what it makes                                          st
 :func:`texture`        relief shading, grain and quantisation to uint8        —
 :func:`pyramid`        2×2-mean levels of the texture                         —
 catalogue              :func:`aerophoto.site.catalogue.catalogue`             —
+objects                :func:`aerophoto.site.objects.build_objects`: houses,  objects
+                       trees, canopy, chimney, mast, water tower, embankment
 =====================  =====================================================  ============
+
+The objects step comes last and draws only from a fifth stream (``objects``,
+spawned after the other four), so adding it left the DEM, the texture, the land
+cover and the catalogue bit for bit as they were (``tests/test_site.py`` pins them).
 """
 
 from __future__ import annotations
@@ -40,6 +46,7 @@ import numpy as np
 
 from .catalogue import catalogue
 from .model import COVER_CODES, Site, SiteParams
+from .objects import build_objects
 from .paint import Canvas, FieldSystem, crown_tile, seg_distance, smooth_noise
 
 __all__ = ["build_site", "River", "Builder", "river_line", "relief", "fields", "soil_noise", "field_network",
@@ -108,6 +115,8 @@ class Builder:
         self.W, self.Hs, self.t = P.width_m, P.height_m, P.texture_m
         ss = np.random.SeedSequence([P.seed, 20140])
         self.rng_layout, self.rng_dem, self.rng_tex, self.rng_noise = (np.random.default_rng(s) for s in ss.spawn(4))
+        # a fifth stream, spawned after the four: the objects' heights and places (the texture does not use it)
+        self.rng_objects = np.random.default_rng(ss.spawn(1)[0])
         self.scale = math.sqrt(self.W * self.Hs / 5e7)  # 1 for the default 10 km × 5 km
         # the DEM grid
         s = self.s = P.dem_spacing_m
@@ -125,6 +134,11 @@ class Builder:
         self.cx, self.cy = self.W / 2.0, self.Hs / 2.0
         self.mottle = None  # soil moisture, set by soil_noise
         self.grain = None  # fine grain 0…1, set by soil_noise
+        # what the objects step reads back from the painting steps (set by village and isolated_trees)
+        self.houses = (np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+        self.house_roof_tone = np.zeros(0)
+        self.garden_crowns = (np.zeros((0, 2)), np.zeros(0), np.zeros(0))
+        self.tree_crowns = (np.zeros((0, 2)), np.zeros(0), np.zeros(0))
 
     def clip_to_site(self, p0, p1, pad=0.0):
         """Liang–Barsky clip of a segment to the site rectangle (grown by ``pad``)."""
@@ -521,13 +535,18 @@ def village(b: Builder, river: River, village_c, roads) -> tuple:
             ft.append(gc + np.outer(lu, [math.cos(ga), math.sin(ga)]) + np.outer(lv, [-math.sin(ga), math.cos(ga)]))
         ft = np.vstack(ft)
         cv.discs(ft + np.array([1.8, 1.8]), rng.uniform(2.0, 3.2, len(ft)), 0.08)
-        cv.discs(ft, rng.uniform(2.0, 3.2, len(ft)), b.rng_tex.uniform(0.16, 0.26, len(ft)))
+        crown_r = rng.uniform(2.0, 3.2, len(ft))
+        crown_tone = b.rng_tex.uniform(0.16, 0.26, len(ft))
+        cv.discs(ft, crown_r, crown_tone)
+        b.garden_crowns = (ft, crown_r, crown_tone)
     # houses: shadow (sun in the south-west: shadows fall to the north-east), then roofs
     shadow_off = np.array([3.0, 3.0])
     cv.rects(houses_c + shadow_off, houses_h, houses_a, 0.10)
     roof = np.where(b.rng_tex.random(len(houses_c)) < 0.75, b.rng_tex.uniform(0.80, 0.95, len(houses_c)),
                     b.rng_tex.uniform(0.48, 0.6, len(houses_c)))
     cv.rects(houses_c, houses_h, houses_a, roof, _C["building"], soft=0.7)
+    b.houses = (houses_c, houses_h, houses_a)
+    b.house_roof_tone = roof
     return houses_c, houses_h, houses_a
 
 
@@ -549,7 +568,9 @@ def isolated_trees(b: Builder) -> np.ndarray:
     trees = cand[ok][: int(60 * b.scale**2)]
     tree_r = rng.uniform(3.0, 5.0, len(trees))
     cv.discs(trees + np.array([2.5, 2.5]), tree_r, 0.05)
-    cv.discs(trees, tree_r, b.rng_tex.uniform(0.08, 0.15, len(trees)), _C["tree"])
+    tone = b.rng_tex.uniform(0.08, 0.15, len(trees))
+    cv.discs(trees, tree_r, tone, _C["tree"])
+    b.tree_crowns = (trees, tree_r, tone)
     return trees
 
 
@@ -633,6 +654,8 @@ def build_site(params: SiteParams) -> Site:
     levels = pyramid(tex)
     cover = b.cv.cover
     cat, roofs = catalogue(dem, cover, params, roads=roads, corners=corners, houses=houses, trees=trees)
+    objects = build_objects(b, dem, river, roads, village_c, tex, cover, first_id=int(cat["id"].max()) + 1
+                            if len(cat) else 1)
     Xr = np.arange(-20.0, b.W + 20.0, 8.0)
     features = {
         "river": np.column_stack([Xr, river.y(Xr)]),
@@ -643,4 +666,5 @@ def build_site(params: SiteParams) -> Site:
         "oxbow": oxbow,
         "field_rotation_deg": (math.degrees(systems[0].theta), math.degrees(systems[1].theta)),
     }
-    return Site(params=params, dem=dem, texture=tex, cover=cover, catalogue=cat, features=features, _levels=levels)
+    return Site(params=params, dem=dem, texture=tex, cover=cover, catalogue=cat, features=features, _levels=levels,
+                objects=objects)

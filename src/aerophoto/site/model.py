@@ -112,7 +112,12 @@ class Site:
     cover : ndarray, shape (ny, nx), uint8
         Land-cover codes (:data:`COVER`) on the texture grid.
     catalogue : pandas.DataFrame
-        Ground points: id, kind, X_m, Y_m, Z_m, control.
+        Ground points: id, kind, X_m, Y_m, Z_m, control (kinds :data:`KINDS`, Z on the DEM).
+    objects : :class:`aerophoto.site.objects.SiteObjects` or None
+        What stands on the ground with a height of its own (houses, trees, the
+        forest canopy, a chimney, a mast, a water tower, an embankment and a
+        bridge), ray-cast by :mod:`aerophoto.render`; their measurable points
+        are :attr:`object_points`.
     features : dict
         The vector data the texture was painted from (metres): ``"river"``
         (k, 2) centre line; ``"roads"`` list of dicts (``kind``: "paved" or
@@ -130,6 +135,7 @@ class Site:
     catalogue: pd.DataFrame
     features: dict
     _levels: list = field(repr=False, default_factory=list)
+    objects: object = None
 
     def __repr__(self) -> str:
         p = self.params
@@ -205,6 +211,61 @@ class Site:
         return out.reshape(X.shape)
 
     __call__ = height
+
+    # ---- what stands on the ground
+    def surface_height(self, X, Y) -> np.ndarray:
+        """Height of the top surface at X, Y (metres): the DEM with every object on it (a DSM).
+
+        The roof of a house, the top of a crown or of the forest canopy, the
+        crest of the embankment — where nothing stands, the DEM (:meth:`height`,
+        the bare earth, which every chapter's geometry uses).  Vectorised like
+        :meth:`height`.
+        """
+        if self.objects is None:
+            return self.height(X, Y)
+        return self.objects.surface_height(self.height, X, Y)
+
+    @property
+    def surface_z_max_m(self) -> float:
+        """The highest point of the surface (objects included), metres."""
+        if self.objects is None:
+            return self.z_max_m
+        return max(self.z_max_m + self.objects.canopy_max_m, self.objects.z_max_m, self.z_max_m)
+
+    @property
+    def object_points(self) -> pd.DataFrame:
+        """The objects' measurable points: roof corners, ridge ends, tree tops, tops of the structures.
+
+        Columns as :attr:`catalogue` (ids continue after it, ``control``
+        False) plus ``object`` (the row of ``objects.table()``),
+        ``ground_Z_m`` (the DEM under the point) and ``height_m`` (Z − ground).
+        Kinds: :data:`aerophoto.site.objects.POINT_KINDS`.
+        """
+        if self.objects is None or self.objects.points is None:
+            cols = ["id", "kind", "X_m", "Y_m", "Z_m", "control", "object", "ground_Z_m", "height_m"]
+            return pd.DataFrame({c: [] for c in cols})
+        return self.objects.points.copy()
+
+    @property
+    def all_points(self) -> pd.DataFrame:
+        """The ground catalogue followed by the object points (the catalogue's rows, order and ids unchanged).
+
+        Ground rows get ``object`` −1, ``ground_Z_m`` = Z_m and ``height_m`` 0.
+        :attr:`catalogue` itself keeps only the ground points, so code that
+        takes "any catalogue point" picks the same points as before objects
+        had heights.
+        """
+        cat = self.catalogue.copy()
+        cat["object"] = -1
+        cat["ground_Z_m"] = cat["Z_m"]
+        cat["height_m"] = 0.0
+        obj = self.object_points
+        if not len(obj):
+            return cat
+        out = pd.concat([cat, obj], ignore_index=True)
+        out["object"] = out["object"].astype(np.int64)
+        out["control"] = out["control"].astype(bool)
+        return out
 
     # ---- texture
     def texel_m(self, level: int = 0) -> float:

@@ -1,14 +1,22 @@
-"""Graded tasks of chapter 00 (guide §1, §5): the elements of a tilted photo for the student's variant."""
+"""Graded tasks of chapter 00 (guide §1, §5): the elements of a tilted photo for the student's variant.
+
+Also the book's variant policy (:func:`scheme_table`): what the guide's scheme gives for i = 00…99 and how
+those cameras, aircraft and flying heights compare with real practice.
+"""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
+import pandas as pd
+
 from .. import geometry as g
+from .. import variants
 from .base import Answer, Hidden, Task
 
-__all__ = ["ElementsOfTiltedPhoto", "TASKS"]
+__all__ = ["ElementsOfTiltedPhoto", "TASKS", "SURVEY_LENSES_MM", "RECONNAISSANCE_MAX_MM", "SURVEY_SPEED_KMH",
+           "SURVEY_CEILING_KM", "scheme_table"]
 
 
 @dataclass(frozen=True)
@@ -52,3 +60,92 @@ class ElementsOfTiltedPhoto(Task):
 
 
 TASKS = (ElementsOfTiltedPhoto(),)
+
+
+# =========================================================================== the variant policy (chapter 00)
+SURVEY_LENSES_MM = (70, 88, 100, 140, 153, 200, 210, 305)
+"""Focal lengths of real mapping cameras, mm: the 18×18 cm topographic cameras the guide's §3 names (100, 140,
+200 mm; 70 mm wide-angle ones too) and the 23×23 cm survey cameras' lens cones (88 super-wide, 153 wide,
+210 normal, 305 mm narrow angle)."""
+RECONNAISSANCE_MAX_MM = 610
+"""The longest lenses of aerial reconnaissance cameras, about 610 mm (24 in); no mapping camera goes further."""
+SURVEY_SPEED_KMH = (180, 550)
+"""Speeds survey aircraft fly at, km/h: from the An-2 (≈ 180–200 km/h) through the purpose-built An-30
+(≈ 430 km/h) to fast twin turboprops and light jets (≈ 550 km/h)."""
+SURVEY_CEILING_KM = 10
+"""Survey flights are flown up to about 10 km above the ground; higher only special high-altitude aircraft."""
+
+
+def _span(lo, hi, fmt="{:g}") -> str:
+    return fmt.format(lo) if lo == hi else f"{fmt.format(lo)}–{fmt.format(hi)}"
+
+
+def _thousands(x) -> str:
+    return f"{x:,.0f}".replace(",", " ")
+
+
+def _lens_note(f_lo: float, f_hi: float) -> str:
+    real = [f for f in SURVEY_LENSES_MM if f_lo <= f <= f_hi]
+    longest = max(SURVEY_LENSES_MM)
+    if f_hi <= longest:
+        return "real mapping lenses" + (f" ({', '.join(f'{f:g}' for f in real)} mm)" if real else "")
+    if f_lo <= longest:
+        return f"mapping lenses up to {longest} mm; longer only on reconnaissance cameras"
+    if f_hi <= RECONNAISSANCE_MAX_MM:
+        return f"no mapping lens: long-focus reconnaissance lenses (up to ≈ {RECONNAISSANCE_MAX_MM} mm)"
+    if f_lo <= RECONNAISSANCE_MAX_MM:
+        return f"reconnaissance lenses up to ≈ {RECONNAISSANCE_MAX_MM} mm, then beyond real practice"
+    return "beyond real practice: no lens this long for an 18×18 cm frame"
+
+
+def _speed_note(w_lo: float, w_hi: float) -> str:
+    lo, hi = SURVEY_SPEED_KMH
+    if w_hi <= hi:
+        return "survey aircraft"
+    if w_lo <= hi:
+        return f"survey aircraft up to ≈ {hi} km/h, then only jets"
+    if w_hi < 1000:
+        return "beyond survey aircraft: jet airliners' speeds"
+    return "beyond real practice: close to the speed of sound (≈ 1 200 km/h)"
+
+
+def _height_note(h_lo_km: float, h_hi_km: float) -> str:
+    if h_hi_km <= SURVEY_CEILING_KM:
+        return "flown by survey aircraft"
+    if h_lo_km <= SURVEY_CEILING_KM:
+        return f"up to ≈ {SURVEY_CEILING_KM} km flown, higher only by special aircraft"
+    if h_hi_km <= 21:
+        return "only special high-altitude aircraft"
+    return "beyond real practice: above any aircraft's ceiling"
+
+
+def scheme_table(step: int = 10) -> pd.DataFrame:
+    """What the guide's scheme (§1) gives for i = 00…99, in groups of ``step`` variants, beside real practice.
+
+    One row per group (``"00–09"``, …): the inputs f = 100 + 10i mm, 1/m = 1/(12 000 + 100i),
+    W = 200 + 10i km/h, the area L_x × L_y = (25 + i) × (30 + i) km; the flying height H = f·m only as a band of
+    whole kilometres (a variant's exact H is task 00.1's answer); and for the lens, the aircraft and the height
+    what real practice has (:data:`SURVEY_LENSES_MM`, :data:`RECONNAISSANCE_MAX_MM`, :data:`SURVEY_SPEED_KMH`,
+    :data:`SURVEY_CEILING_KM`).  The book computes every variant with the guide's numbers as they are.
+    """
+    from .._validate import check_int_range
+
+    step = check_int_range("step", step, 1, 100)
+    rows = []
+    for start in range(0, 100, step):
+        vs = [variants.variant_for_index(i) for i in range(start, min(start + step, 100))]
+        a, b = vs[0], vs[-1]
+        H = [v.H_m / 1000.0 for v in vs]
+        h_lo, h_hi = math.floor(min(H)), math.ceil(max(H))
+        rows.append({
+            "i": _span(f"{a.i:02d}", f"{b.i:02d}", "{}"),
+            "f, mm": _span(a.f_mm, b.f_mm),
+            "photo scale": f"1:{_thousands(a.m)}" + ("" if a.m == b.m else f"–{_thousands(b.m)}"),
+            "W, km/h": _span(a.W_kmh, b.W_kmh),
+            "Lx × Ly, km": f"{_span(a.Lx_km, b.Lx_km)} × {_span(a.Ly_km, b.Ly_km)}",
+            "H = f·m, km": f"{h_lo}–{h_hi}",
+            "the lens": _lens_note(a.f_mm, b.f_mm),
+            "the aircraft": _speed_note(a.W_kmh, b.W_kmh),
+            "the height": _height_note(min(H), max(H)),
+        })
+    return pd.DataFrame(rows).set_index("i")

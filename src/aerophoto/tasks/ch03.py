@@ -1,18 +1,29 @@
-"""Graded tasks of chapter 03 (guide §4): the mean object plane and the relief displacement on the student's photo.
+"""Graded tasks of chapter 03 (guide §4): the relief correction of the student's own photo — tables 2, 3, 4.
 
-The student's photo carries the six points of the guide's table 3 (I, 1, 2 on
-low ground, II, 3, 4 on high ground), placed on the photo about as far from
-the centre as the guide's r, with the guide's heights raised by the variant
-number i metres (:data:`RELIEF_LAB_POINTS`, :func:`relief_points`).  The photo
-has the variant's f, scale 1:m and tilt α, λ; the flying height above the
-mean object plane is taken as H = f·m.
+Every student gets their own photo of the virtual site (:func:`aerophoto.tasks.displacement_lab.relief_sheet`):
+their variant's f, 1:m, α and λ, six points pricked in two zones (I, 1, 2 on low
+ground, II, 3, 4 on high ground) and the same points on a plan at 1:10 000.  The
+student **measures** the points' photo coordinates and the bases' plan lengths
+with the measuring tool (:mod:`aerophoto.demos.measure`) and does the guide's
+§4 on them:
 
-* task 03.1 (:class:`MeanObjectPlane`): Z_cp and H;
-* task 03.2 (:class:`ReliefDisplacement`): r of point 1 from the nadir point
-  n, its δh = r·h/H, and how many of the six points are corrected.
+* task 03.1 (:class:`ReliefTable2`): the measurements and table 2 — l_пл, l_сн,
+  m_i = l_пл·M/l_сн, the zones' m_част, m_cp and the deviations Δm_i/m_cp;
+* task 03.2 (:class:`ReliefTable3`): table 3 — Z_cp, H = m_cp·f, the nadir point
+  n, r of each point from n, δh = r·h/H and the number of corrections;
+* task 03.3 (:class:`ReliefTable4`): table 4 — the bases between the corrected
+  points and the scales again.
 
-:func:`relief_lab` computes the reference solution (:class:`ReliefLab`) with
-:mod:`aerophoto.displacement`.
+Measured values are graded against the truth (the camera model) within the
+measuring tolerance (:data:`TOL_XY_MM`); what is computed from them is graded
+against the reference computed from error-free measurements within a tolerance
+that covers that measuring error, and — hidden — for consistency with the
+student's own measurements and columns (each step must follow from the one
+before, at the guide's precision).  No task recognises another variant's answers
+(``cross_variant = False``): with measuring tolerances a neighbour's scales would
+match by accident.
+
+Heights of the points are given (read off the plan's contours, to 0.1 m).
 """
 
 from __future__ import annotations
@@ -20,186 +31,231 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
-from .. import displacement as d
-from .. import geometry as g
-from ..guide.s04 import TABLE3_BASES
+from ..displacement import base_lengths_mm
 from .base import Answer, Hidden, Task, submitted_number
+from .displacement_lab import RELIEF_BASES, RELIEF_NAMES, relief_sheet
 
-__all__ = ["RELIEF_LAB_POINTS", "ReliefPoints", "relief_points", "ReliefLab", "relief_lab", "MeanObjectPlane",
-           "ReliefDisplacement", "TASKS"]
+__all__ = ["TOL_XY_MM", "TOL_LEN_MM", "TOL_M_I", "TOL_M_PART", "TOL_M_CP", "TOL_DM_PCT", "BASE_LABELS",
+           "ZONES", "numbers", "scale_answers", "scale_spec", "scale_hidden", "ReliefTable2", "ReliefTable3", "ReliefTable4", "TASKS"]
 
-#: The six pricked points of the relief lab: the guide's table 3 points, placed on the photo
-#: (name, x mm, y mm from the principal point o) about as far from the centre as the guide's r,
-#: with the guide's heights Z, m (the student's variant adds i metres to every height).
-RELIEF_LAB_POINTS = (
-    ("I", -52.0, 55.0, 141.0),
-    ("1", -70.0, 35.0, 138.0),
-    ("2", -40.0, 70.0, 141.0),
-    ("II", 60.0, -57.0, 180.0),
-    ("3", 45.0, -57.0, 178.0),
-    ("4", 70.0, -38.0, 182.0),
-)
+#: a coordinate read with the measuring tool (to 0.1 mm) may be this far from the truth, mm
+TOL_XY_MM = 0.2
+#: a length between two measured points, mm (two readings, each within TOL_XY_MM)
+TOL_LEN_MM = 0.45
+#: relative tolerances of the scale denominators that cover those measuring errors (bases 20–30 mm long)
+TOL_M_I = 0.025
+TOL_M_PART = 0.02
+TOL_M_CP = 0.015
+#: the deviation Δm_i/m_cp of a zone, percentage points
+TOL_DM_PCT = 1.5
+BASE_LABELS = tuple(f"{a}-{b}" for a, b in RELIEF_BASES)
+ZONES = ("I", "II")
 
 
-@dataclass(frozen=True)
-class ReliefPoints:
-    """The six points of the relief lab for one variant: what tasks 03.1 and 03.2 work from.
+def numbers(x, n: int):
+    """A submitted sequence as a float array of length ``n``, or None if it is not ``n`` finite numbers."""
+    if x is None or x is Ellipsis or isinstance(x, (str, bytes, dict, bool)):
+        return None
+    try:
+        out = np.array([float(e) for e in (x.tolist() if hasattr(x, "tolist") else x)], dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if len(out) != n or not np.all(np.isfinite(out)):
+        return None
+    return out
 
-    Attributes
-    ----------
-    names : tuple of str
-        ``("I", "1", "2", "II", "3", "4")``.
-    xy_mm : ndarray, shape (6, 2)
-        Photo coordinates from the principal point o, mm.
-    Z_m : ndarray, shape (6,)
-        Heights, m: the guide's table 3 heights + i.
+
+def _floats(a) -> list:
+    return [float(x) for x in np.ravel(a)]
+
+
+def scale_answers(table, lsn_name: str = "lsn_mm") -> dict:
+    """A :class:`~aerophoto.displacement.ScaleTable` as the answers l_сн (``lsn_name``), m_i, m_part, m_cp, dm_pct."""
+    return {lsn_name: _floats([b.l_photo_mm for b in table.bases]), "m_i": _floats(table.m_i),
+            "m_part": _floats(table.m_part), "m_cp": float(table.m_mean), "dm_pct": _floats(100.0 * table.relative_dm)}
+
+
+def scale_spec(zones: tuple, bases: tuple, *, lsn_name: str = "lsn_mm", lsn_text: str) -> tuple:
+    """The answers of a scale table (2, 4, 5, 7): l_сн, m_i, m_част, m_cp, Δm_i/m_cp."""
+    return (
+        Answer(lsn_name, lsn_text, unit="mm", kind="values", tol_abs=TOL_LEN_MM, labels=bases),
+        Answer("m_i", "scale denominators m_i = l_пл·M/l_сн of the bases", kind="values", tol_rel=TOL_M_I,
+               labels=bases),
+        Answer("m_part", f"partial scale denominators m_част of zones {', '.join(zones)}", kind="values",
+               tol_rel=TOL_M_PART, labels=tuple(f"zone {z}" for z in zones)),
+        Answer("m_cp", "mean scale denominator m_cp", tol_rel=TOL_M_CP),
+        Answer("dm_pct", "Δm_i/m_cp of each zone, % (Δm_i = m_част − m_cp, with its sign)", unit="%",
+               kind="values", tol_abs=TOL_DM_PCT, labels=tuple(f"zone {z}" for z in zones)),
+    )
+
+
+def _dev(a, b) -> float:
+    return float(np.max(np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float))))
+
+
+def scale_hidden(got: dict, bases: tuple, M: float, *, lsn_name: str = "lsn_mm", l_plan=None,
+                 l_plan_truth=None) -> list:
+    """Hidden checks of a scale table: every column follows from the student's own previous column.
+
+    m_i from the student's l_пл (``l_plan``, submitted) or — when the plan lengths are not part of the task —
+    the student's m_i·l_сн/M against the true plan lengths within the measuring tolerance; m_част, m_cp and
+    Δm/m_cp from the student's own m_i.
     """
+    nb = len(bases)
+    zones = tuple(dict.fromkeys(a for a, _ in bases))
+    lsn = numbers(got.get(lsn_name), nb)
+    m_i = numbers(got.get("m_i"), nb)
+    m_part = numbers(got.get("m_part"), len(zones))
+    m_cp = submitted_number(got.get("m_cp"))
+    dm = numbers(got.get("dm_pct"), len(zones))
+    out = []
+    if l_plan is not None:
+        ok = lsn is not None and m_i is not None and np.all(lsn > 0) and np.all(l_plan > 0)
+        rel = _dev(m_i / (l_plan * M / lsn), 1.0) if ok else None
+        out.append(Hidden("m_i from your l_пл and l_сн", rel, 0.0, tol_abs=0.002))
+    else:
+        ok = lsn is not None and m_i is not None
+        dev = _dev(m_i * lsn / M, l_plan_truth) if ok else None
+        out.append(Hidden("m_i·l_сн/M gives the plan lengths", dev, 0.0, tol_abs=TOL_LEN_MM))
+    if m_i is not None and m_part is not None:
+        own = np.array([np.mean([m for m, (a, _) in zip(m_i, bases) if a == z]) for z in zones])
+        out.append(Hidden("m_част from your m_i", _dev(m_part / own, 1.0), 0.0, tol_abs=0.001))
+    else:
+        out.append(Hidden("m_част from your m_i", None, 0.0))
+    ok = m_part is not None and m_cp is not None and m_cp > 0
+    out.append(Hidden("m_cp from your m_част", abs(m_cp / float(np.mean(m_part)) - 1.0) if ok else None, 0.0,
+                      tol_abs=0.001))
+    ok = ok and dm is not None
+    out.append(Hidden("Δm/m_cp from your m_част and m_cp", _dev(dm, 100.0 * (m_part - m_cp) / m_cp) if ok else None,
+                      0.0, tol_abs=0.02))
+    return out
 
-    names: tuple
-    xy_mm: np.ndarray
-    Z_m: np.ndarray
 
-    @property
-    def Z_mean_m(self) -> float:
-        """The mean object plane Z_cp, m (guide §4 step 3: each zone the mean of its bases' mean heights).
-
-        Task 03.1 asks for it; task 03.2 works from it.
-        """
-        Z = dict(zip(self.names, self.Z_m))
-        zones = [d.zone_height([(Z[a], Z[b]) for a, b in TABLE3_BASES if a == z]) for z in ("I", "II")]
-        return d.mean_object_plane(zones)
-
-    def table(self) -> pd.DataFrame:
-        """The points' photo coordinates and heights: columns ``x, mm``, ``y, mm``, ``Z, m``, one row per point."""
-        return pd.DataFrame({"x, mm": self.xy_mm[:, 0], "y, mm": self.xy_mm[:, 1], "Z, m": self.Z_m},
-                            index=pd.Index(self.names, name="point"))
-
-
-def relief_points(v) -> ReliefPoints:
-    """The relief lab's points for variant ``v`` (any object with ``i``): heights raised by i metres."""
-    names = tuple(p[0] for p in RELIEF_LAB_POINTS)
-    xy = np.array([[p[1], p[2]] for p in RELIEF_LAB_POINTS])
-    Z = np.array([p[3] for p in RELIEF_LAB_POINTS]) + float(v.i)
-    return ReliefPoints(names, xy, Z)
-
-
+# =========================================================================== task 03.1
 @dataclass(frozen=True)
-class ReliefLab:
-    """The reference solution of the relief tasks for one variant (the instructor's side).
-
-    Attributes
-    ----------
-    points : :class:`ReliefPoints`
-    H_m : float
-        Flying height above the mean plane, H = f·m, m.
-    n_mm : ndarray, shape (2,)
-        The nadir point of the variant's tilted photo, mm.
-    result : :class:`aerophoto.displacement.ReliefCorrections`
-        δh of the six points with r measured from n.
-    r_from_o_mm : ndarray, shape (6,)
-        Distances from o — the usual mistake.
-    """
-
-    points: ReliefPoints
-    H_m: float
-    n_mm: np.ndarray
-    result: d.ReliefCorrections
-    r_from_o_mm: np.ndarray
-
-    @property
-    def Z_mean_m(self) -> float:
-        """The mean object plane Z_cp, m."""
-        return self.result.Z_mean_m
-
-    def delta_from_o_mm(self) -> np.ndarray:
-        """δh with r measured from o instead of n (a typical mistake), mm."""
-        return self.r_from_o_mm * self.result.h_m / self.H_m
-
-    def delta_absolute_h_mm(self) -> np.ndarray:
-        """δh with h taken as the absolute height Z instead of Z − Z_cp (a typical mistake), mm."""
-        return self.result.r_mm * self.points.Z_m / self.H_m
-
-
-def relief_lab(v) -> ReliefLab:
-    """The reference solution for variant ``v`` (with ``i``, ``f_mm``, ``m``, ``alpha_deg``, ``lambda_deg``)."""
-    pts = relief_points(v)
-    H = g.flying_height_m(v.f_mm, v.m)
-    cam = g.Camera(v.f_mm)
-    pose = g.Pose(alpha_deg=v.alpha_deg, lambda_deg=v.lambda_deg)
-    n = g.nadir_point(cam, pose)
-    r = np.hypot(*(pts.xy_mm - n).T)
-    res = d.relief_corrections(pts.names, pts.Z_m, r, H, pts.Z_mean_m)
-    return ReliefLab(pts, H, n, res, np.hypot(*pts.xy_mm.T))
-
-
-@dataclass(frozen=True)
-class MeanObjectPlane(Task):
-    """Task 03.1: the mean object plane Z_cp of the six points and the flying height H = f·m above it."""
+class ReliefTable2(Task):
+    """Task 03.1: measure the six points on the photo and the four bases on the plan; table 2 (§4 step 3)."""
 
     id = "task-03-1"
-    title = "The mean object plane of your photo"
-    points = 2
+    title = "Table 2 of your photo: the scales before the correction"
+    points = 4
+    cross_variant = False
     spec = (
-        Answer("Zcp_m", "mean object plane, m", unit="m", tol_abs=0.2),
-        Answer("H_m", "flying height above it, m", unit="m"),
+        Answer("x_mm", "x of I, 1, 2, II, 3, 4 on your photo, mm (measured)", unit="mm", kind="values",
+               tol_abs=TOL_XY_MM, labels=RELIEF_NAMES),
+        Answer("y_mm", "y of I, 1, 2, II, 3, 4 on your photo, mm (measured)", unit="mm", kind="values",
+               tol_abs=TOL_XY_MM, labels=RELIEF_NAMES),
+        Answer("lpl_mm", "plan lengths l_пл of I-1, I-2, II-3, II-4, mm (measured on the plan)", unit="mm",
+               kind="values", tol_abs=TOL_LEN_MM, labels=BASE_LABELS),
+        *scale_spec(ZONES, BASE_LABELS, lsn_text="photo lengths l_сн of I-1, I-2, II-3, II-4, mm"),
     )
 
-    def inputs(self, v) -> ReliefPoints:
-        return relief_points(v)
+    def inputs(self, v):
+        """The student's lab sheet (:class:`aerophoto.tasks.displacement_lab.LabSheet`): photo, plan, heights."""
+        return relief_sheet(int(v.i))
 
     def answers(self, v) -> dict:
-        return {"Zcp_m": relief_points(v).Z_mean_m, "H_m": g.flying_height_m(v.f_mm, v.m)}
-
-    def slips(self, v) -> dict:
-        z = relief_points(v).Z_mean_m
-        return {"Zcp_m": {"you left out your variant's i metres — the heights in the table include it":
-                          z - v.i if v.i else None}}
+        sheet = relief_sheet(int(v.i))
+        xy = sheet.photo_xy_mm
+        return {"x_mm": _floats(xy[:, 0]), "y_mm": _floats(xy[:, 1]), "lpl_mm": _floats(sheet.l_plan_mm),
+                **scale_answers(sheet.work().table2)}
 
     def hidden(self, v, got) -> list:
-        # the plane lies between the zones: the mean of the two zones' point heights (not weighted by bases)
-        Z = relief_points(v).Z_m
-        return [Hidden("Zcp_m (between the zones)", got.get("Zcp_m"), (Z[:3].mean() + Z[3:].mean()) / 2, tol_abs=0.5)]
+        """l_сн from the student's own coordinates; every scale column from the student's previous one."""
+        xy = [numbers(got.get(k), len(RELIEF_NAMES)) for k in ("x_mm", "y_mm")]
+        lsn = numbers(got.get("lsn_mm"), len(RELIEF_BASES))
+        dev = None
+        if xy[0] is not None and xy[1] is not None and lsn is not None:
+            dev = _dev(lsn, base_lengths_mm(RELIEF_NAMES, np.column_stack(xy), RELIEF_BASES))
+        lpl = numbers(got.get("lpl_mm"), len(RELIEF_BASES))
+        return [Hidden("l_сн from your x, y", dev, 0.0, tol_abs=0.06),
+                *scale_hidden(got, RELIEF_BASES, relief_sheet(int(v.i)).M, l_plan=lpl)]
 
 
+# =========================================================================== task 03.2
 @dataclass(frozen=True)
-class ReliefDisplacement(Task):
-    """Task 03.2: r of point 1 from the nadir point n, its relief displacement δh = r·h/H, the number of corrections."""
+class ReliefTable3(Task):
+    """Task 03.2: Z_cp, H = m_cp·f, the nadir point, r from n, δh = r·h/H and the corrections (§4 step 4, table 3)."""
 
     id = "task-03-2"
-    title = "Relief displacement and corrections"
+    title = "Table 3 of your photo: the relief corrections"
     points = 4
+    cross_variant = False
     spec = (
-        Answer("r1_mm", "distance from n to point 1, mm", unit="mm", tol_abs=0.05),
-        Answer("dh1_mm", "relief displacement of point 1, mm (negative: towards n)", unit="mm", tol_abs=0.01),
-        Answer("n_corr", "number of points corrected", integer=True),
+        Answer("Zcp_m", "mean object plane Z_cp, m", unit="m", tol_abs=0.05),
+        Answer("H_m", "flying height H = m_cp·f above it, m", unit="m", tol_rel=0.02),
+        Answer("xn_mm", "x of the nadir point n, mm", unit="mm", tol_abs=0.05),
+        Answer("yn_mm", "y of the nadir point n, mm", unit="mm", tol_abs=0.05),
+        Answer("r_mm", "distances r of I, 1, 2, II, 3, 4 from n, mm", unit="mm", kind="values", tol_abs=0.3,
+               labels=RELIEF_NAMES),
+        Answer("dh_mm", "relief displacements δh = r·h/H of the six points, mm (+ away from n)", unit="mm",
+               kind="values", tol_abs=0.01, tol_rel=0.03, labels=RELIEF_NAMES),
+        Answer("n_corr", "number of points corrected (|δh| > 0.2 mm)", integer=True),
     )
 
-    def inputs(self, v) -> ReliefPoints:
-        return relief_points(v)
+    def inputs(self, v):
+        return relief_sheet(int(v.i))
 
     def answers(self, v) -> dict:
-        res = relief_lab(v).result
-        return {"r1_mm": float(res.r_mm[1]), "dh1_mm": float(res.delta_mm[1]), "n_corr": res.n_applied}
+        sheet = relief_sheet(int(v.i))
+        w = sheet.work()
+        t3 = w.table3
+        return {"Zcp_m": float(w.Z_mean_m), "H_m": float(w.H_m), "xn_mm": float(w.n_mm[0]),
+                "yn_mm": float(w.n_mm[1]), "r_mm": _floats(t3.r_mm), "dh_mm": _floats(t3.delta_mm),
+                "n_corr": int(t3.n_applied)}
 
     def slips(self, v) -> dict:
-        lab = relief_lab(v)
+        sheet = relief_sheet(int(v.i))
+        c = sheet.c_mm
+        n = sheet.n_mm
+        turned = "λ is counted from the photo's +x axis, counter-clockwise — x and y look swapped"
         return {
-            "r1_mm": {"that is the distance from o — relief displacement is measured from the nadir point n":
-                      float(lab.r_from_o_mm[1])},
-            "dh1_mm": {"r must be measured from the nadir point n, not from o": float(lab.delta_from_o_mm()[1]),
-                       "h is the height above the mean object plane, Z − Z_cp, not the height Z itself":
-                       float(lab.delta_absolute_h_mm()[1])},
+            "Zcp_m": {"that is the plain mean of the six heights — the guide averages the bases' mean heights "
+                      "in each zone, then the two zones": float(np.mean(sheet.Z_given_m))},
+            "H_m": {"that is H = f·m with your variant's nominal scale — the guide takes m_cp from your table 2":
+                    float(v.f_mm) / 1000.0 * float(v.m)},
+            "xn_mm": {"that is the isocentre c (f·tg(α/2)) — the nadir point lies at f·tg α": float(c[0]),
+                      turned: float(n[1])},
+            "yn_mm": {"that is the isocentre c (f·tg(α/2)) — the nadir point lies at f·tg α": float(c[1]),
+                      turned: float(n[0])},
         }
 
     def hidden(self, v, got) -> list:
-        # the student's δh must follow from the student's own r: δh = r·h/H
-        res = relief_lab(v).result
-        r1 = submitted_number(got.get("r1_mm"))
-        expected = None if r1 is None else r1 * res.h_m[1] / res.H_m
-        return [Hidden("dh1_mm (from your r1)", got.get("dh1_mm") if expected is not None else None, expected,
-                       tol_abs=0.01)]
+        """δh from the student's own r, H and Z_cp (and the given heights); the count from the student's own δh."""
+        Z = relief_sheet(int(v.i)).Z_given_m
+        r = numbers(got.get("r_mm"), len(Z))
+        dh = numbers(got.get("dh_mm"), len(Z))
+        H, Zcp = submitted_number(got.get("H_m")), submitted_number(got.get("Zcp_m"))
+        dev = None
+        if r is not None and dh is not None and H and Zcp is not None:
+            dev = _dev(dh, r * (Z - Zcp) / H)
+        count = None if dh is None else int(np.count_nonzero(np.abs(dh) > 0.2))
+        return [Hidden("δh from your r, H and Z_cp", dev, 0.0, tol_abs=0.006),
+                Hidden("n_corr from your δh", got.get("n_corr") if count is not None else None, count, kind="count")]
 
 
-TASKS = (MeanObjectPlane(), ReliefDisplacement())
+# =========================================================================== task 03.3
+@dataclass(frozen=True)
+class ReliefTable4(Task):
+    """Task 03.3: the bases between the corrected points and the scales again (§4 steps 5–6, table 4)."""
+
+    id = "task-03-3"
+    title = "Table 4 of your photo: the scales after the correction"
+    points = 3
+    cross_variant = False
+    spec = scale_spec(ZONES, BASE_LABELS, lsn_name="lsn_corr_mm",
+                      lsn_text="photo lengths l_сн of I-1, I-2, II-3, II-4 between the corrected points, mm")
+
+    def inputs(self, v):
+        return relief_sheet(int(v.i))
+
+    def answers(self, v) -> dict:
+        return scale_answers(relief_sheet(int(v.i)).work().table4, "lsn_corr_mm")
+
+    def hidden(self, v, got) -> list:
+        sheet = relief_sheet(int(v.i))
+        return scale_hidden(got, RELIEF_BASES, sheet.M, lsn_name="lsn_corr_mm", l_plan_truth=sheet.l_plan_mm)
+
+
+TASKS = (ReliefTable2(), ReliefTable3(), ReliefTable4())

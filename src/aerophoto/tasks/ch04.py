@@ -1,18 +1,26 @@
-"""Graded tasks of chapter 04 (guide §5): the isocentre and the tilt displacement on the student's photo.
+"""Graded tasks of chapter 04 (guide §5): the tilt correction of the student's own photo — tables 5, 6, 7.
 
-The photo has the variant's f, tilt α and direction λ of the positive
-principal vertical (counter-clockwise from the photo's +x axis).
+Every student gets their own photo of the plain of the virtual site
+(:func:`aerophoto.tasks.displacement_lab.tilt_sheet`): their variant's f, 1:m,
+tilt α and the direction λ of the positive principal vertical (counter-clockwise
+from the photo's +x axis), nine points pricked in three zones along the principal
+vertical (I, 1, 2 on the far side; II, 3, 4 near the isocentre; III, 5, 6 on the
+near side) and the same points on a plan at 1:10 000.
 
-* task 04.1 (:class:`Isocentre`): oc = −f·tg(α/2) with the guide's sign and
-  the photo coordinates of the isocentre c;
-* task 04.2 (:class:`TiltOfPoint`): the point A at :data:`TILT_LAB_POINT_MM`:
-  its r_c and φ about c and its δα = −(r_c²·cos φ/f)·sin α;
-* task 04.3 (:class:`Table6OnYourPhoto`): the guide's nine table-6 points
-  (r_c, φ as printed, :data:`aerophoto.guide.s05.TABLE6`) with the variant's f
-  and α: δα of point I and the number of corrections.
+* task 04.1 (:class:`Isocentre`): oc = −f·tg(α/2) with the guide's sign and the
+  photo coordinates of the isocentre c;
+* task 04.2 (:class:`TiltTable5`): the measurements and table 5 — l_пл, l_сн,
+  m_i, m_част, m_cp and Δm_i/m_cp;
+* task 04.3 (:class:`TiltTable6`): table 6 — r_c and φ of each point about c (φ
+  counter-clockwise from the positive principal vertical), δα = −(r_c²·cos φ/f)·sin α
+  and the number of corrections;
+* task 04.4 (:class:`TiltTable7`): table 7 — the bases between the corrected
+  points and the scales again.
 
-:func:`tilt_lab` computes the reference solution (:class:`TiltLab`) with
-:mod:`aerophoto.displacement` and :mod:`aerophoto.geometry`.
+Grading as in chapter 03 (:mod:`aerophoto.tasks.ch03`): measured values against
+the truth within :data:`~aerophoto.tasks.ch03.TOL_XY_MM`, computed columns against
+the reference with tolerances that cover the measuring error, and — hidden — each
+column against the student's own previous one.
 """
 
 from __future__ import annotations
@@ -21,108 +29,38 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
 from .. import displacement as d
 from .. import geometry as g
-from ..guide.s05 import TABLE6
+from ..displacement import base_lengths_mm
 from .base import Answer, Hidden, Task, submitted_number
+from .ch03 import TOL_LEN_MM, TOL_XY_MM, numbers, scale_answers, scale_hidden, scale_spec
+from .displacement_lab import TILT_BASES, TILT_NAMES, tilt_sheet
 
-__all__ = ["TILT_LAB_POINT_MM", "TiltLab", "tilt_lab", "table6_points", "Isocentre", "TiltOfPoint",
-           "Table6OnYourPhoto", "TASKS"]
+__all__ = ["BASE_LABELS", "ZONES", "TOL_PHI_DEG", "Isocentre", "TiltTable5", "TiltTable6", "TiltTable7", "TASKS"]
 
-#: the point A of task 04.2: photo coordinates x, y from o, mm
-TILT_LAB_POINT_MM = (70.0, -15.0)
-
-
-@dataclass(frozen=True)
-class TiltLab:
-    """The reference solution of the tilt tasks for one variant (the instructor's side).
-
-    Attributes
-    ----------
-    f_mm, alpha_deg, lambda_deg : float
-        The variant's camera and tilt.
-    oc_mm : float
-        oc = −f·tg(α/2) with the guide's sign, mm.
-    c_mm : ndarray, shape (2,)
-        Photo coordinates of the isocentre c, mm.
-    point_mm : ndarray, shape (2,)
-        The task's point A, mm.
-    r_c_mm, phi_deg : float
-        Polar coordinates of A about c (φ counter-clockwise from the + principal vertical, 0 ≤ φ < 360).
-    delta_mm, delta_exact_mm : float
-        δα of A, the guide's formula and exact, mm.
-    table6 : :class:`aerophoto.displacement.TiltCorrections`
-        The guide's nine table-6 points with the variant's f and α.
-    """
-
-    f_mm: float
-    alpha_deg: float
-    lambda_deg: float
-    oc_mm: float
-    c_mm: np.ndarray
-    point_mm: np.ndarray
-    r_c_mm: float
-    phi_deg: float
-    delta_mm: float
-    delta_exact_mm: float
-    table6: d.TiltCorrections
-
-    # typical mistakes, for the checks' hints
-    @property
-    def r_from_o_mm(self) -> float:
-        """The distance of A from o instead of c, mm."""
-        return float(np.hypot(*self.point_mm))
-
-    @property
-    def phi_from_x_deg(self) -> float:
-        """The angle of A about c counted from the photo's x axis instead of the principal vertical, degrees."""
-        d_ = self.point_mm - self.c_mm
-        return float(np.degrees(np.arctan2(d_[1], d_[0])) % 360.0)
-
-    @property
-    def delta_from_o_mm(self) -> float:
-        """δα with r and φ measured from o instead of c, mm."""
-        u = g.principal_vertical(g.Pose(alpha_deg=self.alpha_deg, lambda_deg=self.lambda_deg))
-        r = self.r_from_o_mm
-        cosp = float(self.point_mm @ u) / r
-        return -(r**2) * cosp / self.f_mm * math.sin(math.radians(self.alpha_deg))
-
-    @property
-    def delta_phi_from_x_mm(self) -> float:
-        """δα with φ counted from the photo's x axis, mm."""
-        return -(self.r_c_mm**2) * math.cos(math.radians(self.phi_from_x_deg)) / self.f_mm * math.sin(
-            math.radians(self.alpha_deg))
+BASE_LABELS = tuple(f"{a}-{b}" for a, b in TILT_BASES)
+ZONES = ("I", "II", "III")
+#: an angle φ about c from measured coordinates (points at least 12 mm from c), degrees
+TOL_PHI_DEG = 1.0
 
 
-def tilt_lab(v) -> TiltLab:
-    """The reference solution for variant ``v`` (any object with ``f_mm``, ``alpha_deg``, ``lambda_deg``)."""
-    cam = g.Camera(v.f_mm)
-    pose = g.Pose(alpha_deg=v.alpha_deg, lambda_deg=v.lambda_deg)
-    c = g.isocentre(cam, pose)
-    A = np.array(TILT_LAB_POINT_MM, dtype=float)
-    r, phi = d.polar_about_isocentre(cam, pose, A)
-    approx = float(g.tilt_displacement_approx(cam, pose, A))
-    exact = float(g.tilt_displacement_exact(cam, pose, A))
-    t6 = d.tilt_corrections(TABLE6["names"], TABLE6["r_c"], TABLE6["phi"], f_mm=v.f_mm, alpha_deg=v.alpha_deg)
-    return TiltLab(cam.f_mm, pose.alpha_deg, pose.lambda_deg, d.isocentre_offset(cam.f_mm, pose.alpha_deg), c, A,
-                   float(r), float(phi), approx, exact, t6)
+def _floats(a) -> list:
+    return [float(x) for x in np.ravel(a)]
 
 
-def table6_points() -> pd.DataFrame:
-    """The guide's table 6 inputs as printed: ``r_c, mm`` and ``φ, °`` of its nine points (task 04.3)."""
-    return pd.DataFrame({"r_c, mm": [float(x) for x in TABLE6["r_c"]], "φ, °": list(TABLE6["phi"])},
-                        index=pd.Index(TABLE6["names"], name="point"))
+def _dev(a, b) -> float:
+    return float(np.max(np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float))))
 
 
+# =========================================================================== task 04.1
 @dataclass(frozen=True)
 class Isocentre(Task):
     """Task 04.1: oc = −f·tg(α/2) with the guide's sign, and the photo coordinates of the isocentre c."""
 
     id = "task-04-1"
     title = "The isocentre on your photo"
-    points = 3
+    points = 2
     spec = (
         Answer("oc_mm", "o to c along the principal vertical, guide's sign, mm", unit="mm", tol_abs=0.05),
         Answer("xc_mm", "x of the isocentre c, mm", unit="mm", tol_abs=0.05),
@@ -130,109 +68,130 @@ class Isocentre(Task):
     )
 
     def answers(self, v) -> dict:
-        lab = tilt_lab(v)
-        return {"oc_mm": lab.oc_mm, "xc_mm": float(lab.c_mm[0]), "yc_mm": float(lab.c_mm[1])}
+        cam = g.Camera(v.f_mm)
+        c = g.isocentre(cam, g.Pose(alpha_deg=v.alpha_deg, lambda_deg=v.lambda_deg))
+        return {"oc_mm": d.isocentre_offset(v.f_mm, v.alpha_deg), "xc_mm": float(c[0]), "yc_mm": float(c[1])}
 
     def slips(self, v) -> dict:
-        lab = tilt_lab(v)
+        oc = d.isocentre_offset(v.f_mm, v.alpha_deg)
         on = d.nadir_offset(v.f_mm, v.alpha_deg)
         turned = "c lies on the principal vertical, turned by λ from the x axis"
         return {
             "oc_mm": {"that is on = f·tg α, the nadir point — the isocentre uses α/2": on,
                       "that is the nadir point's distance f·tg α — the isocentre uses α/2": -on},
-            "xc_mm": {turned: lab.oc_mm},
+            "xc_mm": {turned: oc},
             "yc_mm": {turned: 0.0},
         }
 
     def hidden(self, v, got) -> list:
-        # c lies at the distance |oc| from o
+        """c lies at the distance |oc| from o."""
         xc, yc = submitted_number(got.get("xc_mm")), submitted_number(got.get("yc_mm"))
         dist = None if xc is None or yc is None else math.hypot(xc, yc)
-        return [Hidden("|oc| from xc, yc", dist, abs(tilt_lab(v).oc_mm), tol_abs=0.05)]
+        return [Hidden("|oc| from xc, yc", dist, abs(d.isocentre_offset(v.f_mm, v.alpha_deg)), tol_abs=0.05)]
 
 
+# =========================================================================== task 04.2
 @dataclass(frozen=True)
-class TiltOfPoint(Task):
-    """Task 04.2: r_c and φ of the point A about the isocentre, and its tilt displacement δα."""
+class TiltTable5(Task):
+    """Task 04.2: measure the nine points on the photo and the six bases on the plan; table 5 (§5 steps 6–8)."""
 
     id = "task-04-2"
-    title = "The tilt displacement of a point"
+    title = "Table 5 of your photo: the scales of the tilted photo"
     points = 4
+    cross_variant = False
     spec = (
-        Answer("rcA_mm", "distance from c, mm", unit="mm", tol_abs=0.05),
-        Answer("phiA_deg", "angle from the + principal vertical, counter-clockwise, 0–360°", unit="°", tol_abs=0.5,
-               period=360.0),
-        Answer("dA_mm", "tilt displacement, mm", unit="mm", tol_abs=0.01),
+        Answer("x_mm", "x of I, 1, 2, II, 3, 4, III, 5, 6 on your photo, mm (measured)", unit="mm", kind="values",
+               tol_abs=TOL_XY_MM, labels=TILT_NAMES),
+        Answer("y_mm", "y of the nine points on your photo, mm (measured)", unit="mm", kind="values",
+               tol_abs=TOL_XY_MM, labels=TILT_NAMES),
+        Answer("lpl_mm", "plan lengths l_пл of I-1, I-2, II-3, II-4, III-5, III-6, mm (measured on the plan)",
+               unit="mm", kind="values", tol_abs=TOL_LEN_MM, labels=BASE_LABELS),
+        *scale_spec(ZONES, BASE_LABELS, lsn_text="photo lengths l_сн of the six bases, mm"),
     )
 
-    def inputs(self, v) -> dict:
-        """The point A: ``{"x_mm": 70.0, "y_mm": -15.0}`` (the same on every photo)."""
-        return {"x_mm": TILT_LAB_POINT_MM[0], "y_mm": TILT_LAB_POINT_MM[1]}
+    def inputs(self, v):
+        """The student's lab sheet (:class:`aerophoto.tasks.displacement_lab.LabSheet`): photo and plan."""
+        return tilt_sheet(int(v.i))
 
     def answers(self, v) -> dict:
-        lab = tilt_lab(v)
-        return {"rcA_mm": lab.r_c_mm, "phiA_deg": lab.phi_deg, "dA_mm": lab.delta_mm}
-
-    def slips(self, v) -> dict:
-        lab = tilt_lab(v)
-        return {
-            "rcA_mm": {"that is the distance from o — tilt displacement is measured from the isocentre c":
-                       lab.r_from_o_mm},
-            "phiA_deg": {"φ is counted from the principal vertical (direction λ), not from the x axis":
-                         lab.phi_from_x_deg,
-                         "φ is counted counter-clockwise, not clockwise": (360 - lab.phi_deg) % 360},
-            "dA_mm": {"r_c and φ must be measured from the isocentre c, not from o": lab.delta_from_o_mm,
-                      "φ is counted from the principal vertical, not from the x axis": lab.delta_phi_from_x_mm},
-        }
+        sheet = tilt_sheet(int(v.i))
+        xy = sheet.photo_xy_mm
+        return {"x_mm": _floats(xy[:, 0]), "y_mm": _floats(xy[:, 1]), "lpl_mm": _floats(sheet.l_plan_mm),
+                **scale_answers(sheet.work().table5)}
 
     def hidden(self, v, got) -> list:
-        # the student's δα must follow from the student's own r_c and φ
-        r, phi = submitted_number(got.get("rcA_mm")), submitted_number(got.get("phiA_deg"))
-        expected = None
-        if r is not None and phi is not None:
-            expected = -(r**2) * math.cos(math.radians(phi)) / v.f_mm * math.sin(math.radians(v.alpha_deg))
-        return [Hidden("dA_mm (from your r_c, φ)", got.get("dA_mm") if expected is not None else None, expected,
-                       tol_abs=0.01)]
+        """l_сн from the student's own coordinates; every scale column from the student's previous one."""
+        xy = [numbers(got.get(k), len(TILT_NAMES)) for k in ("x_mm", "y_mm")]
+        lsn = numbers(got.get("lsn_mm"), len(TILT_BASES))
+        dev = None
+        if xy[0] is not None and xy[1] is not None and lsn is not None:
+            dev = _dev(lsn, base_lengths_mm(TILT_NAMES, np.column_stack(xy), TILT_BASES))
+        lpl = numbers(got.get("lpl_mm"), len(TILT_BASES))
+        return [Hidden("l_сн from your x, y", dev, 0.0, tol_abs=0.06),
+                *scale_hidden(got, TILT_BASES, tilt_sheet(int(v.i)).M, l_plan=lpl)]
 
 
+# =========================================================================== task 04.3
 @dataclass(frozen=True)
-class Table6OnYourPhoto(Task):
-    """Task 04.3: the guide's nine table-6 points with the variant's f and α: δα of point I, number of corrections."""
+class TiltTable6(Task):
+    """Task 04.3: r_c and φ about the isocentre, δα = −(r_c²·cos φ/f)·sin α, the corrections (§5 step 9, table 6)."""
 
     id = "task-04-3"
-    title = "Which points of table 6 need a correction on your photo?"
-    points = 3
+    title = "Table 6 of your photo: the tilt displacements"
+    points = 4
+    cross_variant = False
     spec = (
-        Answer("dI_mm", "tilt displacement of point I, mm", unit="mm", tol_abs=0.01),
-        Answer("n_corr", "number of points corrected", integer=True),
+        Answer("rc_mm", "distances r_c of the nine points from c, mm", unit="mm", kind="values", tol_abs=0.3,
+               labels=TILT_NAMES),
+        Answer("phi_deg", "angles φ from the + principal vertical, counter-clockwise, 0 ≤ φ < 360°", unit="°",
+               kind="values", tol_abs=TOL_PHI_DEG, labels=TILT_NAMES),
+        Answer("da_mm", "tilt displacements δα of the nine points, mm", unit="mm", kind="values", tol_abs=0.02,
+               tol_rel=0.03, labels=TILT_NAMES),
+        Answer("n_corr", "number of points corrected (|δα| > 0.2 mm)", integer=True),
     )
 
-    def inputs(self, v) -> pd.DataFrame:
-        return table6_points()
+    def inputs(self, v):
+        return tilt_sheet(int(v.i))
 
     def answers(self, v) -> dict:
-        t6 = tilt_lab(v).table6
-        return {"dI_mm": float(t6.delta_approx_mm[0]), "n_corr": t6.n_applied}
-
-    @staticmethod
-    def _guide_dI() -> float:
-        """δα of point I with the guide's f = 100 mm and α = 3°, mm."""
-        return float(d.tilt_corrections(TABLE6["names"][:1], TABLE6["r_c"][:1], TABLE6["phi"][:1], f_mm=d.GUIDE_F_MM,
-                                        alpha_deg=d.GUIDE_ALPHA_DEG).delta_approx_mm[0])
-
-    def slips(self, v) -> dict:
-        other_f = v.f_mm != d.GUIDE_F_MM
-        return {"dI_mm": {"that is the guide's printed value — compute with your own f":
-                          TABLE6["delta"][0] if other_f else None,
-                          "you used the guide's f = 100 mm, not your variant's f":
-                          self._guide_dI() if other_f else None}}
+        t6 = tilt_sheet(int(v.i)).work().table6
+        return {"rc_mm": _floats(t6.r_c_mm), "phi_deg": _floats(t6.phi_deg), "da_mm": _floats(t6.delta_approx_mm),
+                "n_corr": int(t6.n_applied)}
 
     def hidden(self, v, got) -> list:
-        # δα scales as sin α/f: brought to the guide's f = 100 mm and α = 3° it must give the guide's point I
-        dI, sin_a = submitted_number(got.get("dI_mm")), math.sin(math.radians(v.alpha_deg))
-        scaled = None if dI is None or sin_a == 0 else dI * v.f_mm / d.GUIDE_F_MM * math.sin(
-            math.radians(d.GUIDE_ALPHA_DEG)) / sin_a
-        return [Hidden("dI_mm (scales as sin α/f)", scaled, self._guide_dI(), tol_abs=0.02)]
+        """δα from the student's own r_c and φ; the count from the student's own δα."""
+        n = len(TILT_NAMES)
+        r, phi, da = (numbers(got.get(k), n) for k in ("rc_mm", "phi_deg", "da_mm"))
+        dev = None
+        if r is not None and phi is not None and da is not None:
+            own = -(r**2) * np.cos(np.radians(phi)) / v.f_mm * math.sin(math.radians(v.alpha_deg))
+            dev = _dev(da, own)
+        count = None if da is None else int(np.count_nonzero(np.abs(da) > 0.2))
+        return [Hidden("δα from your r_c and φ", dev, 0.0, tol_abs=0.006),
+                Hidden("n_corr from your δα", got.get("n_corr") if count is not None else None, count, kind="count")]
 
 
-TASKS = (Isocentre(), TiltOfPoint(), Table6OnYourPhoto())
+# =========================================================================== task 04.4
+@dataclass(frozen=True)
+class TiltTable7(Task):
+    """Task 04.4: the bases between the points corrected for tilt and the scales again (§5 steps 10–11, table 7)."""
+
+    id = "task-04-4"
+    title = "Table 7 of your photo: the scales after the tilt correction"
+    points = 3
+    cross_variant = False
+    spec = scale_spec(ZONES, BASE_LABELS, lsn_name="lsn_corr_mm",
+                      lsn_text="photo lengths l_сн of the six bases between the corrected points, mm")
+
+    def inputs(self, v):
+        return tilt_sheet(int(v.i))
+
+    def answers(self, v) -> dict:
+        return scale_answers(tilt_sheet(int(v.i)).work().table7, "lsn_corr_mm")
+
+    def hidden(self, v, got) -> list:
+        sheet = tilt_sheet(int(v.i))
+        return scale_hidden(got, TILT_BASES, sheet.M, lsn_name="lsn_corr_mm", l_plan_truth=sheet.l_plan_mm)
+
+
+TASKS = (Isocentre(), TiltTable5(), TiltTable6(), TiltTable7())

@@ -1,19 +1,38 @@
-"""Graded tasks of chapter 05 (guide §6): the quality and the mean scale of the student's own fotoschema.
+"""Graded tasks of chapter 05 (guide §6): the student's own fotoschema — its seams and its mean scale.
 
-Each student's fotoschema is built from the virtual site (:func:`fotoschema_of`):
-a strip of three photos flown with the variant's camera f, scale 1/m and
-forward overlap p_x, tilts up to 2° (less for long-focus cameras, so that
-f·tg α stays within 6 mm) drawn from the seed i, over the site with its relief
-rescaled to 5 % of the flying height H = f·m — so that every variant, short
-or long focus, shows mismatches of comparable size (relief displacement grows
-with h/H) — and assembled with :func:`aerophoto.mosaic.assemble`.  What the
-student reads from it (:func:`measurements`) is rounded as a technician reads
-it: the mismatches ΔI along both cuts and the four bases, to 0.1 mm.
+Every student glues **their own strip** (:func:`aerophoto.tasks._own.own_strip`:
+four photos 36 … 39 with their variant's f, 1:m and p_x, flown over the
+virtual site at a place of their own, tilts up to 2° with f·tg α ≤ 6 mm) into a
+fotoschema with :func:`aerophoto.mosaic.assemble`, over the site's true relief
+(170–200 m: the variant's Z_max − Z_min = 30 m).  The student then does the
+guide's two checks on it from readings made on the sheet:
 
-* task 05.1 (:class:`SeamQuality`) — the quality m = √(ΣΔI²/n) (6.2), the
-  number of cut-outs and the verdict against the 0.5 mm tolerance (step 8);
-* task 05.2 (:class:`MeanScale`) — the partial scales m_i = L_i·M/l_i and their
-  mean (6.1, step 7).
+* task 05.1 (:class:`SeamQuality`, step 8) — along every cut, a detail pricked
+  through the cut-off strip: its distance from the cut on the glued piece (the
+  contour) and of the prick, along the strip, read to 0.1 mm.  The student
+  forms ΔI = contour − prick with the guide's signs (− cut-out, + duplicate),
+  the quality m = √(ΣΔI²/n) (6.2), counts the cut-outs and judges the seams
+  against the 0.5 mm tolerance;
+* task 05.2 (:class:`MeanScale`, step 7) — four points near the outer edges of
+  the first and last working areas, their coordinates read on the fotoschema
+  and on the 1:10 000 plan to 0.1 mm; the student measures the four bases l_i
+  and L_i, the partial scales m_i = L_i·M/l_i and their mean (6.1).
+
+The readings are the truth (the camera model: :func:`aerophoto.mosaic.seam_details`,
+:class:`aerophoto.mosaic.ScaleCheck`) plus a bounded, seeded pricking error,
+rounded to 0.1 mm (:func:`aerophoto.tasks._own.read_mm`); the reference answers
+are computed **from the readings**, as the student computes them, and the tests
+hold them against the truth.  Plan coordinates follow the Russian geodetic
+convention — x north, y east (the package's ground frame is X east, Y north).
+
+A long lens flies high: the relief displacement r·h/H that makes the seams
+mismatch shrinks with H = f·m (up to ≈ b·h/H = 72 mm·30 m/1200 m = 1.8 mm for
+variant 00, 0.09 mm for variant 99) — the student of a high variant finds seams
+within the reading error.  That is the honest result, not a defect.
+
+Another variant's answers are not looked for (``cross_variant = False``): each
+student's readings are their own, and recognising another's would assemble all
+100 fotoschemas on every wrong answer.
 """
 
 from __future__ import annotations
@@ -23,112 +42,205 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import pandas as pd
 
-from .. import geometry as g
 from .. import mosaic as mo
-from .. import simulate as sim
-from .base import Answer, Hidden, Task, submitted_number
+from . import _own
+from .base import Answer, Hidden, Task
 
-__all__ = ["N_PHOTOS", "RELIEF_FRACTION", "MAX_TILT_DEG", "MAX_TILT_OFFSET_MM", "fotoschema_of", "measurements",
-           "answers_of", "SeamQuality", "MeanScale", "TASKS"]
+__all__ = ["TOL_SCALE", "TOL_OWN", "INSET_MM", "PRICK_SIGMA_MM", "PRICK_MAX_MM", "POINT_SIGMA_MM", "POINT_MAX_MM", "BASE_LABELS",
+           "OwnFotoschema", "own_fotoschema", "seam_readings", "scale_readings", "answers_of", "SeamQuality",
+           "MeanScale", "TASKS"]
 
-#: photos in the student's strip
-N_PHOTOS = 3
-#: the site's relief is rescaled to this fraction of the flying height H = f·m
-RELIEF_FRACTION = 0.05
-#: largest tilt of the student's photos, degrees …
-MAX_TILT_DEG = 2.0
-#: … and at most this offset f·tg α of the nadir point, mm (long-focus cameras are tilted less)
-MAX_TILT_OFFSET_MM = 6.0
-
-
-def fotoschema_of(variant, *, site=None):
-    """The student's fotoschema: ``(fotoschema, ground, H_m)`` for a variant (see the module notes).
-
-    ``site`` is the virtual site (default :func:`aerophoto.site.get_site`);
-    ``ground`` is it with the relief rescaled (:class:`aerophoto.terrain.RescaledRelief`).
-    """
-    from .. import site as site_mod
-    from ..terrain import RescaledRelief
-
-    if site is None:
-        site = site_mod.get_site()
-    H = g.flying_height_m(variant.f_mm, variant.m)
-    gr = RescaledRelief(site, RELIEF_FRACTION * H)
-    tilt = min(MAX_TILT_DEG, math.degrees(math.atan(MAX_TILT_OFFSET_MM / variant.f_mm)))
-    strip = sim.strip_over_site(gr, variant.camera, variant.m, variant.px_percent, N_PHOTOS,
-                                imperfections=sim.Imperfections(max_tilt_deg=tilt, seed=int(variant.i)))
-    fs = mo.assemble(strip, gr, points_m=mo.catalogue_points(gr), M=variant.M)
-    return fs, gr, H
-
-
-def _read(x) -> list:
-    """Values as a technician reads them: to 0.1 mm, as plain floats (no −0.0)."""
-    return [float(v) + 0.0 for v in np.round(np.asarray(x, dtype=float), 1)]
-
-
-def measurements(variant, *, site=None) -> dict:
-    """Data "measured" on the student's own fotoschema (:func:`fotoschema_of`), read to 0.1 mm.
-
-    Returns
-    -------
-    dict with ``dI_mm`` (list of ΔI along both cuts, mm, − cut-out, + duplicate),
-    ``l_mm`` and ``L_mm`` (the four bases on the fotoschema and on the 1:M plan,
-    mm), ``M``, ``relief_m``, ``H_m``, ``fotoschema`` (the
-    :class:`aerophoto.mosaic.Fotoschema`) and ``ground`` (the terrain).
-    """
-    fs, gr, H = fotoschema_of(variant, site=site)
-    return {"dI_mm": _read(fs.dI_mm), "l_mm": _read(fs.scale.l_mm), "L_mm": _read(fs.scale.L_mm),
-            "M": float(variant.M), "relief_m": gr.relief_m, "H_m": H, "fotoschema": fs, "ground": gr}
-
-
-@functools.lru_cache(maxsize=128)
-def _read_default(variant) -> tuple:
-    """(ΔI, l, L, M) of :func:`measurements` on the default site, cached per variant (the checks ask often)."""
-    d = measurements(variant)
-    return tuple(d["dI_mm"]), tuple(d["l_mm"]), tuple(d["L_mm"]), d["M"]
-
-
-def _data(variant) -> dict:
-    dI, l, L, M = _read_default(variant)
-    return {"dI_mm": list(dI), "l_mm": list(l), "L_mm": list(L), "M": M}
-
-
-def answers_of(variant, *, site=None) -> dict:
-    """The correct answers to both tasks, from the rounded data of :func:`measurements`.
-
-    ``{"m_rms_mm", "n_cutouts", "seams_ok", "m_i" (ndarray of 4), "m_mean"}``.
-    """
-    d = _data(variant) if site is None else measurements(variant, site=site)
-    dI = np.asarray(d["dI_mm"])
-    mi = mo.partial_scales(d["l_mm"], d["L_mm"], d["M"])
-    return {"m_rms_mm": mo.seam_rms(dI), "n_cutouts": int(np.sum(dI < 0)),
-            "seams_ok": bool(dI.min() >= -mo.ALLOWED_CUTOUT_MM), "m_i": mi, "m_mean": float(np.mean(mi))}
+#: the details pricked through the cut-off strips lie this far into the left piece, along the strip, mm
+#: (uniform in the range, seeded: "не отступая далеко от него", guide §6 step 8)
+INSET_MM = (2.0, 5.0)
+#: pricking through the cut-off strip: σ and bound of the needle's error, mm (then read to 0.1 mm)
+PRICK_SIGMA_MM = 0.03
+PRICK_MAX_MM = 0.06
+#: identifying and reading a point on the fotoschema or the plan: σ and bound, mm (then read to 0.1 mm)
+POINT_SIGMA_MM = 0.05
+POINT_MAX_MM = 0.10
+#: tolerance of the scales (relative): l and L rounded to 0.1 mm before dividing change m_i by up to 0.035 %
+TOL_SCALE = 0.0005
+#: the hidden checks hold m_i to the student's own l, L (and m to their own m_i) to about one unit of m
+#: (rounding m_i to whole numbers passes; a value that does not come from their own bases does not —
+#: e.g. the photos' design scale 1:m typed for every m_i, which for a long-focus variant lies within
+#: TOL_SCALE of the true partial scales)
+TOL_OWN = 5e-5
+#: the four bases of step 7, by point: the two along the strip, then the two diagonals
+BASES = ((0, 2), (1, 3), (0, 3), (1, 2))
+_SALT_SEAMS, _SALT_POINTS, _SALT_DETAILS = 5051, 5052, 5053
 
 
 @dataclass(frozen=True)
+class OwnFotoschema:
+    """A student's fotoschema and what the guide's checks read on it (the instructor's side: holds the truth).
+
+    Attributes
+    ----------
+    variant : the student's Variant
+    strip : aerophoto.simulate.Strip — the student's own strip (photos 36 … 39)
+    site : the virtual site (the photographed terrain)
+    fs : aerophoto.mosaic.Fotoschema — assembled as in guide §6, plan scale 1:M of the variant
+    details : aerophoto.mosaic.SeamDetails — the details pricked through the cut-off strips (truth)
+    """
+
+    variant: object
+    strip: object
+    site: object
+    fs: mo.Fotoschema
+    details: mo.SeamDetails
+
+    @property
+    def numbers(self) -> tuple:
+        return self.fs.numbers
+
+    @property
+    def point_names(self) -> tuple:
+        """The four points of the mean scale: 36a, 36b (first photo), 39a, 39b (last photo)."""
+        return self.fs.scale.names
+
+    @property
+    def base_labels(self) -> tuple:
+        n = self.point_names
+        return tuple(f"{n[i]}–{n[j]}" for i, j in BASES)
+
+    def plan_xy_mm(self) -> np.ndarray:
+        """The four points on the 1:M plan, (4, 2): x north, y east from the plan's south-west corner, mm (truth)."""
+        G = self.fs.scale.ground_m
+        x0, _x1, y0, _y1 = self.site.extent_m
+        M = self.fs.scale.M
+        return np.column_stack([(G[:, 1] - y0) * 1000.0 / M, (G[:, 0] - x0) * 1000.0 / M])
+
+
+@functools.lru_cache(maxsize=128)
+def _own_fotoschema(i: int, f_mm: float, frame_mm: float, m: float, px_percent: float, M: float) -> OwnFotoschema:
+    from ..variants import variant_for_index
+
+    v = variant_for_index(i)
+    strip, site = _own.own_strip(v) if (v.f_mm, v.frame_mm, v.m, v.px_percent) == (f_mm, frame_mm, m, px_percent) \
+        else _own._own_strip(i, f_mm, frame_mm, m, px_percent)
+    fs = mo.assemble(strip, site, points_m=mo.catalogue_points(site), M=M)
+    n = int(fs.dI_mm.size)
+    inset = np.random.default_rng([i, _SALT_DETAILS]).uniform(*INSET_MM, size=n)  # where the sharp details are
+    return OwnFotoschema(v, strip, site, fs, mo.seam_details(fs, site, inset_mm=inset))
+
+
+def own_fotoschema(variant) -> OwnFotoschema:
+    """The student's fotoschema (see :class:`OwnFotoschema`), built once per variant and process."""
+    return _own_fotoschema(int(variant.i), float(variant.f_mm), float(variant.frame_mm), float(variant.m),
+                           float(variant.px_percent), float(variant.M))
+
+
+@functools.lru_cache(maxsize=128)
+def _seam_readings(variant) -> pd.DataFrame:
+    own = own_fotoschema(variant)
+    d = own.details
+    rng = _own.reading_rng(variant, _SALT_SEAMS)
+    contour = _own.read_mm(d.contour_from_cut_mm, rng, sigma_mm=0.0, max_mm=0.0)  # the cut and the contour: read
+    prick = _own.read_mm(d.prick_from_cut_mm, rng, sigma_mm=PRICK_SIGMA_MM, max_mm=PRICK_MAX_MM)
+    n = own.numbers
+    idx = pd.MultiIndex.from_arrays([[f"{n[s]}/{n[s + 1]}" for s in d.seam], d.point.tolist()],
+                                    names=["cut", "point"])
+    return pd.DataFrame({"y across, mm": np.round(d.contour_mm[:, 1], 0) + 0.0,
+                         "contour from the cut, mm": contour, "prick from the cut, mm": prick}, index=idx)
+
+
+def seam_readings(variant) -> pd.DataFrame:
+    """Task 05.1's readings on the student's fotoschema: one row per check point (a fresh copy).
+
+    Index (cut "36/37", point 1, 2, …); columns: ``y across, mm`` (where along
+    the cut, to 1 mm), ``contour from the cut, mm`` and ``prick from the cut, mm``
+    (along the strip, positive into the left piece, read to 0.1 mm).
+    """
+    return _seam_readings(variant).copy()
+
+
+@functools.lru_cache(maxsize=128)
+def _scale_readings(variant) -> pd.DataFrame:
+    own = own_fotoschema(variant)
+    rng = _own.reading_rng(variant, _SALT_POINTS)
+    sheet = _own.read_mm(own.fs.scale.sheet_mm, rng, sigma_mm=POINT_SIGMA_MM, max_mm=POINT_MAX_MM)
+    plan = _own.read_mm(own.plan_xy_mm(), rng, sigma_mm=POINT_SIGMA_MM, max_mm=POINT_MAX_MM)
+    return pd.DataFrame({"along the strip, mm": sheet[:, 0], "across, mm": sheet[:, 1],
+                         "x (north) on the plan, mm": plan[:, 0], "y (east) on the plan, mm": plan[:, 1]},
+                        index=pd.Index(list(own.point_names), name="point"))
+
+
+def scale_readings(variant) -> pd.DataFrame:
+    """Task 05.2's readings: the four points on the fotoschema (sheet mm) and on the 1:M plan (mm; x north, y east).
+
+    A fresh copy; the bases are :data:`BASES` (first-to-last along the strip, then the diagonals).
+    """
+    return _scale_readings(variant).copy()
+
+
+#: the bases' names by position (the points are named after the photos: 36a, 36b, 39a, 39b for the usual strip)
+BASE_LABELS = ("base 1 (a–a)", "base 2 (b–b)", "base 3 (a–b)", "base 4 (b–a)")
+
+
+def _from_seams(t: pd.DataFrame) -> np.ndarray:
+    return np.round(t["contour from the cut, mm"].to_numpy() - t["prick from the cut, mm"].to_numpy(), 1) + 0.0
+
+
+def _from_points(t: pd.DataFrame, M: float):
+    S = t[["along the strip, mm", "across, mm"]].to_numpy(dtype=float)
+    P = t[["x (north) on the plan, mm", "y (east) on the plan, mm"]].to_numpy(dtype=float)
+    l = np.array([math.hypot(*(S[j] - S[i])) for i, j in BASES])
+    L = np.array([math.hypot(*(P[j] - P[i])) for i, j in BASES])
+    return l, L, mo.partial_scales(l, L, M)
+
+
+def answers_of(variant) -> dict:
+    """The correct answers to both tasks, computed from the student's readings (as the student computes them)."""
+    dI = _from_seams(_seam_readings(variant))
+    l, L, mi = _from_points(_scale_readings(variant), float(variant.M))
+    return {"dI_mm": [float(x) for x in dI], "m_rms_mm": mo.seam_rms(dI), "n_cutouts": int(np.sum(dI < 0)),
+            "seams_ok": bool(round(float(dI.min()), 2) >= -mo.ALLOWED_CUTOUT_MM),
+            "l_mm": [float(x) for x in l], "L_mm": [float(x) for x in L], "m_i": [float(x) for x in mi],
+            "m_mean": float(np.mean(mi))}
+
+
+def _numbers(x, n: int | None = None):
+    """``x`` as a list of finite floats (of length ``n`` if given), or None."""
+    if x is None or x is Ellipsis or isinstance(x, (str, bytes, dict, bool)):
+        return None
+    try:
+        out = [float(e) for e in (x.tolist() if hasattr(x, "tolist") else x)]
+    except (TypeError, ValueError):
+        return None
+    if (n is not None and len(out) != n) or not out or not all(math.isfinite(e) for e in out):
+        return None
+    return out
+
+
+# =========================================================================== task 05.1
+@dataclass(frozen=True)
 class SeamQuality(Task):
-    """Task 05.1: the quality m = √(ΣΔI²/n) of the seams (6.2), the number of cut-outs and the verdict (§6, step 8)."""
+    """Task 05.1: ΔI on every check point, the quality m = √(ΣΔI²/n) (6.2), the cut-outs and the verdict (§6 step 8)."""
 
     id = "task-05-1"
-    title = "The quality of your fotoschema"
-    points = 3
+    title = "The seams of your fotoschema"
+    points = 4
+    cross_variant = False
     spec = (
-        Answer("m_rms_mm", "RMS of the mismatches, mm", unit="mm", tol_abs=0.005),
+        Answer("dI_mm", "ΔI at every check point, in the table's order, mm", unit="mm", kind="values", tol_abs=0.05),
+        Answer("m_rms_mm", "RMS of the mismatches m, mm", unit="mm", tol_abs=0.005),
         Answer("n_cutouts", "number of cut-outs (whole number)", kind="count", rounding="nearest"),
         Answer("seams_ok", "True / False", kind="bool", hint="compare the most negative ΔI with −0.5 mm (guide §6)."),
     )
 
-    def inputs(self, v) -> dict:
-        """The readings of the student's fotoschema: ``dI_mm``, ``l_mm``, ``L_mm`` (mm) and ``M``."""
-        return _data(v)
+    def inputs(self, v) -> pd.DataFrame:
+        """The readings along the cuts of the student's fotoschema (:func:`seam_readings`)."""
+        return seam_readings(v)
 
     def answers(self, v) -> dict:
         a = answers_of(v)
-        return {"m_rms_mm": a["m_rms_mm"], "n_cutouts": a["n_cutouts"], "seams_ok": a["seams_ok"]}
+        return {k: a[k] for k in self.names}
 
     def slips(self, v) -> dict:
-        dI = np.array(_data(v)["dI_mm"])
+        dI = np.array(answers_of(v)["dI_mm"])
         return {
             "m_rms_mm": {
                 "that is the mean of |ΔI| — formula (6.2) squares, averages, then takes the root.":
@@ -140,55 +252,68 @@ class SeamQuality(Task):
         }
 
     def hidden(self, v, got) -> list:
-        """The three answers must agree with each other.
-
-        * no cut-out (``n_cutouts`` = 0) cannot fail the 0.5 mm tolerance: ``seams_ok`` is then True;
-        * failing seams (``seams_ok`` False) need a |ΔI| > 0.5 mm among the n readings, so
-          m = √(ΣΔI²/n) ≥ 0.5/√n.
-        """
-        out = []
-        n_cut = submitted_number(got.get("n_cutouts"))
-        ok = got.get("seams_ok")
-        if n_cut == 0:
-            out.append(Hidden("seams_ok vs n_cutouts (no cut-out cannot fail)", ok, True, kind="bool"))
-        if ok is False or (isinstance(ok, np.bool_) and not ok):
-            n = len(_data(v)["dI_mm"])
-            m = submitted_number(got.get("m_rms_mm"))
-            out.append(Hidden("m_rms_mm vs seams_ok (a cut-out > 0.5 mm gives m ≥ 0.5/√n)",
-                              None if m is None else bool(m >= mo.ALLOWED_CUTOUT_MM / math.sqrt(n)), True,
-                              kind="bool"))
-        return out
+        """m, the count and the verdict must follow from the student's own ΔI."""
+        dI = _numbers(got.get("dI_mm"))
+        if dI is None:
+            return [Hidden("m_rms_mm from your ΔI", None, None), Hidden("n_cutouts from your ΔI", None, None,
+                                                                         kind="count"),
+                    Hidden("seams_ok from your ΔI", None, None, kind="bool")]
+        d = np.round(np.array(dI), 2)
+        return [Hidden("m_rms_mm from your ΔI", got.get("m_rms_mm"), float(np.sqrt(np.mean(np.array(dI) ** 2))),
+                       tol_abs=0.005),
+                Hidden("n_cutouts from your ΔI", got.get("n_cutouts"), int(np.sum(d < 0)), kind="count"),
+                Hidden("seams_ok from your ΔI", got.get("seams_ok"), bool(d.min() >= -mo.ALLOWED_CUTOUT_MM),
+                       kind="bool")]
 
 
+# =========================================================================== task 05.2
 @dataclass(frozen=True)
 class MeanScale(Task):
-    """Task 05.2: the partial scales m_i = L_i·M/l_i of four bases and the mean scale (6.1, §6 step 7)."""
+    """Task 05.2: the four bases on the fotoschema and the plan, the partial scales and the mean scale (6.1, §6 step 7)."""
 
     id = "task-05-2"
     title = "The mean scale of your fotoschema"
-    points = 3
+    points = 4
+    cross_variant = False
     spec = (
-        Answer("m_i", "four partial scale denominators", kind="values",
-               labels=("base 1", "base 2", "base 3", "base 4")),
-        Answer("m_mean", "mean scale denominator", unit="(scale denominator)"),
+        Answer("l_mm", "the four bases on the fotoschema l_i, mm", unit="mm", kind="values", tol_abs=0.05,
+               labels=BASE_LABELS),
+        Answer("L_mm", "the same bases on the plan L_i, mm", unit="mm", kind="values", tol_abs=0.05,
+               labels=BASE_LABELS),
+        Answer("m_i", "four partial scale denominators m_i = L_i·M/l_i", kind="values", tol_rel=TOL_SCALE,
+               labels=BASE_LABELS),
+        Answer("m_mean", "mean scale denominator m", unit="(scale denominator)", tol_rel=TOL_SCALE),
     )
 
-    def inputs(self, v) -> dict:
-        """The readings of the student's fotoschema: ``dI_mm``, ``l_mm``, ``L_mm`` (mm) and ``M``."""
-        return _data(v)
+    def inputs(self, v) -> pd.DataFrame:
+        """The four points read on the student's fotoschema and plan (:func:`scale_readings`)."""
+        return scale_readings(v)
 
     def answers(self, v) -> dict:
         a = answers_of(v)
-        return {"m_i": list(a["m_i"]), "m_mean": a["m_mean"]}
+        return {k: a[k] for k in self.names}
+
+    def slips(self, v) -> dict:
+        a = answers_of(v)
+        l, L, M = np.array(a["l_mm"]), np.array(a["L_mm"]), float(v.M)
+        return {"m_mean": {
+            "the partial scale is m_i = L_i·M/l_i — the plan's base times M over the fotoschema's, not the inverse.":
+                float(np.mean(l * M / L)),
+            "multiply by the plan's scale denominator M = 10 000 (6.1).": float(np.mean(L / l)),
+        }}
 
     def hidden(self, v, got) -> list:
-        """The mean scale is the mean of the student's own partial scales (6.1)."""
-        try:
-            mi = np.asarray(got.get("m_i"), dtype=float).ravel()
-            mean = float(np.mean(mi)) if mi.size and np.all(np.isfinite(mi)) else None
-        except (TypeError, ValueError):
-            mean = None
-        return [Hidden("m_mean (mean of your m_i)", got.get("m_mean") if mean is not None else None, mean)]
+        """Each m_i must follow from the student's own l_i and L_i, and m from their own m_i."""
+        l, L = _numbers(got.get("l_mm"), 4), _numbers(got.get("L_mm"), 4)
+        mi = _numbers(got.get("m_i"), 4)
+        out = []
+        for j, lab in enumerate(BASE_LABELS):
+            ok = l is not None and L is not None and mi is not None and l[j] > 0
+            out.append(Hidden(f"m_i of {lab} from your l and L", mi[j] if ok else None,
+                              L[j] * float(v.M) / l[j] if ok else None, tol_rel=TOL_OWN))
+        out.append(Hidden("m_mean (mean of your m_i)", got.get("m_mean") if mi is not None else None,
+                          float(np.mean(mi)) if mi is not None else None, tol_rel=TOL_OWN))
+        return out
 
 
 TASKS = (SeamQuality(), MeanScale())

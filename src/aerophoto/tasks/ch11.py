@@ -205,13 +205,11 @@ def rectification_lab_for(camera: g.Camera, pose: g.Pose, M: float, *, site=None
     the edges); the check points (of any kind, not control points) are K1,
     the point nearest to the middle of the working area's lower half, and K2,
     the point where relief displaces most: the largest |Z − mean Z of the
-    control points| · r.  Photo coordinates carry a pricking error of σ = ``sigma_mm``
+    control points| · r among the points at least 20 mm from every control point.  Photo coordinates carry a pricking error of σ = ``sigma_mm``
     (seeded) and are rounded to 0.01 mm; base coordinates are exact, rounded
     to 0.01 mm.
     """
     site = get_site() if site is None else site
-    from ..render import Photo  # noqa: F401  (render's pixel convention is what images use; nothing rendered here)
-
     cat = site.catalogue
     P = cat[["X_m", "Y_m", "Z_m"]].to_numpy(dtype=float)
     xy = g.ground_to_photo(camera, pose, P)
@@ -230,7 +228,10 @@ def rectification_lab_for(camera: g.Camera, pose: g.Pose, M: float, *, site=None
     k = np.array([j for j in np.flatnonzero(inside) if j not in used])
     j1 = int(k[np.argmin(np.hypot(*(xy[k] - np.array([0.0, -0.45 * lim])).T))])
     k = k[k != j1]
-    # the second check point: where relief shows most — the largest |Z − Z_control|·r
+    # the second check point: where relief shows most — the largest |Z − Z_control|·r — at least 20 mm from
+    # every control point (right beside one, the fit forces the residual small)
+    far = np.min(np.hypot(*(xy[k][:, None, :] - xy[chosen][None, :, :]).transpose(2, 0, 1)), axis=1) >= 20.0
+    k = k[far] if far.any() else k
     zc = P[chosen, 2].mean()
     j2 = int(k[np.argmax(np.abs(P[k, 2] - zc) * np.hypot(*xy[k].T))])
     checks_ = [j1, j2]

@@ -3,8 +3,11 @@
 Task 12.1 uses formula (13.1) read with n³ + 11n + 34
 (:mod:`aerophoto.triangulation.zhukov`) with the student's own inputs; the
 direction error m_ε of a variant is defined once here, :func:`m_eps_arcmin`.
-Task 12.2 uses the lab strip of chapter 06 (:func:`aerophoto.tasks.ch06.lab_strip`)
-with all six bases of table 12.
+Tasks 12.2 and 12.3 use the student's own strip of chapter 06
+(:func:`aerophoto.tasks.ch06.strip_readings`: the same four photos 36 … 39, the
+same readings): table 12 with all six bases between the four control points,
+and table 13 — the corrections from the other middle centre, 38, with the
+six-base mean.
 """
 
 from __future__ import annotations
@@ -12,12 +15,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from .. import triangulation as tri
 from .base import Answer, Hidden, Task
-from .ch06 import TOL_COEFF, LabStrip, lab_strip
+from .ch06 import (POINT_ORDER, TOL_COEFF, CorrectionsTask, StripReadings, _numbers, _readings, _verdict_hidden,
+                   coefficients_from_control, strip_readings)
 
 __all__ = ["M_ALLOWED_MM", "N_BASES", "m_eps_arcmin", "ZhukovInputs", "zhukov_inputs", "ControlSpacing",
-           "SpreadCheck", "TASKS"]
+           "TABLE12", "TABLE12_LABELS", "CENTRE_13", "CORRECTION_POINTS_13", "SpreadCheck", "Table13", "TASKS"]
 
 #: the allowed RMS error m of an orienting point on the plan, mm (guide §13 step 1)
 M_ALLOWED_MM = 0.35
@@ -140,48 +146,79 @@ class ControlSpacing(Task):
 
 
 # =========================================================================== task 12.2
+#: the six bases of table 12, in its order (the scan's "33/1 – 39/2" is 36/1 – 39/2)
+TABLE12 = (("36/1", "36/2"), ("36/1", "39/1"), ("36/1", "39/2"), ("36/2", "39/1"), ("36/2", "39/2"), ("39/1", "39/2"))
+TABLE12_LABELS = tuple(f"{a}–{b}" for a, b in TABLE12)
+#: the centre of the strip for table 13 (chapter 06 took 37; "37 or 38", guide §13 step 8)
+CENTRE_13 = "38"
+CORRECTION_POINTS_13 = tuple(n for n in POINT_ORDER if n != CENTRE_13)
+
+
 @dataclass(frozen=True)
 class SpreadCheck(Task):
-    """Task 12.2: the largest deviation |Δk| over the six bases of table 12, and the 0.003/0.006 verdict."""
+    """Task 12.2: table 12 — k of all six bases, their mean, the largest |Δk| and the 0.003/0.006 verdict."""
 
     id = "task-12-2"
-    title = "Does your strip pass the reduction check? (table 12)"
+    title = "Table 12: does your strip pass the reduction check?"
     points = 3
     spec = (
-        Answer("dk_max", "largest |Δk| over the six bases", tol_abs=TOL_COEFF),
+        Answer("k_bases", "six reduction coefficients, in table 12's order", kind="values", tol_abs=TOL_COEFF,
+               labels=TABLE12_LABELS),
+        Answer("k_mean", "their mean", tol_abs=TOL_COEFF),
+        Answer("dk_max", "largest |Δk| = |k − mean| over the six bases", tol_abs=TOL_COEFF),
         Answer("spread_ok", "True if every base is within its tolerance", kind="bool",
                hint="compare every |Δk| with 0.003, or with 0.006 on a base shorter than 133 mm on the base"),
     )
 
-    def inputs(self, v) -> LabStrip:
-        """The student's lab strip of chapter 06: ``control_table()`` is what the student reads."""
-        return lab_strip(v)
+    def inputs(self, v) -> StripReadings:
+        """The student's readings of chapter 06's strip: ``control_table()`` is what this task uses."""
+        return strip_readings(v)
+
+    def _coefficients(self, v):
+        return coefficients_from_control(_readings(v).control, float(v.M), TABLE12)
 
     def answers(self, v) -> dict:
-        c = lab_strip(v).coefficients("all")
-        return {"dk_max": float(c.spread), "spread_ok": bool(c.all_ok)}
+        c = self._coefficients(v)
+        return {"k_bases": [float(x) for x in c.k], "k_mean": float(c.k_mean), "dk_max": float(c.spread),
+                "spread_ok": bool(c.all_ok)}
 
     def slips(self, v) -> dict:
-        c = lab_strip(v).coefficients("all")
-        return {"dk_max": {"this is max k − min k; the guide's spread is the deviation from the mean": float(c.k_range)}}
+        c = self._coefficients(v)
+        return {"dk_max": {"this is max k − min k; the guide's spread is the deviation from the mean": float(c.k_range)},
+                "k_mean": {"this is l_воск / l_осн — the coefficient is base over template": 1.0 / c.k_mean}}
 
     def hidden(self, v, got) -> list:
-        # the verdict must agree with the student's own largest deviation: well within 0.003 every base passes,
-        # well beyond 0.006 no tolerance holds; in between (and within dk_max's tolerance of 0.003 or 0.006)
-        # it depends on the bases' lengths, and the verdict of the student's strip is expected
-        try:
-            dk = abs(float(got.get("dk_max")))
-        except (TypeError, ValueError):
-            dk = float("nan")
-        if not math.isfinite(dk):
-            return [Hidden("spread_ok agrees with dk_max", None, None, kind="bool")]
-        if dk < tri.K_SPREAD_TOL - TOL_COEFF:
-            expected = True
-        elif dk > tri.K_SPREAD_TOL_SHORT + TOL_COEFF:
-            expected = False
-        else:
-            expected = bool(lab_strip(v).coefficients("all").all_ok)
-        return [Hidden("spread_ok agrees with dk_max", got.get("spread_ok"), expected, kind="bool")]
+        """The mean, the largest deviation and the verdict must follow from the student's own six k."""
+        ks = _numbers(got.get("k_bases"), len(TABLE12))
+        if ks is None:
+            return [Hidden("k_mean is the mean of your k_bases", None, None),
+                    Hidden("dk_max from your k_bases", None, None),
+                    Hidden("spread_ok from your k_bases", None, None, kind="bool")]
+        mean = float(np.mean(ks))
+        dev = np.array(ks) - mean
+        tol = self._coefficients(v).tol
+        return [Hidden("k_mean is the mean of your k_bases", got.get("k_mean"), mean, tol_abs=TOL_COEFF),
+                Hidden("dk_max from your k_bases", got.get("dk_max"), float(np.max(np.abs(dev))), tol_abs=TOL_COEFF),
+                _verdict_hidden("spread_ok from your k_bases", got.get("spread_ok"), dev, tol, TOL_COEFF)]
 
 
-TASKS = (ControlSpacing(), SpreadCheck())
+# =========================================================================== task 12.3
+@dataclass(frozen=True)
+class Table13(CorrectionsTask):
+    """Task 12.3: table 13 — r from working centre 38 and v = r·(k − 1) with the six-base mean of table 12."""
+
+    id = "task-12-3"
+    title = "Table 13: corrections from centre 38"
+    points = 3
+    centre = CENTRE_13
+    names_ = CORRECTION_POINTS_13
+    pairs = TABLE12
+    spec = (
+        Answer("r_mm", "distances from centre 38, in the table's order (38 left out), mm", unit="mm", kind="values",
+               tol_abs=0.05, labels=CORRECTION_POINTS_13),
+        Answer("v_mm", "corrections v = r·(k − 1) with k of table 12, same order, mm", unit="mm", kind="values",
+               tol_abs=0.05, tol_rel=0.02, labels=CORRECTION_POINTS_13),
+    )
+
+
+TASKS = (ControlSpacing(), SpreadCheck(), Table13())

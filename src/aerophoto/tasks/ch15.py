@@ -189,12 +189,16 @@ def survey_block(m: float, n_strips: int, n_photos: int, *, seed: int, name: str
                                    sigma_kind_mm={"field": FIELD_SIGMA_MM}, control_sigma_m=CONTROL_SIGMA_M,
                                    margin_mm=3.0, seed=int(seed) + 7)
     truth = P[[int(np.flatnonzero(ids == p)[0]) for p in meas.point_ids]]
-    # the blunders
+    # the blunders: placed where the block can see them (an image measurement with redundancy numbers of at
+    # least 0.4, a control height with at least 0.25 — the best one if none has — at the true values, so that
+    # the blunder shows a standardised residual of 10 or more)
+    pr = B.precision(meas, eo, truth)
     xy_m = meas.xy_mm.copy()
     blunder_obs, move = -1, np.zeros(2)
     if blunder_size_mm > 0:
         per = np.bincount(meas.obs_point, minlength=meas.n_points)
-        ok = np.flatnonzero(np.isin(meas.point_kind[meas.obs_point], ["tie", "check"]) & (per[meas.obs_point] >= 3))
+        ok = np.flatnonzero(np.isin(meas.point_kind[meas.obs_point], ["tie", "check"]) & (per[meas.obs_point] >= 3)
+                            & (pr.redundancy_img.min(axis=1) >= 0.4))
         blunder_obs = int(rng.choice(ok))
         ang = rng.uniform(0.0, 2.0 * np.pi)
         move = blunder_size_mm * np.array([np.cos(ang), np.sin(ang)])
@@ -203,7 +207,9 @@ def survey_block(m: float, n_strips: int, n_photos: int, *, seed: int, name: str
     bad = -1
     if control_dz_m:
         ci = np.flatnonzero(meas.is_control)
-        k = int(rng.choice(ci))
+        rz = pr.redundancy_ctrl[ci, 2]
+        good = ci[rz >= 0.25]
+        k = int(rng.choice(good)) if len(good) else int(ci[np.argmax(rz)])
         ctrl_m[k, 2] += control_dz_m * (1.0 if rng.random() < 0.5 else -1.0)
         bad = int(meas.point_ids[k])
     meas = meas.replace(xy_mm=xy_m, control_XYZ_m=ctrl_m)
@@ -225,7 +231,7 @@ def _student_m(v) -> float:
 @functools.lru_cache(maxsize=8)
 def _student_block(i: int, m: float) -> SurveyBlock:
     return survey_block(m, 3, 6, seed=15_000 + i, name=f"variant {i:02d}",
-                        blunder_size_mm=0.08 + 0.0005 * i, control_dz_m=8.0 + 0.04 * i)
+                        blunder_size_mm=0.08 + 0.0005 * i, control_dz_m=10.0 + 0.05 * i)
 
 
 def student_block(v) -> SurveyBlock:
@@ -262,6 +268,13 @@ class Solution:
         a = self.adjustment
         c = a.precision().cov_points[a.meas.point_kind == "check"]
         return {"plan": float(np.sqrt(np.mean(c[:, 0, 0] + c[:, 1, 1]))), "Z": float(np.sqrt(np.mean(c[:, 2, 2])))}
+
+    def check_rms_sampling_m(self) -> dict:
+        """The a priori estimate of the check-point RMS with its sampling SD (full covariance), m: {key: (rms, sd)}."""
+        a = self.adjustment
+        sel = np.flatnonzero(a.meas.point_kind == "check")
+        C = B.point_covariance(a.meas, a.eo, a.xyz_m, sel)
+        return {"plan": B.rms_expectation(C, (0, 1)), "Z": B.rms_expectation(C, (2,))}
 
     def field_point(self, point_id) -> dict:
         """The adjusted position of a gravimetric point, its standard error ellipse and its true error."""

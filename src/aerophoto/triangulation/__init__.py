@@ -19,6 +19,8 @@ module         what                                                             
 ``zhukov``     Zhukov's formula (13.1) for the control spacing, its readings,     §13 st. 1
                and the variance of a chain held at both ends
 ``study``      Monte Carlo: the reduced strip's error against its length          §13
+``geodetic``   the student's tables in the Russian convention: X north, Y east,   §7 table 8
+               directions clockwise from +X
 =============  =================================================================  ==========
 
 The 2-D ray geometry (intersections, error triangles, resection) and the
@@ -32,18 +34,23 @@ Photo coordinates and template directions are in mm on the photo, angles
 counter-clockwise from the photo's +x axis (see :mod:`aerophoto.geometry`).
 The free strip lives in its own "template mm" frame (the tracing paper); the
 plan (основа) in mm at the plan scale 1/M, with x east and y north; ground in
-metres.  Distances between control points in tables are plan mm.
+metres.  Distances between control points in tables are plan mm.  This is the
+package's internal (mathematical) convention; the tables a student works from
+use the geodetic one (X north, Y east, directions clockwise from +X), converted
+by :mod:`~aerophoto.triangulation.geodetic` — distances and every formula of the
+reduction are the same in both.
 """
 
 from __future__ import annotations
 
-from . import ends, reduction, strip, study, zhukov
+from . import ends, geodetic, reduction, strip, study, zhukov
 from .ends import *  # noqa: F403 — each submodule's explicit __all__
+from .geodetic import *  # noqa: F403
 from .reduction import *  # noqa: F403
 from .strip import *  # noqa: F403
 from .study import *  # noqa: F403
 from .zhukov import *  # noqa: F403
 
-#: the public API: every submodule's ``__all__`` (strip, reduction, ends, zhukov, study) and the submodules
-__all__ = [*strip.__all__, *reduction.__all__, *ends.__all__, *zhukov.__all__, *study.__all__,
-           "strip", "reduction", "ends", "zhukov", "study"]
+#: the public API: every submodule's ``__all__`` (strip, reduction, ends, zhukov, study, geodetic) and the submodules
+__all__ = [*strip.__all__, *reduction.__all__, *ends.__all__, *zhukov.__all__, *study.__all__, *geodetic.__all__,
+           "strip", "reduction", "ends", "zhukov", "study", "geodetic"]

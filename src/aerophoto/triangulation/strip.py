@@ -320,6 +320,13 @@ def design_points(
     for lab, t, xy in ctl:
         specs.append((lab, "control", t, xy, True, False))
 
+    # a tie point must be seen on three photos: where tilts turn the photos against each other the triple
+    # overlap's middle is not at x = 0 of photo t; slide the design position along the strip to the place
+    # that keeps it furthest inside all three frames (only where x = 0 would come within 5 mm of an edge)
+    for j, (name, kind, t, xy, control, exact) in enumerate(specs):
+        if kind == "tie":
+            specs[j] = (name, kind, t, _centre_in_overlap(camera, poses, terrain, t, xy, o_next[t]), control, exact)
+
     # exact terrain points at the design positions: one DEM intersection per photo
     ground = np.zeros((len(specs), 3))
     for t in range(N):
@@ -339,12 +346,17 @@ def design_points(
             front = cz < 0
             xy[front] = g.ground_to_photo(camera, pose, cXYZ[front])
             cat_photo.append(xy)
+    if cat is not None:  # how far inside each frame every catalogue point is imaged (−inf where it is not)
+        cat_margin = [np.where(np.all(np.isfinite(xy), axis=1), half - np.max(np.abs(np.nan_to_num(xy, nan=1e9)),
+                                                                               axis=1), -np.inf) for xy in cat_photo]
     for j, (name, kind, t, xy, control, exact) in enumerate(specs):
         P, src = ground[j], "terrain"
         if cat is not None and not exact:
             xy_c = cat_photo[t]
             dist = np.hypot(xy_c[:, 0] - xy[0], xy_c[:, 1] - xy[1])
             dist[~np.isfinite(dist)] = np.inf
+            for u in _needed_photos(kind, name, t, N):  # a catalogue point must be seen where the design point is
+                dist[cat_margin[u] < _SEEN_MARGIN_MM] = np.inf
             if used:
                 dist[list(used)] = np.inf
             if control:  # a surveyed control point if one is there, else any catalogue point there
@@ -372,6 +384,38 @@ def design_points(
         else:
             seen[n] = 0
     return StripPoints(tuple(names), tuple(kinds), np.array(XYZ), np.array(photo, dtype=int), tuple(source), numbers)
+
+
+#: a catalogue point replaces a design point only if it is imaged at least this far inside every frame
+#: the design point must be seen on (the templates prick points 3 mm inside the frame)
+_SEEN_MARGIN_MM = 4.0
+
+
+def _needed_photos(kind: str, name: str, t: int, N: int) -> list:
+    """The photos a point of this kind, chosen on photo t, must be seen on (0-based)."""
+    if kind in ("tie", "centre"):
+        return [u for u in (t - 1, t, t + 1) if 0 <= u < N]
+    if kind == "orienting":
+        return [t, t + 1]
+    if name.endswith(("/1", "/2")):  # a control point in the overlap of the end pair
+        return [t, t + 1] if t == 0 else [t - 1, t]
+    return [t]
+
+
+def _centre_in_overlap(camera, poses, terrain, t, xy, towards_next, *, keep_mm: float = 5.0, reach_mm: float = 18.0):
+    """A tie point's design position on photo t, slid along the strip to stay inside photos t − 1, t, t + 1."""
+    d = np.asarray(towards_next, dtype=float)
+    d = d / np.hypot(*d)
+    shifts = np.linspace(-reach_mm, reach_mm, 37)
+    cand = np.asarray(xy, dtype=float) + shifts[:, None] * d
+    G = _photo_to_ground(camera, poses[t], cand, terrain)
+    margin = camera.half_mm - np.max(np.abs(cand), axis=1)
+    for u in (t - 1, t + 1):
+        margin = np.minimum(margin, camera.half_mm - np.max(np.abs(g.ground_to_photo(camera, poses[u], G)), axis=1))
+    mid = len(shifts) // 2
+    if margin[mid] >= keep_mm:
+        return np.asarray(xy, dtype=float)
+    return cand[int(np.argmax(margin))]
 
 
 # =========================================================================== templates

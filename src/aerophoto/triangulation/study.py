@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from .. import geometry as g
-from .._validate import check_int_range
+from .._validate import check_int_range, check_percent
 from .reduction import reduce_strip
 from .strip import PRICKING_MM, design_points, lay_free_strip, measure_templates
 
@@ -34,7 +34,8 @@ def accumulation_study(n_bases=(2, 3, 4, 5, 6, 8), seeds=range(20), *, pricking_
     """
     cam = g.Camera(f_mm)
     H = g.flying_height_m(f_mm, m)
-    B = (1.0 - overlap_percent / 100.0) * cam.frame_mm / 1000.0 * m
+    overlap = check_percent("overlap_percent", overlap_percent)
+    B = (1.0 - overlap / 100.0) * cam.frame_mm / 1000.0 * m
     rows = []
     for n in n_bases:
         n = check_int_range("n_bases", n, 2, 60)

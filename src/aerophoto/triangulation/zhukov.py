@@ -82,7 +82,7 @@ def zhukov_bases_continuous(m_allowed_mm: float = 0.35, *, k_i: float = 1.0, b_m
     while f(hi) <= 0:
         hi *= 2.0
         if hi > 1e7:
-            raise ValueError("the allowed error is never reached: check the inputs")
+            raise ValueError(f"m_allowed_mm = {m_allowed:g} is never reached (n > 10⁷): check the inputs")
     for _ in range(100):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if f(mid) <= 0 else (lo, mid)

@@ -1,0 +1,135 @@
+"""The live demos of chapters 16 and 17: drivable, update their artists in place, open on the article's example."""
+
+import numpy as np
+import pytest
+
+from aerophoto import budget as bu
+from aerophoto import dem
+from aerophoto.demos.dem_contours import SHEETS, ContourDemo, contour_frame, spacing_study_figure
+from aerophoto.demos.error_budget import BAR_KEYS, BudgetDemo, budget_figure
+
+
+def _segments(lc):
+    return [np.asarray(s).copy() for s in lc.get_segments()]
+
+
+def test_contour_demo_opens_on_the_articles_example_and_moves_its_artists():
+    demo = ContourDemo()
+    assert demo.values == {"spacing_m": 30, "structural": "off", "mz_m": 0.12, "interval_m": 0.5,
+                           "sheet": SHEETS[0][0]}
+    fig = demo.fig
+    r = demo.result.result
+    assert r.dem.kind == "grid" and r.dem.n_nodes == 35 * 35
+    assert 0.07 < r.accuracy.rms_m < 0.09  # √(4/9)·12 cm: the nodes' errors, the 30 m grid follows the hills
+    segs0 = _segments(demo.view.dem_lc)
+    img0 = np.array(demo.view.image.get_array()).copy()
+    assert len(segs0) == len(r.contours) and len(demo.view.valley_lc.get_segments()) == 0
+    n0 = demo.n_updates
+    demo.set(spacing_m=150, structural="on")
+    assert demo.fig is fig and demo.n_updates == n0 + 1
+    r1 = demo.result.result
+    assert r1.dem.kind == "tin" and "line" in r1.dem.kinds
+    assert len(demo.view.ridge_lc.get_segments()) > 0
+    assert len(demo.view.nodes.get_offsets()) == r1.dem.n_nodes
+    np.testing.assert_allclose(np.array(demo.view.image.get_array()), r1.Z_dem - r1.Z_true)
+    assert not np.allclose(img0, np.array(demo.view.image.get_array()))
+    assert f"{r1.accuracy.rms_m:.3f}" in demo.view.title.get_text()
+    assert "grid + structural lines" in demo.table.value
+    demo.set(mz_m=0.0, interval_m=1.0)
+    assert demo.result.result.interval_m == 1.0 and demo.result.result.dem.mz_m == 0.0
+    demo.reset()
+    assert demo.values["spacing_m"] == 30 and demo.result.result.accuracy.rms_m == pytest.approx(r.accuracy.rms_m)
+    demo.draw(force=True)
+    demo.close()
+
+
+def test_contour_demo_rejects_values_out_of_range():
+    demo = ContourDemo()
+    with pytest.raises(ValueError, match="spacing_m = 5"):
+        demo.set(spacing_m=5)
+    with pytest.raises(ValueError, match="structural"):
+        demo.set(structural="maybe")
+    with pytest.raises(ValueError, match="not a parameter"):
+        demo.set(grid_m=30)
+    demo.close()
+    with pytest.raises(ValueError, match="sheet"):
+        contour_frame("the moon")
+    with pytest.raises(ValueError, match="interval_m"):
+        contour_frame(interval_m=0.3)
+
+
+def test_every_sheet_of_the_demo_works():
+    for label, (x0, y0) in SHEETS:
+        f = contour_frame(label, 60.0, True, 0.05, 0.5)
+        assert f.cache.sheet == dem.Sheet(x0, y0, 1000.0)
+        assert np.isfinite(f.result.accuracy.rms_m) and f.table().loc["nodes", "value"] == str(f.result.dem.n_nodes)
+
+
+def test_spacing_study_figure_draws_each_column():
+    study = dem.spacing_study(__import__("aerophoto.site", fromlist=["get_site"]).get_site(), dem.Sheet(2000, 3000),
+                              spacings_m=(50.0, 150.0))
+    fig = spacing_study_figure(study)
+    assert len(fig.axes[0].get_lines()) == 4
+
+
+def test_budget_demo_opens_on_the_articles_1_2000_case_and_moves_its_bars():
+    demo = BudgetDemo()
+    B = demo.result
+    ref = bu.budget(10000, 16, 2000)
+    assert B.total_m == pytest.approx(ref.total_m) and not B.meets_tolerance
+    widths = np.array([b.get_width() for b in demo.view.bars])
+    assert widths[BAR_KEYS.index("total")] == pytest.approx(ref.map_rms_mm)
+    assert widths[BAR_KEYS.index("dtm")] == pytest.approx(0.375)
+    assert widths[BAR_KEYS.index("interior")] == 0.0
+    assert "fails" in demo.view.title.get_text()
+    fig = demo.fig
+    demo.set(dtm="dem", m_h_m=0.5)
+    assert demo.fig is fig and demo.result.meets_tolerance
+    assert "meets" in demo.view.title.get_text()
+    dom = BAR_KEYS.index(demo.result.dominant.key)
+    assert demo.view.bars[dom].get_facecolor()[:3] != demo.view.bars[BAR_KEYS.index("scanning")].get_facecolor()[:3]
+    w2 = np.array([b.get_width() for b in demo.view.bars])
+    demo.set(M_c=20000, P_um=40)
+    w3 = np.array([b.get_width() for b in demo.view.bars])
+    assert w3[BAR_KEYS.index("triangulation")] > w2[BAR_KEYS.index("triangulation")]
+    demo.set(extra="on")
+    assert demo.view.bars[BAR_KEYS.index("interior")].get_width() > 0
+    demo.set(dtm="plane", relief_m=100)
+    assert demo.result.dominant.key == "dtm"
+    assert "a DEM is needed" in demo.table.value
+    with pytest.raises(ValueError, match="P_um = 100"):
+        demo.set(P_um=100)
+    demo.reset()
+    assert demo.values["dtm"] == "instruction" and demo.result.total_m == pytest.approx(ref.total_m)
+    demo.draw(force=True)
+    demo.close()
+
+
+def test_budget_figure_is_the_demos_view():
+    fig = budget_figure(bu.budget(15000, 42, 10000))
+    assert len(fig.axes[0].patches) == len(BAR_KEYS)
+
+
+def test_contour_demo_previews_while_dragging_and_settles_in_full():
+    import asyncio
+
+    async def drive():
+        demo = ContourDemo()
+        assert demo.result.cache.cell_m == 5.0
+        demo.values["spacing_m"] = 60  # as a slider move does before calling on_slider
+        status = demo.on_slider()
+        assert "preview" in status and demo.result.cache.cell_m == 10.0
+        assert demo.result.result.dem.n_nodes == 18 * 18  # 0, 60, …, 960 and the far edge
+        demo.values["spacing_m"] = 70  # a second move cancels the pending full render
+        demo.on_slider()
+        await asyncio.sleep(demo.settle_s + 0.4)
+        assert demo.result.cache.cell_m == 5.0 and demo.status.value == ""
+        assert demo.result.result.dem.n_nodes == 16 * 16
+        demo.close()
+
+    asyncio.run(drive())
+    # without an event loop (a script) a slider move renders in full at once
+    demo = ContourDemo()
+    demo.values["spacing_m"] = 60
+    assert demo.on_slider() == "" and demo.result.cache.cell_m == 5.0
+    demo.close()

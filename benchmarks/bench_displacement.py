@@ -18,6 +18,7 @@ reading recorded, the table and the code lines refreshed, the figure drawn: what
 
 from __future__ import annotations
 
+import contextlib
 import io
 import time
 
@@ -114,7 +115,8 @@ def _lab(quick: bool) -> dict:
     t_plan = measure(lambda: (lab.plan_of.cache_clear(), sheet.plan()), 2 if quick else 4, warmup=1)
     t_tool = measure(lambda: photo_tool(sheet).close(), 2 if quick else 4, warmup=1)
     tool = photo_tool(sheet)
-    tool.widget()
+    with contextlib.redirect_stdout(io.StringIO()):  # headless (Agg): the widget shows the figure as an Output
+        tool.widget()
     canvas = tool.fig.canvas
     canvas.draw_idle = lambda *a, **k: None  # ipympl only schedules; the forced draw below counts
     marks = list(sheet.marks("photo").values())

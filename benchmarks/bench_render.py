@@ -4,6 +4,12 @@ Target: a 512×512 photo in ≤ 60 ms; building the default site in ≤ ~2 s.
 Besides whole renders the benchmark times the parts of one 512×512 render
 (the exact coarse intersection, one full-resolution DEM evaluation, the
 texture sampling) so the report can say what bounds the speed.
+
+The objects with height (issue 13): ``render_512`` ray-casts them (the default),
+``render_512_bare`` does not (``objects=False``: the old renderer), and
+``render_512_sun`` adds cast shadows; ``objects_cost_ratio_512`` is the ratio of
+the medians.  ``render_512_forest`` is the slowest case, a photo over the most
+forest; ``build_objects_step`` times the objects step alone.
 """
 
 from __future__ import annotations
@@ -41,6 +47,19 @@ def run(quick: bool = False) -> dict:
         k = max(4, reps // 5) if quick else reps
         out[f"render_{n}"] = measure(lambda p, n=n: R.render(site, cam, p, n), k, warmup=2,
                                      args_for=lambda i: (poses[i % len(poses)],))
+    k = 6 if quick else 30
+    out["render_512_bare"] = measure(lambda p: R.render(site, cam, p, 512, objects=False), k, warmup=2,
+                                     args_for=lambda i: (poses[i % len(poses)],))
+    out["render_512_sun"] = measure(lambda p: R.render(site, cam, p, 512, sun=R.Sun(225.0, 40.0)), k, warmup=1,
+                                    args_for=lambda i: (poses[i % len(poses)],))
+    out["objects_cost_ratio_512"] = round(out["render_512"]["median_ms"] / out["render_512_bare"]["median_ms"], 2)
+    # the photo over the most forest the default site has (its north-west)
+    forest_pose = g.Pose(2600.0, 3300.0, site.mean_height_m + 1200.0)
+    out["render_512_forest"] = measure(lambda: R.render(site, cam, forest_pose, 512), k, warmup=1)
+    out["render_512_forest_bare"] = measure(lambda: R.render(site, cam, forest_pose, 512, objects=False), k, warmup=1)
+    out["render_1536_stereo_pair_photo_sun"] = measure(
+        lambda: R.render(site, cam, poses[3], 1536, sun=R.Sun(225.0, 40.0)), 2 if quick else 4, warmup=1)
+    out["build_objects_step"] = _objects_step(quick)
     ph = R.render(site, cam, poses[3], 512, keep_ground=True)
     out["render_512_dem_evaluations"] = ph.dem_evaluations
     out["render_512_dem_residual_m"] = ph.dem_residual_m
@@ -66,3 +85,34 @@ def run(quick: bool = False) -> dict:
     Rm = g.rotation_matrix(poses[3])
     out["part_ray_directions_512"] = measure(lambda: (cv @ Rm[2], cv @ Rm[0], cv @ Rm[1]), k)
     return out
+
+
+def _objects_step(quick: bool) -> dict:
+    """The objects step of the default site's build alone (the painting steps run once, untimed)."""
+    from aerophoto.site import SiteParams
+    from aerophoto.site import build as B
+    from aerophoto.site.objects import build_objects
+
+    P = SiteParams()
+    samples = []
+    for _ in range(1 if quick else 3):
+        b = B.Builder(P)
+        river = B.river_line(b)
+        dem = B.relief(b, river)
+        systems = B.fields(b, river)
+        B.soil_noise(b)
+        roads, corners, belts = B.field_network(b, river, systems)
+        forest_tex = B.shelter_belts(b, belts)
+        village_c = B.highways(b, river, roads)
+        band = B.floodplain(b, river)
+        B.forest(b, band, village_c, forest_tex)
+        B.river_water(b, band)
+        B.oxbow_lake(b, river, roads)
+        B.paint_roads(b, roads)
+        B.village(b, river, village_c, roads)
+        B.isolated_trees(b)
+        tex = B.texture(b, dem)
+        t0 = time.perf_counter()
+        build_objects(b, dem, river, roads, village_c, tex, b.cv.cover, first_id=220)
+        samples.append(time.perf_counter() - t0)
+    return summarize(samples)

@@ -21,9 +21,14 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 
 
 def all_notebooks():
-    """The book's notebooks (the chapter template ``_template.ipynb`` is not part of the book)."""
-    return sorted(p for p in NOTEBOOKS.rglob("*.ipynb")
-                  if ".ipynb_checkpoints" not in p.parts and not p.name.startswith("_"))
+    """The book's notebooks: the chapters and the lecture index (not the template ``_template.ipynb``, not the
+    generated lecture pages in ``notebooks/lectures/`` — see :func:`lecture_pages`)."""
+    return sorted(p for p in NOTEBOOKS.glob("*.ipynb") if not p.name.startswith("_"))
+
+
+def lecture_pages():
+    """The generated lecture pages (``notebooks/lectures/NN_*.ipynb``): demos only, run by the browser tests."""
+    return sorted((NOTEBOOKS / "lectures").glob("*.ipynb"))
 
 
 @pytest.fixture(autouse=True)

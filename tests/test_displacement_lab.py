@@ -34,6 +34,13 @@ def _common(sheet, v):
     site = get_site()
     np.testing.assert_allclose(sheet.XYZ_m[:, 2], site.height(sheet.XYZ_m[:, 0], sheet.XYZ_m[:, 1]))  # on the DEM
     assert np.all(np.isin(site.cover_at(sheet.XYZ_m[:, 0], sheet.XYZ_m[:, 1]), OPEN))
+    # nothing stands on a point, and nothing standing nearby hides it on the photo
+    np.testing.assert_allclose(site.surface_height(sheet.XYZ_m[:, 0], sheet.XYZ_m[:, 1]), sheet.XYZ_m[:, 2],
+                               atol=0.05)
+    from aerophoto.render import trace
+
+    seen = trace(site, sheet.camera, sheet.pose, xy).XYZ_m
+    assert np.max(np.linalg.norm(seen - sheet.XYZ_m, axis=1)) <= 0.5
     lengths = sheet.l_photo_mm
     assert np.all((lengths > 19.0) & (lengths < 31.0))
     np.testing.assert_allclose(sheet.plan_xy_mm, (sheet.XYZ_m[:, :2] - sheet.plan_origin_m) / 10.0)

@@ -15,8 +15,8 @@ stops.
 
 Needs root, bubblewrap, JupyterHub (deploy/jupyterhub/requirements.txt), the proxy (``npm ci`` in
 deploy/jupyterhub), chromium and Playwright: without them a developer gets a skip naming what to install; in
-CI (``AEROPHOTO_CI=1``) a missing piece fails.  Wall time is printed (``-s``): about 2–3 minutes on a 2-core
-machine.
+CI (``AEROPHOTO_CI=1``) a missing piece fails.  Wall time is printed (``-s``): 90–160 s on the 2-core
+development machine while other work ran on it (about 45 s of it grading in the instructor's server).
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ IN_CI = os.environ.get("AEROPHOTO_CI") == "1"
 A = "00_start_here"
 NB = f"{A}/{A}.ipynb"
 
-STUDENTS = {"ivanova": "19-0401", "petrov": "19-0457", "sidorova": "19-0499", "idler": "20-0100"}
+STUDENTS = {"ivanova": "19-0401", "petrov": "19-0433", "sidorova": "19-0499", "idler": "20-0100"}
 CULL_TIMEOUT_S = 45
 CULL_EVERY_S = 5
 KERNEL_CULL_S = 10
@@ -140,6 +140,10 @@ attempt("write_release", lambda: open("/srv/nbgrader/exchange/aerophoto/outbound
 attempt("rename_course", lambda: os.rename("/srv/nbgrader/exchange/aerophoto", "/srv/nbgrader/exchange/mine"))
 attempt("write_python", lambda: open(os.path.join(sys.prefix, "x"), "w"))
 attempt("repo_tests", lambda: os.listdir({tests!r}))
+import resource
+res["rlimit_as"] = list(resource.getrlimit(resource.RLIMIT_AS))
+res["rlimit_nproc"] = list(resource.getrlimit(resource.RLIMIT_NPROC))
+attempt("allocate_4gb", lambda: bytearray(4 * 2**30))
 res["homes"] = sorted(os.listdir("/home"))
 res["uid"] = os.getuid()
 res["user"] = pwd.getpwuid(os.getuid()).pw_name
@@ -275,6 +279,14 @@ def hub():
 @pytest.fixture(scope="module")
 def course_run(hub):
     """The whole term of chapter 00 through the hub; returns what each step showed (see the module notes)."""
+    try:
+        return _course_run(hub)
+    except BaseException:
+        print(f"\n--- the hub's log (last lines) ---\n{hub.log_tail(150)}")
+        raise
+
+
+def _course_run(hub):
     from playwright.sync_api import sync_playwright
 
     hc = _hubclient()
@@ -307,17 +319,8 @@ def course_run(hub):
             users[name].start_server()
             _hand_in(users[name], answer)
         phase("petrov and sidorova submitted")
-        # an idle kernel no tab holds: culled after KERNEL_CULL_S
-        kid = users["sidorova"].start_kernel()
-        t_k = time.perf_counter()
-        while kid in users["sidorova"].kernels() and time.perf_counter() - t_k < KERNEL_CULL_S + 30:
-            time.sleep(1)
-        ev["idle_kernel_gone_after_s"] = (round(time.perf_counter() - t_k, 1)
-                                          if kid not in users["sidorova"].kernels() else None)
-        ev["probe"] = json.loads(users["petrov"].run(PROBE.format(
-            state=str(hub.state), other="sidorova", tests=str(ROOT / "tests")))["stdout"])
-        ev["http"] = _http_checks(hub, teacher, users)
-        phase("isolation probed")
+        # an idle kernel that no tab holds: her server culls it after KERNEL_CULL_S (seen in its log, below)
+        ev["idle_kernel"] = users["sidorova"].start_kernel()
         teacher.start_server()  # idle while the class worked: the culler may have stopped it (his files stay)
         out = teacher.run(SHELL.format(cmds=[["nbgrader", "collect", A],
                                              ["aerophoto-course", "autograde", "--jobs", "2"],
@@ -337,6 +340,12 @@ def course_run(hub):
                                     "html": user.read(f"{A}/feedback/{stamps[0]}/{A}.html")["content"]
                                     if stamps else ""}
         phase("feedback fetched")
+        ev["probe"] = json.loads(users["petrov"].run(PROBE.format(
+            state=str(hub.state), other="sidorova", tests=str(ROOT / "tests")))["stdout"])
+        teacher.start_server()
+        users["sidorova"].start_server()
+        ev["http"] = _http_checks(hub, teacher, users)
+        phase("isolation probed")
         ev["console_errors"] = console.relevant()
     finally:
         page.context.close()
@@ -377,10 +386,10 @@ def _http_checks(hub, teacher, users) -> dict:
     return {
         "petrov→sidorova's files": status(petrov, f"{hub.url}/user/sidorova/api/contents"),
         "petrov→teacher's files": status(petrov, f"{hub.url}/user/teacher/api/contents"),
-        "petrov→own formgrader": status(petrov, f"{hub.url}/user/petrov/formgrader"),
+        "petrov→own formgrader": status(petrov, f"{hub.url}/user/petrov/formgrader/manage_assignments"),
         "petrov→own course list": status(petrov, f"{hub.url}/user/petrov/formgrader/api/courses"),
         "petrov→user list": status(petrov, f"{hub.url}/hub/api/users"),
-        "teacher→formgrader": status(teacher, f"{hub.url}/user/teacher/formgrader"),
+        "teacher→formgrader": status(teacher, f"{hub.url}/user/teacher/formgrader/manage_assignments"),
         "teacher→user list": status(teacher, f"{hub.url}/hub/api/users"),
         "teacher→petrov's files": status(teacher, f"{hub.url}/user/petrov/api/contents"),
     }
@@ -451,6 +460,9 @@ def test_a_student_cannot_reach_other_homes_the_course_or_the_hidden_material(co
         assert p[what] == "PermissionError", (what, p[what])
     assert p["write_python"] in ("OSError", "PermissionError"), p["write_python"]  # read-only
     assert p["homes"] == ["petrov"] and p["user"] == "petrov" and p["uid"] >= 30000
+    # the memory limit of her processes (the spawner's mem_limit, 3 GB): a 4 GB array is refused
+    assert p["rlimit_as"] == [3 * 2**30, 3 * 2**30] and p["allocate_4gb"] == "MemoryError", p
+    assert p["rlimit_nproc"] == [512, 512]
     # her own process namespace: her server and kernel (and bubblewrap's init, root inside it) — not the hub,
     # the proxy or anyone else's processes
     assert {uid for _, uid in p["processes"]} <= {0, p["uid"]}, p["processes"]
@@ -481,5 +493,6 @@ def test_roles_over_http(course_run):
 def test_idle_servers_and_kernels_are_culled(course_run):
     assert course_run["idler_running"] is False
     assert "Culling server idler" in course_run["log"] or "culling server idler" in course_run["log"].lower()
-    gone = course_run["idle_kernel_gone_after_s"]
-    assert gone is not None and KERNEL_CULL_S - 2 <= gone <= KERNEL_CULL_S + 30, gone
+    kid = course_run["idle_kernel"]
+    culled = [line for line in course_run["log"].splitlines() if "Culling" in line and kid in line]
+    assert culled and "inactivity" in culled[0], culled

@@ -22,21 +22,22 @@ two sample record books, and everything the notebook shows is searched for the g
    inputs (``task.inputs(v)``: a table, a dataclass, a dict — e.g. chapter 02's measurements) is not searched:
    showing the input is allowed;
 3. *distinctive* values — those that need four or more significant digits to land within t (N = 2 706 photos,
-   t_max = 0.004675 s) — count wherever they appear: nothing else on screen hits them by chance.  Every other
-   value (H = 11 859 m ± 0.5 %, 1.27 km, 60.1 %, 41 strips, a crab limit of 10°) is also printed by chance — in
-   the guide's worked example, a step number, another quantity of a demo's table — so it counts only where the
-   number depends on the variant: it is shown for variant A in a place (a cell's outputs, the widgets, the
-   figures' texts) that does not show it for variant B, whose own value differs.  A value of three significant
-   digits also counts where that place shows B's own value beside it for A too (a table of every variant's
-   results); one of one or two digits (0.5°, 2°, 41) does not: such pairs sit side by side by chance.  A value
-   that needs fewer than four digits and that B shares is not searched.  Booleans and choices are not numbers
-   and are not searched.
+   t_max = 0.004675 s, a photo coordinate of 163.27 ± 0.05 mm) — count wherever they appear: nothing else on screen hits
+   them by chance, so even a table of every variant's results is caught.  Every other value (H = 11 859 m
+   ± 0.5 %, 1.27 km, 60.1 %, 41 strips, a crab limit of 10°) is also printed by chance — in the guide's worked
+   example, a step number, another quantity of a demo's table — so it counts only where the number depends on
+   the variant: it is shown for variant A in a place (a cell's outputs, the widgets, the figures' texts) that
+   does not show it for variant B, whose own value differs.  (A table listing every variant's three-digit
+   results would show the same numbers for both and is not caught: the book has none; keep it that way.)
+   A value B shares is not searched unless distinctive.  Booleans and choices are not numbers and are not
+   searched.
 
 The two variants are ``19-0457`` (i = 57: f = 670 mm, beyond real practice) and ``19-0403`` (i = 03); each is
 searched, with the other as the reference of rule 3.  The
 kernel is started once for the module and reused for every chapter and both variants (``%reset -f``, a fresh
-record book and the checks forgotten between runs): on this 2-core machine a kernel start and the package's
-imports are ~3 s of every run.
+record book and the checks forgotten between runs): a kernel start with the package's imports costs ~1.5 s and
+the virtual site's build ~6 s on this 2-core machine, paid once instead of 32 times.  Measured: all 16
+chapters, two variants each, in 140 s (under load from other work 460 s).
 """
 
 from __future__ import annotations
@@ -261,8 +262,7 @@ def find_leaks(values_a: list[dict], values_b: list[dict], seen_a: dict, seen_b:
             continue  # B has the same value: nothing tells it from chance
         for place, nums in seen_a.items():
             hits = sorted(y for y in nums if abs(y - x) <= tol)
-            table_of_variants = rb is not None and r["digits"] >= 3 and any(abs(y - rb["x"]) <= rb["tol"] for y in nums)
-            if not r["distinctive"] and not table_of_variants:
+            if not r["distinctive"]:
                 hits = [y for y in hits if y not in seen_b.get(place, set())]
             if hits:
                 leaks.append(f"{r['task']} {r['name']} = {x:.6g} (±{tol:.3g}) shown in [{place}] as {hits[0]:g}")
@@ -396,25 +396,29 @@ def test_numbers_are_read_as_printed():
 def test_the_rule_finds_leaks_and_spares_inputs_and_chance():
     v = variant("19-0457")  # f = 670 mm, m = 17 700
     spec = (_A("H_m"), _A("K", kind="count"), _A("N", kind="count"), _A("crab_limit_deg", tol_abs=0.05),
-            _A("f_again"))
-    t_a = _T("task-99-1", spec, {"H_m": 11859.0, "K": 41, "N": 2706, "crab_limit_deg": 10.0, "f_again": 670.0})
-    t_b = _T("task-99-1", spec, {"H_m": 1599.0, "K": 22, "N": 782, "crab_limit_deg": 10.0, "f_again": 130.0})
+            _A("f_again"), _A("x_mm", tol_abs=0.05))
+    t_a = _T("task-99-1", spec, {"H_m": 11859.0, "K": 41, "N": 2706, "crab_limit_deg": 10.0, "f_again": 670.0,
+                                 "x_mm": 163.27})
+    t_b = _T("task-99-1", spec, {"H_m": 1599.0, "K": 22, "N": 782, "crab_limit_deg": 10.0, "f_again": 130.0,
+                                 "x_mm": 12.5})
     va, vb = graded_values([t_a], v), graded_values([t_b], variant("19-0403"))
     by = {r["name"]: r for r in va}
-    assert by["N"]["distinctive"] and not by["H_m"]["distinctive"] and not by["K"]["distinctive"]
+    assert by["N"]["distinctive"] and by["x_mm"]["distinctive"]
+    assert not by["H_m"]["distinctive"] and not by["K"]["distinctive"]
     assert by["f_again"]["given"] and not by["H_m"]["given"]
-    # a table of every variant's H (both variants see it), K in a figure title (B shows its own K there),
-    # N in a sentence both variants print, the input f, the crab limit both share in prose: three leaks
-    seen_a = {"table": {11860.0, 1599.0}, "figures": {41.0, 2.0}, "text": {10.0, 3.0, 2706.0}, "demo": {670.0}}
-    seen_b = {"table": {11860.0, 1599.0}, "figures": {22.0, 2.0}, "text": {10.0, 3.0, 2706.0}, "demo": {130.0}}
+    # H in a demo's table (B's run shows its own H there), K in a figure title (B shows its own K), N in a
+    # sentence both variants print, a photo coordinate in a table of every variant's values, the input f, the
+    # crab limit both share in prose: four leaks
+    seen_a = {"demo": {11860.0, 670.0}, "figures": {41.0, 2.0}, "text": {10.0, 3.0, 2706.0},
+              "table": {163.3, 12.5}}
+    seen_b = {"demo": {1599.0, 130.0}, "figures": {22.0, 2.0}, "text": {10.0, 3.0, 2706.0}, "table": {163.3, 12.5}}
     leaks = find_leaks(va, vb, seen_a, seen_b)
-    assert len(leaks) == 3, leaks
     assert {s.split(" = ")[0].split()[-1] + s[s.index("["):s.index("]") + 1] for s in leaks} == {
-        "H_m[table]", "K[figures]", "N[text]"}
-    # chance: the same 41 in a place both variants show (a step number), H where B shows it and not its own
+        "H_m[demo]", "K[figures]", "N[text]", "x_mm[table]"}, leaks
+    # chance: the same 41 and the same rounded H in places both variants show (a step number, an example)
     assert find_leaks(va, vb, {"figures": {41.0}, "demo": {11900.0}}, {"figures": {41.0}, "demo": {11900.0}}) == []
     # off by more than the tolerance: not a leak
-    assert find_leaks(va, vb, {"demo": {11980.0, 2705.0}}, {"demo": set()}) == []
+    assert find_leaks(va, vb, {"demo": {11980.0, 2705.0, 163.2}}, {"demo": set()}) == []
 
 
 # --------------------------------------------------------------------------------------------------

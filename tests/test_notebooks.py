@@ -12,11 +12,12 @@ import nbformat
 import pytest
 from nbclient import NotebookClient
 
-from conftest import all_notebooks
+from conftest import all_notebooks, lecture_pages
 
 NOTEBOOKS = all_notebooks()
-IDS = [p.relative_to(p.parents[1] if p.parent.name == "lectures" else p.parent).with_suffix("").as_posix()
-       for p in NOTEBOOKS]  # a lecture page: "lectures/01_flight_planning"
+IDS = [p.stem for p in NOTEBOOKS]
+STORED = NOTEBOOKS + lecture_pages()  # the lecture pages are executed by tests/browser/test_lectures.py
+STORED_IDS = IDS + [f"lectures/{p.stem}" for p in lecture_pages()]
 
 
 def test_there_are_notebooks():
@@ -24,14 +25,14 @@ def test_there_are_notebooks():
     assert "00_start_here" in names
 
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+@pytest.mark.parametrize("path", STORED, ids=STORED_IDS)
 def test_notebook_is_stored_without_outputs(path):
     nb = json.loads(path.read_text(encoding="utf-8"))
     dirty = [c.get("id") for c in nb["cells"] if c["cell_type"] == "code" and (c.get("outputs") or c.get("execution_count"))]
     assert not dirty, f"{path.name}: cells with outputs {dirty}; clear outputs before committing"
 
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=IDS)
+@pytest.mark.parametrize("path", STORED, ids=STORED_IDS)
 def test_notebook_cells_have_stable_ids(path):
     nb = nbformat.read(str(path), as_version=4)
     ids = [c.get("id") for c in nb.cells]

@@ -277,8 +277,8 @@ def test_every_pixel_shows_the_first_surface_on_its_ray(hilly):
     crowned = np.unique(i[~poly][np.isfinite(hit_ellipsoids(objs.ell_centre[e], objs.ell_radii[e], S_e,
                                                             [0.0, 0.0, -1.0])[0])])
     rest = np.setdiff1d(np.arange(under.sum()), crowned)
-    edge = np.zeros(len(rest), bool)  # … or the ray meets a forest column's wall at its very foot
-    for dx, dy in ((0.05, 0), (-0.05, 0), (0, 0.05), (0, -0.05)):
+    edge = np.zeros(len(rest), bool)  # … or the ray meets a forest column's wall at its very foot (the march
+    for dx, dy in ((0.3, 0), (-0.3, 0), (0, 0.3), (0, -0.3)):  # places wall hits to step/2⁵ ≈ 0.2 m)
         edge |= hilly.objects.canopy_at(Gu[rest, 0] + dx, Gu[rest, 1] + dy) == 0
     assert edge.all()
     # the canopy: mostly its tops (walls at the forest's edges are below the top of their column)

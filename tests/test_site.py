@@ -292,3 +292,113 @@ def test_plot_uses_the_guides_symbols(small):
     assert np.allclose(art["points"]["control"].get_xdata(), ctrl["X_m"])
     assert len(art["points"]["labels"]) == len(ctrl)
     assert art["image"].get_array().shape[1] <= 2000
+
+
+# --------------------------------------------------------------------------- objects with height
+#: the default site's objects as first built (issue 13); change together with the objects step
+DEFAULT_OBJECTS_SHA = {"planes": "1629b3e9f5eeb3fc", "crowns": "23090b169676c968", "canopy": "86b3c5c72ac0ef6a",
+                       "points": "28c421c70431d015"}
+
+
+def _objects_sha(o) -> dict:
+    return {"planes": _sha(o.planes), "crowns": _sha(np.c_[o.ell_centre, o.ell_radii]), "canopy": _sha(o.canopy_dm),
+            "points": hashlib.sha256(o.points.to_csv(float_format="%.12g").encode()).hexdigest()[:16]}
+
+
+def test_objects_are_deterministic_and_leave_the_ground_alone(small, default):
+    again = S.build_site(SMALL)
+    assert _objects_sha(again.objects) == _objects_sha(small.objects)
+    # the painting steps drew exactly what they drew before objects existed (pinned above for the default site)
+    assert np.array_equal(again.texture, small.texture) and again.catalogue.equals(small.catalogue)
+    o = default.objects
+    kinds = o.table()["kind"].value_counts()
+    assert kinds["house"] == len(default.features["buildings"])  # a box on every painted roof
+    assert kinds["tree"] == len(default.features["trees"])  # a crown on every single tree
+    for k in ("chimney", "mast", "water tower", "bridge", "embankment", "garden tree"):
+        assert kinds[k] >= 1, k
+    h = o.table().groupby("kind")["height_m"]
+    assert h.min()["house"] > 2.5 and h.max()["house"] < 9.0
+    assert 10.0 <= h.min()["tree"] and h.max()["tree"] <= 20.0
+    assert h.max()["mast"] == pytest.approx(64.0) and h.max()["chimney"] == pytest.approx(42.0)
+    assert 3.0 < h.max()["embankment"] < 6.0
+    assert 0.08 < np.mean(o.canopy_dm > 0) < 0.2 and 14.0 * 0.78 <= o.canopy_max_m <= 24.0
+    # the canopy stands exactly on the forest land cover
+    assert np.array_equal(o.canopy_dm > 0, default.cover == S.COVER_CODES["forest"])
+    assert _objects_sha(o) == DEFAULT_OBJECTS_SHA
+
+
+def test_surface_height_is_the_top_of_everything(default):
+    o = default.objects
+    rng = np.random.default_rng(2)
+    X, Y = rng.uniform(0, 10000, 20000), rng.uniform(0, 5000, 20000)
+    Z, Zs = default.height(X, Y), default.surface_height(X, Y)
+    assert np.all(Zs >= Z) and Zs.shape == X.shape
+    bare = Zs == Z
+    assert bare.mean() > 0.8  # most of the site is open ground
+    # the forest: ground + canopy of the texel
+    f = o.canopy_at(X, Y) > 0
+    k, i = o.candidates_at(X, Y)
+    free = f & ~np.isin(np.arange(len(X)), i)
+    assert np.allclose(Zs[free], Z[free] + o.canopy_at(X[free], Y[free]))
+    # the tops: each object point lies on the surface, nothing above it (a tree top is its crown's apex)
+    pts = default.object_points
+    P = pts[["X_m", "Y_m", "Z_m"]].to_numpy()
+    top = pts["kind"].isin(["tree top", "chimney top", "mast top", "tower top", "ridge end"]).to_numpy()
+    # (a ridge end sits on the gable wall's edge: look 1 cm inside, towards the house's centre)
+    c = o.centre_m[pts["object"].to_numpy()]
+    d = c - P[:, :2]
+    n = np.hypot(*d.T)
+    Q = P[:, :2] + np.where(n[:, None] > 0.01, d / np.maximum(n, 1e-9)[:, None] * 0.01, 0.0)
+    assert np.allclose(default.surface_height(Q[top, 0], Q[top, 1]), P[top, 2], atol=0.01)
+    # a flat roof's inside is at its eaves; the ground beside a house is bare
+    assert default.surface_z_max_m == pytest.approx(o.z_max_m)
+    fc = default.catalogue[default.catalogue["kind"] == "field corner"][["X_m", "Y_m"]].to_numpy()
+    assert np.array_equal(default.height(fc[:, 0], fc[:, 1]), default.surface_height(fc[:, 0], fc[:, 1]))
+
+
+def test_object_points_are_appended_after_the_catalogue(default):
+    cat, obj, allp = default.catalogue, default.object_points, default.all_points
+    assert list(obj.columns) == ["id", "kind", "X_m", "Y_m", "Z_m", "control", "object", "ground_Z_m", "height_m"]
+    assert obj["id"].min() == cat["id"].max() + 1 and obj["id"].is_unique and not obj["control"].any()
+    assert list(dict.fromkeys(obj["kind"])) == [k for k in S.POINT_KINDS if k in set(obj["kind"])]
+    assert np.allclose(obj["ground_Z_m"], default.height(obj["X_m"], obj["Y_m"]))
+    assert np.allclose(obj["height_m"], obj["Z_m"] - obj["ground_Z_m"]) and (obj["height_m"] > 2.5).all()
+    counts = obj["kind"].value_counts()
+    assert counts["roof corner"] == 4 * len(default.features["buildings"])
+    assert counts["tree top"] == len(default.features["trees"]) and counts["mast top"] == 1
+    # every roof corner is a corner of its painted roof, raised to the eaves
+    roofs = default.features["buildings"].reshape(-1, 2)
+    rc = obj[obj["kind"] == "roof corner"][["X_m", "Y_m"]].to_numpy()
+    assert max(np.min(np.hypot(*(roofs - p).T)) for p in rc) < 1e-6
+    # all points: the catalogue's rows unchanged and first, the object points after them
+    assert allp.iloc[:len(cat)][list(cat.columns)].equals(cat)
+    assert (allp.iloc[:len(cat)]["object"] == -1).all() and (allp.iloc[:len(cat)]["height_m"] == 0).all()
+    assert list(allp["id"]) == list(cat["id"]) + list(obj["id"])
+
+
+def test_objects_step_by_hand(small):
+    from aerophoto.site import build as B
+    from aerophoto.site.objects import build_objects
+
+    b = B.Builder(SMALL)
+    river = B.river_line(b)
+    dem = B.relief(b, river)
+    systems = B.fields(b, river)
+    B.soil_noise(b)
+    roads, corners, belts = B.field_network(b, river, systems)
+    forest_tex = B.shelter_belts(b, belts)
+    village_c = B.highways(b, river, roads)
+    band = B.floodplain(b, river)
+    B.forest(b, band, village_c, forest_tex)
+    B.river_water(b, band)
+    B.oxbow_lake(b, river, roads)
+    B.paint_roads(b, roads)
+    houses = B.village(b, river, village_c, roads)
+    trees = B.isolated_trees(b)
+    # the painting steps leave what the objects need on the builder
+    assert b.houses[0] is houses[0] and len(b.house_roof_tone) == len(houses[0])
+    assert np.array_equal(b.tree_crowns[0], trees) and len(b.garden_crowns[1]) == len(b.garden_crowns[0])
+    tex = B.texture(b, dem)
+    o = build_objects(b, dem, river, roads, village_c, tex, b.cv.cover, first_id=1000)
+    assert _objects_sha(o) == {**_objects_sha(small.objects), "points": _objects_sha(o)["points"]}
+    assert o.points["id"].min() == 1000

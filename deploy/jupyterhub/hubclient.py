@@ -67,14 +67,18 @@ class HubUser:
         return bool(s and s.get("ready"))
 
     def start_server(self, timeout: float = 180) -> float:
-        """Start (or find running) this user's server; returns the seconds until it answered."""
+        """Start (or find running) this user's server; returns the seconds until it answered.
+
+        A server that is being stopped (e.g. by the idle culler) is waited for and started again."""
         t0 = time.perf_counter()
-        if not self.server_ready():
-            self.request_server()
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
-            if self.server_ready():
+            u = self.hub("GET", f"/users/{self.name}")
+            s = u.get("servers", {}).get("")
+            if s and s.get("ready"):
                 return time.perf_counter() - t0
+            if not s and not u.get("pending"):
+                self.request_server()
             time.sleep(0.2)
         raise HubUserError(f"{self.name}'s server did not start within {timeout} s")
 

@@ -32,6 +32,7 @@
 #   AEROPHOTO_HUB_CULL_TIMEOUT [3600] s idle before a server is stopped;  AEROPHOTO_HUB_CULL_EVERY [300] s
 #   AEROPHOTO_HUB_KERNEL_CULL [1200] s idle before a kernel is shut down (its tab closed)
 #   AEROPHOTO_HUB_ACTIVITY_INTERVAL [300] s between the servers' activity reports to the hub
+#   AEROPHOTO_HUB_START_TIMEOUT [120] s a server may take to start
 #   AEROPHOTO_HUB_ADMIN_TOKEN  optional: an API token for a "course-admin" service (user list, servers)
 #   AEROPHOTO_HUB_SINGLEUSER_ARGS  optional extra arguments for every user's server (tests)
 
@@ -162,12 +163,14 @@ c.JupyterHub.spawner_class = "aerophoto_hub.AerophotoSpawner"
 c.AerophotoSpawner.state_dir = str(STATE)
 c.AerophotoSpawner.homes_dir = str(HOMES)
 c.AerophotoSpawner.exchange_dir = str(EXCHANGE)
+UID_BASE = 30000  # the users' uids: 30000, 30001, … in the order they are first seen (<state>/users.json)
+c.AerophotoSpawner.uid_base = UID_BASE
 c.Spawner.cmd = [str(Path(sys.executable).parent / "jupyterhub-singleuser")]
 c.Spawner.default_url = "/lab"
 c.Spawner.mem_limit = env("STUDENT_MEM", "3G")
 c.AerophotoSpawner.instructor_mem_limit = env("INSTRUCTOR_MEM", "4G")
-c.Spawner.start_timeout = 120
-c.Spawner.http_timeout = 120
+c.Spawner.start_timeout = int(env("START_TIMEOUT", "120"))  # a class logging in at once on a small machine
+c.Spawner.http_timeout = int(env("START_TIMEOUT", "120"))
 c.Spawner.environment = {"JUPYTERHUB_ACTIVITY_INTERVAL": env("ACTIVITY_INTERVAL", "300")}
 kernel_cull = int(env("KERNEL_CULL", "1200"))
 c.Spawner.args = [
@@ -201,7 +204,7 @@ c.Spawner.pre_spawn_hook = pre_spawn
 
 # every user known now gets a uid, and the exchange its course folder owned by the (first) instructor
 if auth != "pam":
-    table = UidTable(STATE, 30000)
+    table = UidTable(STATE, UID_BASE)
     for name in INSTRUCTORS + STUDENTS:
         table.uid(name)
     table.write_etc()

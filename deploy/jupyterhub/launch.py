@@ -135,6 +135,8 @@ class Hub:
         need = missing()
         if need:
             raise HubError("the course hub cannot start here; missing: " + "; ".join(need))
+        self.state.mkdir(parents=True, exist_ok=True)
+        self.log_path.parent.mkdir(parents=True, exist_ok=True)
         self._log = open(self.log_path, "ab")
         self.t_start = time.perf_counter()
         self.proc = subprocess.Popen([sys.executable, "-m", "jupyterhub", "-f", str(CONFIG)], cwd=self.state,

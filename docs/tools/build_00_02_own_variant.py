@@ -26,12 +26,8 @@ NB = ROOT / "notebooks"
 
 
 def reference_solution(nb, task_id: str) -> None:
-    """The answer cell's template lines, then the solution block in the reference form of the brief."""
-    task = tasks.get(task_id)
-    lines = [task.template(), "### BEGIN SOLUTION", f'_ref = aerophoto.tasks.answers("{task_id}", v)']
-    lines += [f'{name} = _ref["{name}"]' for name in task.names]
-    lines.append("### END SOLUTION")
-    nbtools.set_cell(nb, f"{task_id}-answer", "\n".join(lines))
+    """The answer cell's template lines only (the notebooks are the student book; the teacher's copy is generated)."""
+    nbtools.set_cell(nb, f"{task_id}-answer", tasks.get(task_id).template())
 
 
 def set_or_insert(nb, after_id: str, cell) -> None:

@@ -6,12 +6,10 @@ Cells are identified by id; the notebook is written without outputs.  The graded
 strip (aerophoto.tasks.ch06); the live demo opens on the guide's worked example, variant 00.
 """
 
-import sys
 from pathlib import Path
 
 from aerophoto.nbtools import code, md, notebook, write
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
 from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -217,21 +217,22 @@ import pandas as pd
 
 lab = tasks.ch07.example_lab()
 b1, b2 = lab.photo_bases_mm()
-P = site.catalogue[site.catalogue["control"]][["X_m", "Y_m", "Z_m"]].to_numpy()
 from aerophoto import geometry as g
+
+P = site.catalogue[["X_m", "Y_m", "Z_m"]].to_numpy()  # the site's surveyed points seen on both photos
 xy1 = g.ground_to_photo(lab.camera, lab.left.pose, P)
 xy2 = g.ground_to_photo(lab.camera, lab.right.pose, P)
-seen = np.all(np.abs(xy1) < 85, axis=1) & np.all(np.abs(xy2) < 85, axis=1)
+seen = np.all(np.abs(xy1) < 88, axis=1) & np.all(np.abs(xy2) < 88, axis=1)
 n1, n2 = lab.normal_xy(P[seen])
 pd.DataFrame({"value": [lab.camera.f_mm, lab.m, lab.B_m, b1, b2, lab.left.pose.alpha_deg, lab.right.pose.alpha_deg,
-                        np.abs(xy1[seen, 1] - xy2[seen, 1]).max(), np.abs(n1[:, 1] - n2[:, 1]).max()]},
+                        seen.sum(), np.abs(xy1[seen, 1] - xy2[seen, 1]).max(), np.abs(n1[:, 1] - n2[:, 1]).max()]},
              index=["f, mm", "m (1:m)", "air base B, m", "photo base b₁, mm", "photo base b₂, mm", "tilt α₁, °",
-                    "tilt α₂, °", "largest y-parallax of the control points, original photos, mm",
+                    "tilt α₂, °", "points seen on both photos", "largest y-parallax, original photos, mm",
                     "… on the normalised photos, mm"]).round(4)
 """, id="example-pair"),
     md("""
-The photos, tilted by a few tenths of a degree, show y-parallaxes of several tenths of a millimetre; after
-normalisation none is left (to rounding). The anaglyph above was made from the normalised photos. The same piece of
+The photos, tilted by about half a degree and turned by a degree of crab, show y-parallaxes up to about a
+millimetre — too much to fuse comfortably; after normalisation none is left (to rounding). The anaglyph above was made from the normalised photos. The same piece of
 the overlap, direct and reversed:
 """, id="example-anaglyph-theory"),
     code("""

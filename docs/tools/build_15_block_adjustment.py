@@ -1,12 +1,11 @@
 """Write notebooks/15_block_adjustment.ipynb (chapter 15, article 002) — safe to re-run.
 
-    python docs/tools/build_15_block_adjustment.py [--no-solutions]
+    python docs/tools/build_15_block_adjustment.py
 
 The notebook is rebuilt from the cells below; cells are identified by their ids, so the file a re-run
 writes is the same as the one before (outputs are never stored).
 """
 
-import sys
 from pathlib import Path
 
 from aerophoto import tasks
@@ -16,27 +15,7 @@ ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "notebooks" / "15_block_adjustment.ipynb"
 
 
-#: write the solution blocks (the brief's "for now"); ``--no-solutions`` writes the template lines only, as
-#: ``aerophoto-course strip-solutions`` leaves them (the repository's notebooks carry no solutions)
-SOLUTIONS = "--no-solutions" not in sys.argv
-
-
-def answer_cell(task_id: str):
-    """The answer cell: the task's template lines, then (with SOLUTIONS) the reference solution."""
-    t = tasks.get(task_id)
-    lines = [t.template()]
-    if SOLUTIONS:
-        lines += ["### BEGIN SOLUTION", f'_ref = aerophoto.tasks.answers("{task_id}", v)']
-        lines += [f'{n} = _ref["{n}"]' for n in t.names]
-        lines.append("### END SOLUTION")
-    return nbgrader_answer(code("\n".join(lines), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
+from lab_cells import answer_cell, check_cell  # noqa: E402  (docs/tools/lab_cells.py: the shared task cells)
 
 
 CELLS = [
@@ -266,10 +245,10 @@ print(f"the example block: {ex.meas.n_unknowns} unknowns (> 1000: too big for th
       f"adjusted here in {t_adj * 1000:.0f} ms ({again.n_iterations} iterations from the final values)")
 """, id="cost-today"),
     md(r"""
-`benchmarks/bench_bundle.py` measures the adjustment of blocks of 20, 100 and 400 photos (up to about
-11 000 unknowns) on this 2-core machine: the time grows from a few hundredths of a second to several
-seconds, the memory to a few hundred MB — the reduced system of 400 photos alone is a 2400 × 2400 matrix,
-46 MB, two hundred times the 1986 computer's whole memory.
+`benchmarks/bench_bundle.py` measures the adjustment of blocks of 20, 100 and 400 photos (up to 9500
+unknowns) on a 2-core machine: the time grows from about 0.05 s to a few seconds, the memory to about
+150 MB — the reduced system of 400 photos alone is a 2400 × 2400 matrix, 46 MB, two hundred times the
+1986 computer's whole memory.
 
 ## Task 15.1 — how big is your block? (graded)
 

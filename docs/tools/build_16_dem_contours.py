@@ -1,43 +1,22 @@
 """Write notebooks/16_dem_contours.ipynb (chapter 16, article 000) — safe to re-run.
 
-    python docs/tools/build_16_dem_contours.py                  # with the solution blocks (for now)
-    python docs/tools/build_16_dem_contours.py --no-solutions   # template lines only (as strip-solutions leaves them)
+    python docs/tools/build_16_dem_contours.py
+
+The notebook is the student book: answer cells hold the task's template lines only (docs/CONTRIBUTING.md,
+"Graded tasks"); `aerophoto-course generate` adds the reference solution for nbgrader's source.
 
 The notebook is rebuilt from the cells below; cells are identified by their ids, so the file a re-run
 writes is the same as the one before (outputs are never stored).
 """
 
-import sys
 from pathlib import Path
 
-from aerophoto import tasks
-from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
+from aerophoto.nbtools import code, md, notebook, write
+
+from lab_cells import answer_cell, check_cell  # noqa: E402  (the house's answer and check cells)
 
 ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "notebooks" / "16_dem_contours.ipynb"
-
-
-#: write the solution blocks (the brief's "for now"); ``--no-solutions`` writes the template lines only, as
-#: ``aerophoto-course strip-solutions`` leaves them
-SOLUTIONS = "--no-solutions" not in sys.argv
-
-
-def answer_cell(task_id: str):
-    """The answer cell: the task's template lines, then (with SOLUTIONS) the reference solution."""
-    t = tasks.get(task_id)
-    lines = [t.template()]
-    if SOLUTIONS:
-        lines += ["### BEGIN SOLUTION", f'_ref = aerophoto.tasks.answers("{task_id}", v)']
-        lines += [f'{n} = _ref["{n}"]' for n in t.names]
-        lines.append("### END SOLUTION")
-    return nbgrader_answer(code("\n".join(lines), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
 
 
 CELLS = [

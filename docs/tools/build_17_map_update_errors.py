@@ -1,40 +1,19 @@
 """Write notebooks/17_map_update_errors.ipynb (chapter 17, article 003) — safe to re-run.
 
-    python docs/tools/build_17_map_update_errors.py                  # with the solution blocks (for now)
-    python docs/tools/build_17_map_update_errors.py --no-solutions   # template lines only (as strip-solutions leaves them)
+    python docs/tools/build_17_map_update_errors.py
+
+The notebook is the student book: answer cells hold the task's template lines only (docs/CONTRIBUTING.md,
+"Graded tasks"); `aerophoto-course generate` adds the reference solution for nbgrader's source.
 """
 
-import sys
 from pathlib import Path
 
-from aerophoto import tasks
-from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
+from aerophoto.nbtools import code, md, notebook, write
+
+from lab_cells import answer_cell, check_cell  # noqa: E402  (the house's answer and check cells)
 
 ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "notebooks" / "17_map_update_errors.ipynb"
-
-
-#: write the solution blocks (the brief's "for now"); ``--no-solutions`` writes the template lines only, as
-#: ``aerophoto-course strip-solutions`` leaves them
-SOLUTIONS = "--no-solutions" not in sys.argv
-
-
-def answer_cell(task_id: str):
-    """The answer cell: the task's template lines, then (with SOLUTIONS) the reference solution."""
-    t = tasks.get(task_id)
-    lines = [t.template()]
-    if SOLUTIONS:
-        lines += ["### BEGIN SOLUTION", f'_ref = aerophoto.tasks.answers("{task_id}", v)']
-        lines += [f'{n} = _ref["{n}"]' for n in t.names]
-        lines.append("### END SOLUTION")
-    return nbgrader_answer(code("\n".join(lines), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
 
 
 CELLS = [
@@ -198,7 +177,7 @@ time by what the work can actually do — a DEM good to 0.5 m, the transfer betw
 instruction's 40 µm on the photo — and adds the two errors the article named last but left out:
 """, id="scenarios-theory"),
     code("""
-budget.scenarios(10_000, 16, 2000).round(3)
+budget.scenarios(10_000, 16, 2000).round(2)
 """, id="scenarios"),
     code("""
 plots.static(budget_figure(budget.budget(10_000, 16, 2000)),

@@ -428,7 +428,7 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
 
 REQUIRED = {  # distribution: (minimum major.minor, why)
     "numpy": ((2, 0), "computing"),
-    "matplotlib": ((3, 9), "figures"),
+    "matplotlib": ((3, 8), "figures"),   # 3.8: the browser book (JupyterLite, Pyodide 0.27) has 3.8.4
     "ipywidgets": ((8, 1), "sliders"),
     "ipympl": ((0, 9), "live figures"),
     "pandas": ((2, 2), "tables"),

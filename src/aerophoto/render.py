@@ -92,13 +92,12 @@ import pandas as pd
 
 from . import geometry as g
 from ._validate import check_int_range, check_range
+from .site.raycast import AMBIENT, box_pixel_pairs, box_point_pairs, first_hits, in_shadow, light_factor
 
 __all__ = ["Photo", "Sun", "Hits", "render", "render_shot", "render_strip", "trace", "AMBIENT"]
 
 COARSE_STEP = 8
 MAX_PX = 4096
-#: brightness of a face turned away from the sun or in shadow, as a share of level ground in full sun
-AMBIENT = 0.35
 
 
 @dataclass(frozen=True)
@@ -549,14 +548,10 @@ def render(
     objs = getattr(site, "objects", None) if objects else None
     hits = None
     if objs is not None:
-        D = np.empty((n * n, 3))
-        D[:, 0] = -ax
-        D[:, 1] = -ay
-        D[:, 2] = -1.0
-        k, pix = _box_pixel_pairs(objs.bbox, camera, pose, n)
-        hits = _first_hits(site, objs, pose.centre, D, Sz - Z, k, pix)
-        moved = hits.surface > 0
-        u = hits.u[moved]
+        k, pix = box_pixel_pairs(objs.bbox, camera, pose, n)
+        hits = first_hits(site, objs, pose.centre, ax, ay, Sz - Z, k, pix, Xg, Yg)
+        moved = hits.idx
+        u = hits.u
         Xg[moved] = Sx - ax[moved] * u
         Yg[moved] = Sy - ay[moved] * u
         Z = Z.copy()
@@ -574,17 +569,21 @@ def render(
     shadow = None
     if hits is not None:
         light = (sun or TEXTURE_LIGHT).direction
-        on = hits.surface > 0
-        lit = np.ones(n * n, np.float32)
-        lit[on] = _shading(hits.normal[on], light)
-        own = on & np.isfinite(hits.albedo)  # faces with a brightness of their own (not the texture)
-        img[own] = hits.albedo[own]
+        on = hits.idx
+        lit = light_factor(hits.normal, light)
+        own = np.isfinite(hits.albedo)  # faces with a brightness of their own (not the texture)
+        img[on[own]] = hits.albedo[own]
+        img[on] *= lit
         if sun is not None:
-            P = np.column_stack([Xg, Yg, Z])
-            shadow = _in_shadow(objs, site, P, hits.object_id, light, camera, pose, n)
-            lit[shadow] = np.minimum(lit[shadow], np.float32(AMBIENT))
+            shadow = in_shadow(objs, site, Xg, Yg, Z, hits.object_id, light, camera, pose, n)
+            sh = np.flatnonzero(shadow)
+            f = np.ones(len(sh), np.float32)
+            pos = np.searchsorted(on, sh)  # pixels of objects in shadow: down to the ambient light
+            is_on = (pos < len(on)) & (on[np.minimum(pos, len(on) - 1)] == sh)
+            f[is_on] = np.float32(AMBIENT) / np.maximum(lit[pos[is_on]], np.float32(AMBIENT))
+            f[~is_on] = np.float32(AMBIENT)
+            img[sh] *= f
             shadow = shadow.reshape(n, n)
-        img *= lit
     img = img.reshape(n, n)
     valid = valid.reshape(n, n)
     if v > 0:
@@ -606,214 +605,6 @@ def render(
                  fiducials=bool(fiducials), dem_residual_m=residual, ground_m=ground, number=number,
                  dem_evaluations=n_eval[0], surface=surface, object_id=object_id, shadow=shadow,
                  objects=hits is not None, sun=sun)
-
-
-# --------------------------------------------------------------------------- objects with height
-@dataclass(frozen=True, eq=False)
-class _RayHits:
-    u: np.ndarray  # depth below S along each ray (Z = Z_S − u)
-    surface: np.ndarray  # SURFACES code
-    object_id: np.ndarray  # −1 for ground and canopy
-    normal: np.ndarray  # (N, 3), up for the ground
-    albedo: np.ndarray  # a face's own brightness, NaN where the texture shows (ground, canopy, textured faces)
-
-
-def _shading(normal, light) -> np.ndarray:
-    from .site.objects import shading
-
-    return np.minimum(shading(normal, light, AMBIENT), np.float32(1.6))
-
-
-def _project_boxes(boxes, camera, pose) -> np.ndarray:
-    """Photo-mm rectangles (x0, x1, y0, y1) of 3-D boxes (X0, X1, Y0, Y1, Z0, Z1); NaN for boxes behind S."""
-    b = np.asarray(boxes, float)
-    corners = np.stack([np.stack([b[:, i], b[:, j], b[:, k]], axis=1)
-                        for i in (0, 1) for j in (2, 3) for k in (4, 5)], axis=1)  # (K, 8, 3)
-    R = g.rotation_matrix(pose)
-    front = np.all((corners - pose.centre) @ R[:, 2] < 0, axis=1)
-    out = np.full((len(b), 4), np.nan)
-    if front.any():
-        xy = g.ground_to_photo(camera, pose, corners[front])
-        out[front] = np.column_stack([xy[..., 0].min(1), xy[..., 0].max(1), xy[..., 1].min(1), xy[..., 1].max(1)])
-    return out
-
-
-def _box_pixel_pairs(boxes, camera, pose, n) -> tuple:
-    """(box, pixel) pairs: the pixel centres of an n×n photo inside each box's projected rectangle."""
-    rect = _project_boxes(boxes, camera, pose)
-    h, p = camera.half_mm, camera.frame_mm / n
-    ok = np.all(np.isfinite(rect), axis=1)
-    c0 = np.ceil((rect[:, 0] + h) / p - 0.5)
-    c1 = np.floor((rect[:, 1] + h) / p - 0.5)
-    r0 = np.ceil((h - rect[:, 3]) / p - 0.5)
-    r1 = np.floor((h - rect[:, 2]) / p - 0.5)
-    c0, r0 = np.clip(np.nan_to_num(c0, nan=n), 0, n), np.clip(np.nan_to_num(r0, nan=n), 0, n)
-    c1, r1 = np.clip(np.nan_to_num(c1, nan=-1), -1, n - 1), np.clip(np.nan_to_num(r1, nan=-1), -1, n - 1)
-    nc = np.where(ok, c1 - c0 + 1, 0).clip(0).astype(np.int64)
-    nr = np.where(ok, r1 - r0 + 1, 0).clip(0).astype(np.int64)
-    cnt = nr * nc
-    k = np.repeat(np.arange(len(rect)), cnt)
-    local = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
-    ncr = np.repeat(nc, cnt)
-    rows = np.repeat(r0.astype(np.int64), cnt) + local // np.maximum(ncr, 1)
-    cols = np.repeat(c0.astype(np.int64), cnt) + local % np.maximum(ncr, 1)
-    return k, rows * n + cols
-
-
-def _box_point_pairs(boxes, camera, pose, xy_mm) -> tuple:
-    """(box, point) pairs: the photo points inside each box's projected rectangle."""
-    rect = _project_boxes(boxes, camera, pose)
-    xy = np.asarray(xy_mm, float).reshape(-1, 2)
-    ks, ps = [], []
-    step = max(1, int(4e6 // max(len(rect), 1)))
-    for a in range(0, len(xy), step):
-        q = xy[a:a + step]
-        inside = ((q[:, None, 0] >= rect[None, :, 0]) & (q[:, None, 0] <= rect[None, :, 1])
-                  & (q[:, None, 1] >= rect[None, :, 2]) & (q[:, None, 1] <= rect[None, :, 3]))
-        pi, ki = np.nonzero(inside)
-        ks.append(ki)
-        ps.append(pi + a)
-    return (np.concatenate(ks) if ks else np.zeros(0, np.int64)), (np.concatenate(ps) if ps else np.zeros(0, np.int64))
-
-
-def _first_hits(site, objs, S, D, u_ground, k, ray) -> _RayHits:
-    """The nearest of the ground (depth ``u_ground``), the objects (pairs ``k``–``ray``) and the canopy, per ray."""
-    from .site.objects import hit_ellipsoids, hit_polyhedra, march_canopy
-
-    N = len(u_ground)
-    u = np.asarray(u_ground, float).copy()
-    surface = np.zeros(N, np.uint8)
-    obj = np.full(N, -1, np.int64)
-    normal = np.zeros((N, 3))
-    normal[:, 2] = 1.0
-    albedo = np.full(N, np.nan, np.float32)
-    n_poly = objs.n_polyhedra
-    poly = k < n_poly
-    cand = []
-    if poly.any():
-        kp, rp = k[poly], ray[poly]
-        uu, pl = hit_polyhedra(objs.planes, kp, S, D[rp])
-        ok = uu < u[rp]
-        cand.append((rp[ok], uu[ok], kp[ok], pl[ok], np.zeros((int(ok.sum()), 3))))
-    if (~poly).any():
-        ke, re = k[~poly], ray[~poly]
-        e = ke - n_poly
-        uu, nrm = hit_ellipsoids(objs.ell_centre[e], objs.ell_radii[e], S, D[re])
-        ok = uu < u[re]
-        cand.append((re[ok], uu[ok], ke[ok], np.full(int(ok.sum()), -1), nrm[ok]))
-    if cand:
-        r_ = np.concatenate([c[0] for c in cand])
-        u_ = np.concatenate([c[1] for c in cand])
-        k_ = np.concatenate([c[2] for c in cand])
-        p_ = np.concatenate([c[3] for c in cand])
-        n_ = np.concatenate([c[4] for c in cand])
-        order = np.lexsort((u_, r_))
-        r_, u_, k_, p_, n_ = r_[order], u_[order], k_[order], p_[order], n_[order]
-        first = np.ones(len(r_), bool)
-        first[1:] = r_[1:] != r_[:-1]
-        r_, u_, k_, p_, n_ = r_[first], u_[first], k_[first], p_[first], n_[first]
-        u[r_] = u_
-        obj[r_] = k_
-        isp = p_ >= 0
-        rp, kp, pp = r_[isp], k_[isp], p_[isp]
-        normal[rp] = objs.planes[kp, pp, :3]
-        surface[rp] = objs.face[kp, pp]
-        top = objs.planes[kp, pp, 2] > 0.5
-        alb = np.where(top, objs.albedo[kp, 0], objs.albedo[kp, 1])
-        albedo[rp] = np.where(objs.textured[kp, pp], np.nan, alb)
-        re = r_[~isp]
-        normal[re] = n_[~isp]
-        surface[re] = 3
-        albedo[re] = objs.ell_albedo[k_[~isp] - n_poly]
-    if objs.canopy_dm.size and objs.canopy_max_m > 0:
-        _canopy_hits(site, objs, S, D, u, surface, obj, normal, albedo, u_ground, march_canopy)
-    return _RayHits(u, surface, obj, normal, albedo)
-
-
-def _canopy_hits(site, objs, S, D, u, surface, obj, normal, albedo, u_ground, march) -> None:
-    """Cut the rays that pass over the forest with the canopy (in place).  ``D`` has D_z = −1 (u is a depth)."""
-    top = objs.canopy_max_m + 1.0
-    S = np.asarray(S, float)
-    ug = np.asarray(u_ground)
-    # the ray's piece from ``top`` above its ground hit down to it is top·tg θ long horizontally: look for forest
-    # that near its ground hit (rays grouped by that reach, in whole 8 m cells)
-    Gx = S[0] + ug * D[:, 0]
-    Gy = S[1] + ug * D[:, 1]
-    tg = np.sqrt(np.max(D[:, 0] ** 2 + D[:, 1] ** 2, initial=0.0))
-    cand = np.flatnonzero(objs.near_canopy(Gx, Gy, reach_m=top * tg + 2.0))
-    if not len(cand):
-        return
-    cells = np.ceil((top * np.hypot(D[cand, 0], D[cand, 1]) + 2.0) / 8.0).astype(np.int64)
-    near = np.zeros(len(cand), bool)
-    for c in np.unique(cells):
-        sel = np.flatnonzero(cells == c)
-        near[sel] = objs.near_canopy(Gx[cand[sel]], Gy[cand[sel]], reach_m=8.0 * c)
-    cand = cand[near]
-    if not len(cand):
-        return
-    G = np.column_stack([Gx[cand], Gy[cand], S[2] - ug[cand]])
-    T = G - top * D[cand]  # where the ray is ``top`` above its ground hit
-    zT = site.height(T[:, 0], T[:, 1])  # the ground may rise under the ray's upper part
-    z_start = np.maximum(G[:, 2], zT) + top
-    u0 = np.maximum(S[2] - z_start, 0.0)
-    # the ground along the short piece of ray: linear from the point under its start to its ground hit
-    P0 = S + u0[:, None] * D[cand]
-    z0 = site.height(P0[:, 0], P0[:, 1])
-    uc = march(objs, (z0, G[:, 2]), S, D[cand], u0, ug[cand])
-    hit = uc < u[cand]
-    if not hit.any():
-        return
-    idx = cand[hit]
-    u[idx] = uc[hit]
-    surface[idx] = 4
-    obj[idx] = -1
-    albedo[idx] = np.nan
-    P = S + u[idx, None] * D[idx]
-    d = objs.texel_m  # the canopy's normal from its slope over ± one texel (the gentle ground's slope left out)
-    c = objs.canopy_at
-    gx = (c(P[:, 0] + d, P[:, 1]) - c(P[:, 0] - d, P[:, 1])) / (2 * d)
-    gy = (c(P[:, 0], P[:, 1] + d) - c(P[:, 0], P[:, 1] - d)) / (2 * d)
-    nrm = np.column_stack([-gx, -gy, np.ones(len(idx))])
-    normal[idx] = nrm / np.linalg.norm(nrm, axis=1, keepdims=True)
-
-
-def _in_shadow(objs, site, P, obj, light, camera, pose, n) -> np.ndarray:
-    """Which pixels' points P (N, 3) lie in the shadow of an object or of the canopy (the sun along ``light``)."""
-    from .site.objects import hit_ellipsoids, hit_polyhedra, march_canopy
-
-    N = len(P)
-    out = np.zeros(N, bool)
-    L = np.asarray(light, float)
-    # shadow volumes: each object's box swept away from the sun down to 5 m below its lowest ground
-    b = objs.bbox
-    drop = (b[:, 5] - (b[:, 4] - 5.0)) / L[2]
-    sx, sy = -L[0] * drop, -L[1] * drop
-    vol = np.column_stack([b[:, 0] + np.minimum(sx, 0), b[:, 1] + np.maximum(sx, 0), b[:, 2] + np.minimum(sy, 0),
-                           b[:, 3] + np.maximum(sy, 0), b[:, 4] - 5.0, b[:, 5]])
-    k, pix = _box_pixel_pairs(vol, camera, pose, n)
-    keep = obj[pix] != k  # a face's own object shades it through the face's turn, not as a cast shadow
-    k, pix = k[keep], pix[keep]
-    eps = 0.05
-    n_poly = objs.n_polyhedra
-    poly = k < n_poly
-    if poly.any():
-        uu, _ = hit_polyhedra(objs.planes, k[poly], P[pix[poly]], L, min_u=eps)
-        out[pix[poly][np.isfinite(uu)]] = True
-    if (~poly).any():
-        e = k[~poly] - n_poly
-        uu, _ = hit_ellipsoids(objs.ell_centre[e], objs.ell_radii[e], P[pix[~poly]], L, min_u=eps)
-        out[pix[~poly][np.isfinite(uu)]] = True
-    if objs.canopy_dm.size and objs.canopy_max_m > 0:
-        reach = (objs.canopy_max_m + 3.0) / max(math.tan(math.asin(min(L[2], 1.0))), 1e-3)
-        cand = np.flatnonzero(~out & objs.near_canopy(P[:, 0], P[:, 1], reach_m=reach + 2.0))
-        if len(cand):
-            u_end = np.full(len(cand), (objs.canopy_max_m + 3.0) / L[2])
-            u0 = np.full(len(cand), 0.5 / L[2])
-            E = P[cand] + u_end[:, None] * L
-            ground = (site.height(P[cand, 0], P[cand, 1]), site.height(E[:, 0], E[:, 1]))  # linear under the ray
-            uc = march_canopy(objs, ground, P[cand], np.broadcast_to(L, (len(cand), 3)), u0, u_end)
-            out[cand[np.isfinite(uc)]] = True
-    return out
 
 
 def trace(site, camera: g.Camera, pose: g.Pose, xy_mm, *, objects: bool = True) -> Hits:
@@ -844,11 +635,15 @@ def trace(site, camera: g.Camera, pose: g.Pose, xy_mm, *, objects: bool = True) 
                     nrm.reshape(shape + (3,)))
     S = pose.centre
     D = (G - S) / (S[2] - G[:, 2])[:, None]  # per unit depth: D_z = −1
-    k, ray = _box_point_pairs(objs.bbox, camera, pose, flat)
-    h = _first_hits(site, objs, S, D, S[2] - G[:, 2], k, ray)
-    P = S + h.u[:, None] * D
-    return Hits(P.reshape(shape + (3,)), h.surface.reshape(shape), h.object_id.reshape(shape),
-                h.normal.reshape(shape + (3,)))
+    k, ray = box_point_pairs(objs.bbox, camera, pose, flat)
+    h = first_hits(site, objs, S, -D[:, 0], -D[:, 1], S[2] - G[:, 2], k, ray, G[:, 0], G[:, 1])
+    P = G.copy()
+    P[h.idx] = S + h.u[:, None] * D[h.idx]
+    nrm = np.zeros((N, 3))
+    nrm[:, 2] = 1.0
+    nrm[h.idx] = h.normal
+    return Hits(P.reshape(shape + (3,)), h.surface.reshape(shape), h.object_id.astype(np.int64).reshape(shape),
+                nrm.reshape(shape + (3,)))
 
 
 def render_shot(site, shot, n_px: int = 512, **kwargs) -> Photo:

@@ -20,7 +20,7 @@ solvers reach the same minimum (``method``):
   with the analytic Jacobian as a sparse matrix (its pattern is
   :meth:`_Problem.sparsity`, the ``jac_sparsity`` of a finite-difference run)
   and the LSMR inner solver.  It needs tight LSMR tolerances to converge and is
-  4–30 times slower on the chapter's blocks (benchmarks/bench_bundle.py); it is
+  3 to 100 times slower on the benchmark's blocks (benchmarks/bench_bundle.py); it is
   kept as the independent check and for the robust losses scipy offers.
 
 No dedicated bundle-adjustment library is used: pyceres/pycolmap would add a
@@ -68,6 +68,15 @@ METHODS = ("schur", "scipy")
 #: critical value of Baarda's |w| for data snooping: 4.0 (α₀ ≈ 0.006 % two-sided) — with the textbook
 #: 3.29 (α₀ = 0.1 %) a block of a thousand observations would reject one or two good ones by chance
 CRITICAL_W = 4.0
+
+
+def _scatter(index, values, n: int) -> np.ndarray:
+    """Σ of ``values`` (k, ...) into ``n`` bins by ``index`` (k,): ``np.add.at`` done by one bincount (much faster)."""
+    values = np.asarray(values, dtype=float)
+    shape = values.shape[1:]
+    size = int(np.prod(shape)) if shape else 1
+    flat = (np.asarray(index, dtype=np.int64)[:, None] * size + np.arange(size)).ravel()
+    return np.bincount(flat, weights=values.reshape(-1), minlength=n * size).reshape((n,) + shape)
 
 
 class _Problem:
@@ -161,16 +170,12 @@ class _Problem:
         r_ctrl = np.zeros((self.P, 3))
         r_ctrl[self.ctrl] = (m.control_XYZ_m[self.ctrl] - xyz[self.ctrl]) / m.control_sigma_m[self.ctrl]
         wc2 = self.wc2 if weights_ctrl is None else self.wc2 * weights_ctrl
-        U = np.zeros((self.n, 6, 6))
-        np.add.at(U, ph, np.einsum("nri,nrj->nij", A, A))
-        V = np.zeros((self.P, 3, 3))
-        np.add.at(V, pt, np.einsum("nri,nrj->nij", B, B))
+        U = _scatter(ph, np.einsum("nri,nrj->nij", A, A), self.n)
+        V = _scatter(pt, np.einsum("nri,nrj->nij", B, B), self.P)
         V[:, [0, 1, 2], [0, 1, 2]] += wc2
         Wo = np.einsum("nri,nrj->nij", A, B)
-        g_c = np.zeros((self.n, 6))
-        np.add.at(g_c, ph, np.einsum("nri,nr->ni", A, r_img))
-        g_p = np.zeros((self.P, 3))
-        np.add.at(g_p, pt, np.einsum("nri,nr->ni", B, r_img))
+        g_c = _scatter(ph, np.einsum("nri,nr->ni", A, r_img), self.n)
+        g_p = _scatter(pt, np.einsum("nri,nr->ni", B, r_img), self.P)
         g_p += r_ctrl * np.sqrt(self.wc2) * (1.0 if weights_ctrl is None else weights_ctrl)
         return A, B, r_img, r_ctrl, U, V, Wo, g_c, g_p
 
@@ -184,9 +189,8 @@ class _Problem:
         Vinv = np.linalg.inv(V)
         Y = Wo @ Vinv[m.obs_point]
         ph, ia, ib = m.obs_photo, self.ia, self.ib
-        S = np.zeros((n, n, 6, 6))
-        S[np.arange(n), np.arange(n)] = U
-        np.add.at(S, (ph[ia], ph[ib]), -np.einsum("kij,klj->kil", Y[ia], Wo[ib]))
+        S = _scatter(ph[ia] * n + ph[ib], -np.einsum("kij,klj->kil", Y[ia], Wo[ib]), n * n).reshape(n, n, 6, 6)
+        S[np.arange(n), np.arange(n)] += U
         S = S.transpose(0, 2, 1, 3).reshape(6 * n, 6 * n)
         return 0.5 * (S + S.T), Vinv, Y
 
@@ -388,14 +392,14 @@ def _schur_lm(prob: _Problem, x0, loss, k, max_iter, tol):
         for _ in range(30):
             S, Vinv, Y = prob.reduced(U, V, Wo, lam)
             rhs = g_c.copy()
-            np.add.at(rhs, m.obs_photo, -np.einsum("nij,nj->ni", Y, g_p[m.obs_point]))
+            rhs += _scatter(m.obs_photo, -np.einsum("nij,nj->ni", Y, g_p[m.obs_point]), n)
             try:
                 dc = cho_solve(cho_factor(S), rhs.ravel()).reshape(n, 6)
             except (LinAlgError, ValueError):
                 lam = max(lam * 10.0, 1e-6)
                 continue
             t = g_p.copy()
-            np.add.at(t, m.obs_point, -np.einsum("nij,ni->nj", Wo, dc[m.obs_photo]))
+            t += _scatter(m.obs_point, -np.einsum("nij,ni->nj", Wo, dc[m.obs_photo]), P)
             dp = np.einsum("pij,pj->pi", Vinv, t)
             xn = np.concatenate([(eo + dc).ravel(), (xyz + dp).ravel()])
             cn = cost_of(xn, weights)
@@ -444,10 +448,9 @@ def precision(meas: Measurements, eo, xyz_m, *, _problem=None) -> Precision:
     Cab = Cc4[ph[ia], ph[ib]]
     # point covariance: V⁻¹ + Σ_{a,b} Y_aᵀ C[ja, jb] Y_b over the observations a, b of the point
     cov_points = Vinv.copy()
-    np.add.at(cov_points, pt[ia], np.einsum("kia,kij,kjb->kab", Y[ia], Cab, Y[ib]))
+    cov_points += _scatter(pt[ia], np.einsum("kia,kij,kjb->kab", Y[ia], Cab, Y[ib]), P)
     # photo–point cross covariance of each observation's own photo and point: C_jk = −Σ_b C[j, jb] Y_b
-    Cjk = np.zeros((N, 6, 3))
-    np.add.at(Cjk, ia, -np.einsum("kij,kjb->kib", Cab, Y[ib]))
+    Cjk = _scatter(ia, -np.einsum("kij,kjb->kib", Cab, Y[ib]), N)
     # hat-matrix diagonal of each image row: J_i C J_iᵀ with J_i = [A_i, B_i]
     h = (np.einsum("nri,nij,nrj->nr", A, cov_photos[ph], A) + 2.0 * np.einsum("nri,nij,nrj->nr", A, Cjk, B)
          + np.einsum("nri,nij,nrj->nr", B, cov_points[pt], B))

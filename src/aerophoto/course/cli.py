@@ -66,6 +66,12 @@ def _parser() -> argparse.ArgumentParser:
                    help="grade this many submissions at once, each job in its own process and sandbox uid "
                         "(default 1; up to 14; the grades are the same)")
 
+    p = sub.add_parser("lite", help="build the browser book: a JupyterLite site (Pyodide) of the workbook, the "
+                                    "lecture index and the package, offline from pinned, hash-checked inputs")
+    p.add_argument("--out", type=Path, default=Path("_site"), help="the site's folder (default: _site)")
+    p.add_argument("--cache", type=Path, default=None,
+                   help="downloads kept between builds (default: $AEROPHOTO_LITE_CACHE or ~/.cache/aerophoto-lite)")
+
     p = sub.add_parser("gradebook", help="export the grades and flags as CSV")
     p.add_argument("--out", type=Path, default=None, help="CSV file (default: <course>/grades.csv)")
     p.add_argument("--by", choices=("submission", "student"), default="submission",
@@ -128,6 +134,10 @@ def _dispatch(args, out) -> int:
         return 0 if write_teacher(dest, args.notebooks, out=out) else 1
     if args.cmd == "check":
         return _check(args, out)
+    if args.cmd == "lite":
+        from ..lite import main as lite
+
+        return lite(args.out, cache=args.cache, notebooks=args.notebooks, out=out)
 
     from .grading import Course
 

@@ -246,11 +246,7 @@ class FlightPlanView:
         self.area.set_data(area[:, 0], area[:, 1])
         sk, sj = _stride(K, MAX_STRIPS_DRAWN), _stride(n, MAX_PHOTOS_DRAWN)
         sk += sk > 1 and sk % 2 == 0   # an odd step: the drawn strips still alternate east and west
-        ks, js = np.arange(0, K, sk), np.arange(0, n, sj)
-        if K > 1 and ks[-1] != K - 1:
-            ks = np.append(ks, K - 1)   # the last strip too: the drawn strips span the area
-        if n > 1 and js[-1] != n - 1:
-            js = np.append(js, n - 1)
+        ks, js = _every(K, sk), _every(n, sj)
         self.stride = max(sk, sj)
         self.centres.set_offsets(lay.centres_km(ks, js))
         self.shown = len(ks) * len(js)
@@ -262,7 +258,8 @@ class FlightPlanView:
         self.route.set_data(route[:, 0], route[:, 1])
         dirs = lay.directions()
         xm = (x0r + x1r) / 2
-        ka = ks[:: _stride(len(ks), 12)]   # at most a dozen direction arrows
+        sa = _stride(len(ks), 12)          # about a dozen direction arrows, on strips flown both ways
+        ka = ks[:: sa + (sa > 1 and sa % 2 == 0)]
         east, west = ka[dirs[ka] > 0], ka[dirs[ka] < 0]
         self.arrows_e.set_data(np.full(len(east), xm), lay.strip_y_km[east])
         self.arrows_w.set_data(np.full(len(west), xm), lay.strip_y_km[west])
@@ -309,6 +306,18 @@ class FlightPlanView:
         for art, ok in ((self.bx_arrow, n > 1), (self.bx_label, n > 1), (self.by_arrow, K > 1),
                         (self.by_label, K > 1)):
             art.set_visible(ok)
+
+
+def _every(count: int, step: int) -> np.ndarray:
+    """Indices 0, s, 2s, … of ``count`` items, ending on the last one (the drawn strips span the whole area):
+    the last index is added, or replaces the one before it when that lies less than half a step away."""
+    idx = np.arange(0, count, step)
+    if count > 1 and idx[-1] != count - 1:
+        if 2 * (count - 1 - idx[-1]) >= step or len(idx) == 1:
+            idx = np.append(idx, count - 1)
+        else:
+            idx[-1] = count - 1
+    return idx
 
 
 def _count_text(N: int) -> str:

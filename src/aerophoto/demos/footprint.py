@@ -203,8 +203,8 @@ class FootprintDemo(LiveDemo):
 
     It opens on the guide's worked example (variant 00: f = 100 mm, 1:12 000, α = 3°, λ = −60°), never on the
     student's own variant, whose H, on and oc are task 00.1 (:func:`own_footprint` shows those once it passed).
-    The sliders cover every variant of the guide's scheme: f up to 1100 mm (f = 100 + 10i ≤ 1090 mm),
-    m up to 50 000 (m = 12 000 + 100i ≤ 21 900).
+    The sliders cover every variant of the guide's scheme on their steps: f up to 1100 mm by 10
+    (f = 100 + 10i ≤ 1090 mm), m up to 50 000 by 100 (m = 12 000 + 100i ≤ 21 900), λ by 1° (λ = −60° + i).
     """
 
     title = "What the camera sees: footprint, o, n and c"
@@ -212,9 +212,9 @@ class FootprintDemo(LiveDemo):
             "away from o along the principal vertical.")
     params = (
         Param("f_mm", "f, mm", 70, 1100, 10, 100, group="Camera", help="focal length f"),
-        Param("m", "m (scale 1:m)", 2000, 50000, 500, 12000, group="Camera", help="photo scale denominator"),
+        Param("m", "m (scale 1:m)", 2000, 50000, 100, 12000, group="Camera", help="photo scale denominator"),
         Param("alpha_deg", "α, °", 0, 20, 0.5, 3, group="Orientation", help="tilt of the optical axis"),
-        Param("lambda_deg", "λ, °", -180, 180, 5, -60, group="Orientation",
+        Param("lambda_deg", "λ, °", -180, 180, 1, -60, group="Orientation",
               help="direction of the principal vertical on the photo"),
         Param("kappa_deg", "κ, °", -180, 180, 5, 0, group="Orientation", help="heading of the photo's x axis"),
     )

@@ -273,7 +273,8 @@ class MeasureTool:
 
     def table_html(self) -> str:
         """The readings as an HTML table (— where not measured)."""
-        return plots.html_table(self.table(), caption="Your readings", float_format=f"{{:.{self.decimals}f}}")
+        return plots.html_table(self.table(), caption="Your readings",
+                                float_format=f"{{:.{self.decimals}f}}").replace("font-size:15px", "font-size:13px")
 
     def widget(self, *, x_name: str | None = None, y_name: str | None = None):
         """The tool: the figure on the left; point selector, cursor readout, readings and code on the right.
@@ -295,10 +296,12 @@ class MeasureTool:
         clear_one.on_click(lambda _b: self.clear(self.current))
         clear_all = w.Button(description="Clear all", layout=w.Layout(width="110px"))
         clear_all.on_click(lambda _b: self.clear())
-        code = w.Textarea(value="", layout=w.Layout(width="330px", height="70px"))
-        side = [w.HTML(f"<div style='font-size:13px;max-width:330px'>{html.escape(_HELP)}</div>"), point,
-                w.HBox([clear_one, clear_all]), w.HTML(), w.HTML(), w.HTML(), code]
-        self._widgets = {"point": point, "readout": side[3], "status": side[4], "table": side[5], "code": code}
+        code = w.Textarea(value="", layout=w.Layout(width="330px", height="64px"))
+        readout, status, table = w.HTML(), w.HTML(), w.HTML()
+        side = [point, w.HBox([clear_one, clear_all]), readout, status, code, table,
+                w.HTML(f"<div style='font-size:12px;line-height:1.35;max-width:330px;color:#444'>"
+                       f"{html.escape(_HELP)}</div>")]
+        self._widgets = {"point": point, "readout": readout, "status": status, "table": table, "code": code}
         right = w.VBox(side, layout=w.Layout(width="350px", margin="0 0 0 12px"))
         layout = w.HBox([plots.figure_widget(self.fig), right], layout=w.Layout(align_items="flex-start"))
         self._widgets["layout"] = layout
@@ -330,7 +333,7 @@ def photo_tool(sheet, **kwargs) -> MeasureTool:
     ``marks("photo")`` and ``names``).  The principal point o is the crossing of the fiducial marks' axes.
     """
     photo = sheet.photo()
-    kwargs.setdefault("title", "Your photo — pricked points (photo coordinates from o, mm)")
+    kwargs.setdefault("title", "Your photo (x, y from o, mm)")
     tool = MeasureTool(photo.image, photo.extent_mm, sheet.names, marks=sheet.marks("photo"), **kwargs)
     h = photo.camera.half_mm
     tool.ax.plot([-h, h], [0, 0], color=plots.COLORS["grey"], lw=0.5, alpha=0.6, zorder=2)

@@ -123,7 +123,7 @@ class AnaglyphView:
     """An anaglyph in left-photo millimetres (``imshow`` of an RGB array); ``update(rgb, extent)`` swaps it in place."""
 
     def __init__(self, ax=None, *, title: str = ""):
-        self.fig, self.ax = plots.new_axes(ax, figsize=(7.6, 5.6))
+        self.fig, self.ax = plots.new_axes(ax, figsize=(6.2, 4.6))
         self.image = self.ax.imshow(np.full((2, 2, 3), 0.5, np.float32), extent=(0, 1, 0, 1),
                                     interpolation="nearest")
         self.ax.set_xlabel("x on the left photo, mm")
@@ -140,6 +140,26 @@ class AnaglyphView:
         self.ax.set_ylim(extent_mm[2], extent_mm[3])
 
 
+#: the table's row with the mark's height
+MARK_Z = "mark's height Z = Z_S − B·f/p"
+#: the areas the guide's example pair offers (another pair may lack one, e.g. a forest edge)
+EXAMPLE_AREAS = ("village", "chimney and water tower", "mast", "forest edge", "the whole overlap")
+
+
+def _mark_params(area_names, default_area, p0) -> tuple:
+    lo, hi = math.floor((p0 - 3.0) * 10) / 10, math.ceil((p0 + 6.0) * 10) / 10
+    return (
+        Param("area", "area", kind="choice", options=tuple(area_names), default=default_area, group="Where"),
+        Param("x_mm", "x, mm", -20.0, 20.0, 0.1, 0.0, group="Floating mark",
+              help="the mark on the left photo, from the area's centre"),
+        Param("y_mm", "y, mm", -14.0, 14.0, 0.1, 0.0, group="Floating mark"),
+        Param("p_mm", "p, mm", lo, hi, 0.01, round(p0, 2), group="Floating mark",
+              help="the mark's x-parallax: the drum of the parallax bar"),
+        Param("view", "view", kind="choice", default="direct", group="Where",
+              options=(("direct (left photo to the left eye)", "direct"), ("reverse (photos swapped)", "reverse"))),
+    )
+
+
 class FloatingMarkDemo(LiveDemo):
     """The floating mark over the anaglyph of a stereo pair (see the module notes).
 
@@ -153,6 +173,8 @@ class FloatingMarkDemo(LiveDemo):
         Show the mark's coordinates and parallax only (for the student's own pair: no heights).
     """
 
+    #: the guide's example pair's sliders (each pair sets its own when built)
+    params = _mark_params(EXAMPLE_AREAS, "village", 72.5)
     title = "The floating mark: set it on the ground, then on a roof"
     hint = ("Red–cyan glasses, red over the LEFT eye. Move p (the parallax bar's drum) until the two crosses "
             "fuse into one mark resting on the surface; then read its height. Larger p lifts the mark.")
@@ -164,25 +186,17 @@ class FloatingMarkDemo(LiveDemo):
         self.images = ch07.lab_images(self.lab, n_px)
         self.measure_only = bool(measure_only)
         self.areas = areas(self.lab)
-        p0 = self.lab.p0_mm
-        lo, hi = math.floor((p0 - 3.0) * 10) / 10, math.ceil((p0 + 6.0) * 10) / 10
         default_area = "village" if "village" in self.areas else next(iter(self.areas))
-        self.params = (
-            Param("area", "area", kind="choice", options=tuple(self.areas), default=default_area, group="Where"),
-            Param("x_mm", "x, mm", -20.0, 20.0, 0.1, 0.0, group="Floating mark",
-                  help="the mark on the left photo, from the area's centre"),
-            Param("y_mm", "y, mm", -14.0, 14.0, 0.1, 0.0, group="Floating mark"),
-            Param("p_mm", "p, mm", lo, hi, 0.01, round(p0, 2), group="Floating mark",
-                  help="the mark's x-parallax: the drum of the parallax bar"),
-            Param("view", "view", kind="choice", default="direct", group="Where",
-                  options=(("direct (left photo to the left eye)", "direct"),
-                           ("reverse (photos swapped)", "reverse"))),
-        )
+        self.params = _mark_params(self.areas, default_area, self.lab.p0_mm)  # this pair's areas and parallaxes
         super().__init__(**values)
 
     def build(self):
         self.view = AnaglyphView()
         self.fig = self.view.fig
+        # the reading beside the mark (both eyes see it): the drum's p, and on the example the mark's height
+        self.reading = self.view.ax.annotate("", (0, 0), xytext=(12, 10), textcoords="offset points", fontsize=12,
+                                             color="white", fontweight="bold",
+                                             bbox=dict(boxstyle="round,pad=0.25", fc="black", ec="none", alpha=0.75))
 
     def _crop(self, area):
         L, R = self.images.left, self.images.right
@@ -235,7 +249,7 @@ class FloatingMarkDemo(LiveDemo):
         lab = self.lab
         rows = [("mark on the left photo x, y", "mm", f"{x:.2f}, {y:.2f}"),
                 ("its parallax p (the drum)", "mm", f"{p:.2f}"),
-                ("Δp from the mean ground p₀", "mm", f"{p - lab.p0_mm:+.2f}")]
+                ("Δp from the mean ground p₀", "mm", f"{p - lab.p0_mm + 0.0:+.2f}".replace("-0.00", "+0.00"))]
         if not self.measure_only:
             from ..site import get_site
 
@@ -243,7 +257,7 @@ class FloatingMarkDemo(LiveDemo):
             P = lab.model_to_ground(np.array([x, y]), p)
             ground = float(site.height(P[0], P[1]))
             surface = float(site.surface_height(P[0], P[1]))
-            rows += [("mark's height Z = Z_S − B·f/p", "m", f"{P[2]:.1f}"),
+            rows += [(MARK_Z, "m", f"{P[2]:.1f}"),
                      ("bare ground there (DEM)", "m", f"{ground:.1f}"),
                      ("top of the surface there (truth)", "m", f"{surface:.1f}"),
                      ("mark above the surface", "m", f"{P[2] - surface:+.1f}")]
@@ -252,6 +266,11 @@ class FloatingMarkDemo(LiveDemo):
     def render(self, r: MarkResult):
         self.view.update(r.rgb, r.extent_mm)
         self.view.ax.set_title(f"{r.area}: p = {r.p_mm:.2f} mm" + (" — reverse stereo" if r.reverse else ""))
+        text = f"p {r.p_mm:.2f} mm"
+        if not self.measure_only:
+            text += f"\nZ {float(r.table.loc[MARK_Z, 'value']):.1f} m"
+        self.reading.xy = (r.x_mm, r.y_mm)
+        self.reading.set_text(text)
         self.table.value = plots.html_table(r.table, caption="Floating mark")
 
 
@@ -295,7 +314,7 @@ class BaseHeightView:
 
     def __init__(self, ax=None):
         if ax is None:
-            fig = plots.figure(figsize=(9.0, 4.4))
+            fig = plots.figure(figsize=(8.0, 4.0))
             a1, a2 = fig.subplots(1, 2)
         else:
             a1, a2 = ax

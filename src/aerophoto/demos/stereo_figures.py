@@ -55,7 +55,7 @@ def stereoscope_figure(ax=None):
     ax.annotate("", xy=(-e / 2, y_eye + 22), xytext=(e / 2, y_eye + 22), arrowprops=dict(arrowstyle="<->", lw=1.2))
     ax.text(0, y_eye + 30, f"eye base ≈ {e:.0f} mm", ha="center", fontsize=11)
     ax.text(-e / 2 - 30, y_lens, "lenses", ha="right", va="center", fontsize=11)
-    ax.text(0, y_mirror + 24, "small mirrors", ha="center", fontsize=11)
+    ax.text(0, y_mirror - 34, "small mirrors", ha="center", fontsize=11)
     ax.text(B / 2 + 30, y_mirror + 10, "large\nmirrors", ha="left", va="center", fontsize=11)
     ax.set_xlim(-230, 230)
     ax.set_ylim(-80, 380)
@@ -121,7 +121,7 @@ def mirror_check_figure(turn_deg: float = 1.5, mirror_roll_deg: float = 1.0):
 
 
 def pair_geometry_figure(ax=None, *, B_m: float = 864.0, H_m: float = 1200.0, f_mm: float = 100.0,
-                         h_m: float = 300.0):
+                         h_m: float = 400.0):
     """The stereo pair in section: S₁, S₂ a base B apart at H, a ground point A and a point C h higher, and the
     images a₁, a₂, c₁, c₂ with their x-parallaxes (the photos drawn 0.2·H below the stations, enlarged)."""
     fig, ax = plots.new_axes(ax, figsize=(8.6, 4.8))
@@ -141,7 +141,8 @@ def pair_geometry_figure(ax=None, *, B_m: float = 864.0, H_m: float = 1200.0, f_
             t = fz / (S[1] - P[1])
             img = S + t * (P - S)
             ax.plot(*img, "o", color=col, ms=6)
-            ax.text(img[0] + 12, img[1] - 45, f"{name}{idx}", color=col, fontsize=11)
+            dy = 25 if name == "c" else -65  # c's images labelled above the photo, a's below
+            ax.text(img[0], img[1] + dy, f"{name}{idx}", color=col, fontsize=11, ha="center")
     ax.plot([-0.4 * B_m, 1.4 * B_m], [0, 0], color=C["black"], lw=1.5)
     ax.plot([Cp[0], Cp[0]], [0, Cp[1]], color=C["vermillion"], lw=4)
     ax.text(A[0], -70, "A (ground)", ha="center", color=C["green"], fontsize=11)

@@ -111,8 +111,8 @@ def package_limits() -> Audit:
         "of memory) is the one that binds.",
         "The 1985 experiment's 64 photos already take 384 of the 1000 unknowns, leaving 616 for 205 points: ties, "
         "control, check and the 20 gravimetric points.",
-        "Today: benchmarks/bench_bundle.py adjusts blocks of 20, 100 and 400 photos (about 11 000 unknowns) in "
-        "seconds and tens to a few hundred MB of memory.",
+        "Today: benchmarks/bench_bundle.py adjusts blocks of 20, 100 and 400 photos (up to 9500 unknowns) in "
+        "hundredths of a second to a few seconds, in up to about 150 MB of memory.",
     )
     return Audit("article 002", "Table 2. Limits of the 1986 triangulation package", t.set_index("characteristic"),
                  tuple(vals), notes=notes)

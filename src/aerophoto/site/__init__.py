@@ -61,7 +61,26 @@ intersection of two road centre lines, a field corner the junction of two
 field boundaries, a building corner the south-west corner of a roof, a tree
 the centre of its crown; only points that stay visible in the texture (not
 hidden under forest, water or another feature) are kept.  Control points are
-well-spread road crossings and field corners.
+well-spread road crossings and field corners.  All lie on the DEM: a building
+corner is the foot of the house's corner, a tree the foot of its trunk (hidden
+under its crown on a photo taken from above, :meth:`aerophoto.render.Photo.points`).
+
+Objects with height
+-------------------
+:attr:`Site.objects` (:class:`~aerophoto.site.objects.SiteObjects`) stands on the
+DEM: a box for every house of the village (gabled bright roofs, flat dark ones),
+an ellipsoid crown for every single tree and garden tree, the forest canopy as a
+height field of 2 m columns (14–24 m) over the forest land cover, a chimney
+(42 m), a water tower (24 m), a radio mast (64 m), and the paved road's bridge
+and embankment across the floodplain.  :mod:`aerophoto.render` ray-casts them.
+:meth:`Site.height` stays the **bare earth** (the DEM every chapter's geometry
+uses); :meth:`Site.surface_height` is the top of everything (a DSM).  Their
+measurable points — roof corners, ridge ends, tree tops, the tops of the
+chimney, the mast and the tower — are :attr:`Site.object_points` (kinds
+:data:`POINT_KINDS`, ids after the catalogue's, with ``object``, ``ground_Z_m``
+and ``height_m``); :attr:`Site.all_points` is the catalogue followed by them.
+:attr:`Site.catalogue` itself keeps only the ground points, unchanged, because
+several chapters take "the catalogue point nearest to …" of any kind.
 
 Public API
 ----------
@@ -76,7 +95,8 @@ seed=0, texture_m=2, dem_spacing_m=10)``
 ``extent_m``, ``centre_m``, ``inside(X, Y)``, ``sample(X, Y, level=0)``,
 ``texture``, ``texture_level(k)``, ``texel_m(k)``, ``level_for(ground_pixel_m)``,
 ``cover``, ``cover_at(X, Y)`` (codes in ``COVER`` / ``COVER_CODES``), ``catalogue``,
-``features``.
+``features``, ``objects``, ``surface_height(X, Y)``, ``surface_z_max_m``, ``object_points``,
+``all_points``.
 
 The site is data only (layer 3).  Its map view and the guide's point symbols
 are presentation: :func:`aerophoto.demos.site_views.plot_site` and
@@ -88,11 +108,13 @@ Modules
 ``build``      :func:`build_site` as named steps (relief, river, fields, forest,
                village, roads, texture, …; see its module notes)
 ``paint``      the generator's painting tools (noise, field systems, canvas)
-``catalogue``  the catalogue of ground points, the last step
+``catalogue``  the catalogue of ground points
+``objects``    the objects with height: data, building, ray intersections, their points
 
 Importing this module builds nothing; a site is generated on first request
-(about 1.5 s for the default 10 km × 5 km at 2 m per pixel on a 2-core
-machine; the time grows with the number of texture pixels) and cached.
+(about 1.7 s for the default 10 km × 5 km at 2 m per pixel on a 2-core
+machine, of which the objects about 0.15 s; the time grows with the number of
+texture pixels) and cached.
 """
 
 from __future__ import annotations
@@ -102,11 +124,16 @@ from dataclasses import replace
 
 from .build import build_site
 from .model import COVER, COVER_CODES, KINDS, MAX_PIXELS, Site, SiteParams
+from .objects import OBJECT_KINDS, POINT_KINDS, SURFACES, SiteObjects
 
 __all__ = [
     "COVER",
     "COVER_CODES",
     "KINDS",
+    "OBJECT_KINDS",
+    "POINT_KINDS",
+    "SURFACES",
+    "SiteObjects",
     "MAX_PIXELS",
     "SiteParams",
     "Site",

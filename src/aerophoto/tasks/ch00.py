@@ -124,19 +124,25 @@ def scheme_table(step: int = 10) -> pd.DataFrame:
 
     One row per group (``"00–09"``, …): the inputs f = 100 + 10i mm, 1/m = 1/(12 000 + 100i),
     W = 200 + 10i km/h, the area L_x × L_y = (25 + i) × (30 + i) km; the flying height H = f·m only as a band of
-    whole kilometres (a variant's exact H is task 00.1's answer); and for the lens, the aircraft and the height
+    whole kilometres whose edges are no variant's H (a variant's exact H is task 00.1's answer); and for the lens, the aircraft and the height
     what real practice has (:data:`SURVEY_LENSES_MM`, :data:`RECONNAISSANCE_MAX_MM`, :data:`SURVEY_SPEED_KMH`,
     :data:`SURVEY_CEILING_KM`).  The book computes every variant with the guide's numbers as they are.
     """
     from .._validate import check_int_range
 
     step = check_int_range("step", step, 1, 100)
+    every_H = [variants.variant_for_index(i).H_m / 1000.0 for i in range(100)]
     rows = []
     for start in range(0, 100, step):
         vs = [variants.variant_for_index(i) for i in range(start, min(start + step, 100))]
         a, b = vs[0], vs[-1]
         H = [v.H_m / 1000.0 for v in vs]
         h_lo, h_hi = math.floor(min(H)), math.ceil(max(H))
+        # a band's edge never lands on any variant's H (H = 6 000 m for i = 30): it would show that answer
+        while any(abs(h_lo - x) <= 0.005 * x for x in every_H):
+            h_lo -= 1
+        while any(abs(h_hi - x) <= 0.005 * x for x in every_H):
+            h_hi += 1
         rows.append({
             "i": _span(f"{a.i:02d}", f"{b.i:02d}", "{}"),
             "f, mm": _span(a.f_mm, b.f_mm),

@@ -220,5 +220,16 @@ class Table13(CorrectionsTask):
                tol_abs=0.05, tol_rel=0.02, labels=CORRECTION_POINTS_13),
     )
 
+    # defined here, not only inherited from chapter 06's class: the grader's probe trusts a task's answers, slips
+    # and hidden checks only when their code lives in the task's own module (aerophoto.course.probe)
+    def answers(self, v) -> dict:
+        return CorrectionsTask.answers(self, v)
+
+    def slips(self, v) -> dict:
+        return CorrectionsTask.slips(self, v)
+
+    def hidden(self, v, got) -> list:
+        return CorrectionsTask.hidden(self, v, got)
+
 
 TASKS = (ControlSpacing(), SpreadCheck(), Table13())

@@ -180,7 +180,8 @@ class DensificationForecast(Task):
         Answer("H_m", "flying height H = f·m, m", unit="m"),
         Answer("b_mm", "photo base b = l·(1 − p_x), mm", unit="mm"),
         Answer("mz_m", "Lysenko's m_z, m", unit="m"),
-        Answer("h_m", "smallest standard contour interval h with m_z/1.25 ≤ 0.3·h, m", unit="m", tol_abs=1e-6),
+        # the intervals of the series are at least 0.25 m apart: a tolerance of 0.1 m tells them apart
+        Answer("h_m", "smallest standard contour interval h with m_z/1.25 ≤ 0.3·h, m", unit="m", tol_abs=0.1),
     )
 
     def inputs(self, v) -> Block:
@@ -217,7 +218,7 @@ class DensificationForecast(Task):
         mz = submitted_number(got.get("mz_m"))
         ok = mz is not None and 0 <= mz / 1.25 <= MEAN_RATIO * dem.STANDARD_INTERVALS_M[-1]
         out.append(Hidden("h_m from your m_z", got.get("h_m") if ok else None,
-                          dem.standard_interval(mz / 1.25, MEAN_RATIO) if ok else None, tol_abs=1e-6))
+                          dem.standard_interval(mz / 1.25, MEAN_RATIO) if ok else None, tol_abs=0.1))
         return out
 
 

@@ -24,7 +24,9 @@ pricked on a plan at 1:M (M = 10 000).
 
 The points are chosen on the site's DEM (not from its catalogue, which is too
 sparse for three points 20–30 mm apart on the photo) and only on open ground
-(fields, meadows, roads), so nothing standing on the ground can hide or move them.
+(fields, meadows, roads) where nothing stands (the site's surface is its bare
+earth: no embankment, no crown) and nothing standing nearby hides them on the
+photo (:func:`aerophoto.render.trace` of each image meets the ground at the point).
 The layout is drawn from a generator seeded by the variant, and sheets whose
 reference corrections would lie within ±0.02 mm of the guide's 0.2 mm threshold are
 rejected, so the count of corrections does not hinge on a measuring error.
@@ -391,6 +393,19 @@ def _plan_frame(XY: np.ndarray, M: float):
     return lo, (hi - lo) * 1000.0 / M
 
 
+def _bare_and_seen(sheet, xy) -> bool:
+    """Nothing stands on the points (the site's surface is its bare earth there, no embankment, no crown), and
+    nothing standing nearby hides them on the photo: the ray of each image meets the ground at the point."""
+    from ..render import trace
+
+    site = _site()
+    X, Y, Z = sheet.XYZ_m.T
+    if np.any(np.abs(site.surface_height(X, Y) - Z) > 0.05):
+        return False
+    hit = trace(site, sheet.camera, sheet.pose, xy).XYZ_m
+    return bool(np.all(np.linalg.norm(hit - sheet.XYZ_m, axis=1) <= 0.5))
+
+
 def _margin_ok(values) -> bool:
     a = np.abs(np.asarray(values, dtype=float))
     return bool(np.all(np.abs(a - d.THRESHOLD_MM) >= THRESHOLD_MARGIN_MM))
@@ -441,7 +456,7 @@ def _finish(kind, i, v, cam, names, bases, S, P, Z, H):
     origin, size = _plan_frame(XYZ[:, :2], M_PLAN)
     sheet = LabSheet(kind, i, cam, pose, names, bases, XYZ, M_PLAN, origin, size)
     xy = sheet.photo_xy_mm
-    if np.any(np.abs(xy) > _FRAME_LIMIT_MM + 4.0):
+    if np.any(np.abs(xy) > _FRAME_LIMIT_MM + 4.0) or not _bare_and_seen(sheet, xy):
         return None
     w = sheet.work()
     if kind == "relief":
@@ -470,10 +485,14 @@ def tilt_sheet(i: int) -> LabSheet:
 
 def sheet_for(kind: str, v) -> LabSheet:
     """The sheet of ``kind`` (``"relief"`` or ``"tilt"``) for the variant ``v`` (anything with ``i``)."""
+    return _sheet(kind, int(v.i))
+
+
+def _sheet(kind: str, i: int) -> LabSheet:
     if kind == "relief":
-        return relief_sheet(int(v.i))
+        return relief_sheet(i)
     if kind == "tilt":
-        return tilt_sheet(int(v.i))
+        return tilt_sheet(i)
     raise ValueError(f"kind = {kind!r} is not one of the valid choices ['relief', 'tilt']")
 
 
@@ -483,7 +502,7 @@ def photo_of(kind: str, i: int, n_px: int = PHOTO_PX):
     """The rendered photo of a sheet (:func:`aerophoto.render.render`, fiducial marks burnt in)."""
     from ..render import render
 
-    sheet = sheet_for(kind, _Index(i))
+    sheet = _sheet(kind, i)
     return render(_site(), sheet.camera, sheet.pose, n_px=n_px)
 
 
@@ -495,7 +514,7 @@ def plan_of(kind: str, i: int, px_mm: float = 0.25, contour_step_mm: float = 2.0
     """
     px = check_range("px_mm", px_mm, 0.05, 2.0, unit="mm")
     site = _site()
-    sheet = sheet_for(kind, _Index(i))
+    sheet = _sheet(kind, i)
     W, Hh = sheet.plan_size_mm
     k = sheet.M / 1000.0  # ground metres per plan mm
     nx, ny = int(math.ceil(W / px)), int(math.ceil(Hh / px))
@@ -509,8 +528,3 @@ def plan_of(kind: str, i: int, px_mm: float = 0.25, contour_step_mm: float = 2.0
     cy = np.arange(0.0, Hh + 1e-9, contour_step_mm)
     Zc = site.height(sheet.plan_origin_m[0] + cx[None, :] * k, sheet.plan_origin_m[1] + cy[:, None] * k)
     return PlanImage(img.astype(np.float32), (0.0, float(W), 0.0, float(Hh)), cx, cy, Zc)
-
-
-@dataclass(frozen=True)
-class _Index:
-    i: int

@@ -1,0 +1,205 @@
+"""The browser book (JupyterLite) under test: a static server on 127.0.0.1, a trap for any request that would
+leave the machine, and chromium pointed at both.
+
+Used by ``tests/browser/test_lite*.py`` and ``benchmarks/bench_lite.py`` (which loads this file by path next to
+``harness.py``), so it depends on Playwright and the standard library only — no pytest.
+
+* :class:`SiteServer` serves a built site (``aerophoto-course lite``) on 127.0.0.1 from a thread of this
+  process, as any static host would (``.wasm`` as ``application/wasm``), and counts the requests.
+* :class:`EgressTrap` is the browser's proxy: chromium sends every request for a host that is not the loopback
+  address there (loopback goes direct), the trap records it and answers 403 — so a request that would leave
+  the machine, from the page, a web worker or a service worker, is seen and never sent.
+* :func:`launch` starts Debian's chromium with the trap as its proxy; :func:`new_lite_page` opens a fresh
+  context (fresh browser storage) that also records every request Playwright sees.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import http.server
+import json
+import socket
+import socketserver
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from urllib.parse import urlsplit
+
+try:  # imported as tests.browser.lite_harness, or loaded by path beside harness.py (benchmarks)
+    from . import harness as h
+except ImportError:  # pragma: no cover - the benchmark's way
+    import harness as h  # type: ignore[no-redef]
+
+ROOT = h.ROOT
+SITE = ROOT / "_site"
+MANIFEST = "aerophoto-lite.json"
+LOOPBACK = ("127.0.0.1", "localhost", "[::1]", "::1")
+#: the lite note that ``aerophoto.setup`` shows in the browser book (src/aerophoto/book.py)
+LITE_NOTE_TEXT = "running in your browser"
+
+
+def site_problem(site: Path = SITE) -> str | None:
+    """Why ``site`` is not a built browser book, or None."""
+    if not (site / MANIFEST).is_file() or not (site / "jupyter-lite.json").is_file():
+        return f"no built site at {site} (build it with `aerophoto-course lite --out {site}`)"
+    return None
+
+
+# --------------------------------------------------------------------------------------------- the server
+class _Handler(http.server.SimpleHTTPRequestHandler):
+    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
+                      ".wasm": "application/wasm", ".mjs": "text/javascript", ".js": "text/javascript",
+                      ".json": "application/json", ".whl": "application/octet-stream",
+                      ".zip": "application/zip", ".ipynb": "application/json"}
+
+    def log_message(self, fmt, *args):  # quiet; the server counts instead
+        self.server.requests.append((self.command, self.path, time.monotonic()))
+
+    def end_headers(self):
+        # like a plain static host: no caching instructions; the browser's own cache decides
+        super().end_headers()
+
+
+class _Threading(socketserver.ThreadingMixIn, http.server.HTTPServer):
+    daemon_threads = True
+    allow_reuse_address = True
+
+
+class SiteServer:
+    """A built site served on 127.0.0.1 (a free port) from a thread."""
+
+    def __init__(self, site: Path = SITE):
+        self.site = Path(site)
+        handler = functools.partial(_Handler, directory=str(self.site))
+        self.httpd = _Threading(("127.0.0.1", 0), handler)
+        self.httpd.requests = []
+        self.port = self.httpd.server_address[1]
+        self.thread = threading.Thread(target=self.httpd.serve_forever, name="lite-site", daemon=True)
+
+    @property
+    def base(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    @property
+    def requests(self) -> list:
+        return self.httpd.requests
+
+    def lab_url(self, notebook: str, workspace: str | None = None) -> str:
+        return f"{self.base}/lab/index.html?path={notebook}"
+
+    def start(self) -> "SiteServer":
+        self.thread.start()
+        return self
+
+    def stop(self) -> None:
+        self.httpd.shutdown()
+        self.httpd.server_close()
+        self.thread.join(timeout=10)
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+
+# --------------------------------------------------------------------------------------------- the trap
+class EgressTrap:
+    """A proxy that refuses everything and remembers what it was asked for (the first line of each request)."""
+
+    def __init__(self):
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        self.sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        self.sock.bind(("127.0.0.1", 0))
+        self.sock.listen(16)
+        self.sock.settimeout(0.2)
+        self.port = self.sock.getsockname()[1]
+        self.attempts: list[str] = []
+        self._stop = threading.Event()
+        self.thread = threading.Thread(target=self._serve, name="egress-trap", daemon=True)
+
+    def _serve(self) -> None:
+        while not self._stop.is_set():
+            try:
+                conn, _ = self.sock.accept()
+            except (TimeoutError, socket.timeout):
+                continue
+            except OSError:
+                return
+            with contextlib.closing(conn):
+                conn.settimeout(2)
+                try:
+                    first = conn.recv(4096).split(b"\r\n", 1)[0].decode("latin-1")
+                except OSError:
+                    first = "(no request line)"
+                self.attempts.append(first)
+                with contextlib.suppress(OSError):
+                    conn.sendall(b"HTTP/1.1 403 Forbidden\r\nContent-Length: 0\r\nConnection: close\r\n\r\n")
+
+    def start(self) -> "EgressTrap":
+        self.thread.start()
+        return self
+
+    def stop(self) -> None:
+        self._stop.set()
+        self.thread.join(timeout=5)
+        self.sock.close()
+
+
+# --------------------------------------------------------------------------------------------- browser
+def launch(playwright, trap: EgressTrap, *, headless: bool = True):
+    """Debian's chromium with every non-loopback request sent to ``trap`` (chromium never proxies loopback)."""
+    path = h.chromium_path()
+    if path is None:
+        raise RuntimeError(f"chromium is not installed; install it with: {h.INSTALL_HINT}")
+    args = [*h.CHROMIUM_ARGS, f"--proxy-server=http://127.0.0.1:{trap.port}"]
+    return playwright.chromium.launch(executable_path=path, headless=headless, args=args)
+
+
+@dataclass
+class RequestLog:
+    """Every request Playwright sees in a context (pages, workers): URL, and whether it left the loopback."""
+
+    urls: list = field(default_factory=list)
+
+    def attach(self, context) -> "RequestLog":
+        context.on("request", lambda req: self.urls.append(req.url))
+        return self
+
+    def outside(self) -> list[str]:
+        out = []
+        for url in self.urls:
+            parts = urlsplit(url)
+            if parts.scheme in ("data", "blob", "about", "chrome-extension"):
+                continue
+            if parts.hostname not in LOOPBACK:
+                out.append(url)
+        return out
+
+
+def new_lite_page(browser, *, instrument: bool = True):
+    """A fresh context (empty browser storage) at the projector size; returns (page, console log, request log)."""
+    page, log = h.new_page(browser, instrument=instrument)
+    requests = RequestLog().attach(page.context)
+    return page, log, requests
+
+
+def open_notebook(page, site: SiteServer, notebook: str) -> float:
+    """Open ``notebook`` in the site's JupyterLab, wait until its kernel is idle; returns the seconds it took."""
+    t0 = time.monotonic()
+    h.open_lab_notebook(page, site, notebook)
+    return time.monotonic() - t0
+
+
+def save_notebook(page) -> None:
+    """File ▸ Save: into the browser's storage (IndexedDB)."""
+    page.evaluate("() => window.jupyterapp.commands.execute('docmanager:save')")
+    page.wait_for_function(
+        "() => { const w = window.jupyterapp.shell.currentWidget; return !!w && !w.context.model.dirty; }",
+        timeout=h.T_MOVE, polling=100)
+
+
+def manifest(site: Path = SITE) -> dict:
+    return json.loads((Path(site) / MANIFEST).read_text(encoding="utf-8"))

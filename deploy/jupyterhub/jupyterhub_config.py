@@ -20,7 +20,7 @@
 #   AEROPHOTO_HUB_HOMES        the users' homes [<state>/home];  AEROPHOTO_HUB_EXCHANGE  nbgrader's exchange
 #                              [<state>/exchange]
 #   AEROPHOTO_HUB_IP, _PORT    where the proxy listens [127.0.0.1, 8000];  AEROPHOTO_HUB_API_PORT  the hub's
-#                              own port [8081]
+#                              own port [8081];  AEROPHOTO_HUB_PROXY_API_PORT  the proxy's API [8001]
 #   AEROPHOTO_HUB_ROSTER       CSV student_id,record_book: the students allowed in (hub names = student ids;
 #                              the same file is the course's roster.csv, copied into ~/course on the
 #                              instructor's first start)
@@ -87,6 +87,7 @@ c.JupyterHub.cleanup_servers = True  # the servers die with the hub anyway (bubb
 chp = HERE / "node_modules" / ".bin" / "configurable-http-proxy"
 c.ConfigurableHTTPProxy.command = [str(chp) if chp.exists() else "configurable-http-proxy"]
 c.ConfigurableHTTPProxy.pid_file = str(STATE / "jupyterhub-proxy.pid")
+c.ConfigurableHTTPProxy.api_url = f"http://127.0.0.1:{int(env('PROXY_API_PORT', '8001'))}"
 c.JupyterHub.last_activity_interval = int(env("ACTIVITY_INTERVAL", "300"))
 # a start request answers at once (the browser shows the start's progress page): a class logging in together
 # does not queue behind one another's 10 s waits

@@ -83,6 +83,12 @@ class HubError(RuntimeError):
     pass
 
 
+def _default_sigint() -> None:
+    """In the hub's process: SIGINT back to its default.  Started from a background job, a process inherits SIGINT
+    ignored — and so would the hub's services, which JupyterHub stops with SIGINT (then waits 30 s)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 class Hub:
     """JupyterHub with the course config, as a child process group, on 127.0.0.1.
 
@@ -98,6 +104,7 @@ class Hub:
         self.state = Path(state) if state else Path(tempfile.mkdtemp(prefix="aerophoto-hub-"))
         self.port = port or free_port()
         self.api_port = free_port()
+        self.proxy_api_port = free_port()
         self.student_password = secrets.token_urlsafe(12)
         self.instructor_password = secrets.token_urlsafe(32)
         self.admin_token = secrets.token_hex(32)
@@ -120,7 +127,8 @@ class Hub:
         env = {k: v for k, v in os.environ.items() if not k.startswith(("AEROPHOTO_HUB_", "JUPYTERHUB_", "JPY_"))}
         env.update({
             "AEROPHOTO_HUB_STATE": str(self.state), "AEROPHOTO_HUB_PORT": str(self.port),
-            "AEROPHOTO_HUB_API_PORT": str(self.api_port), "AEROPHOTO_HUB_ROSTER": str(roster),
+            "AEROPHOTO_HUB_API_PORT": str(self.api_port), "AEROPHOTO_HUB_PROXY_API_PORT": str(self.proxy_api_port),
+            "AEROPHOTO_HUB_ROSTER": str(roster),
             "AEROPHOTO_HUB_INSTRUCTORS": ",".join(self.instructors),
             "AEROPHOTO_HUB_STUDENT_PASSWORD": self.student_password,
             "AEROPHOTO_HUB_INSTRUCTOR_PASSWORD": self.instructor_password,
@@ -141,7 +149,7 @@ class Hub:
         self.t_start = time.perf_counter()
         self.proc = subprocess.Popen([sys.executable, "-m", "jupyterhub", "-f", str(CONFIG)], cwd=self.state,
                                      env=self.env(), stdout=self._log, stderr=subprocess.STDOUT,
-                                     stdin=subprocess.DEVNULL, start_new_session=True)
+                                     stdin=subprocess.DEVNULL, start_new_session=True, preexec_fn=_default_sigint)
         deadline = time.monotonic() + T_START_S
         last = None
         while time.monotonic() < deadline:

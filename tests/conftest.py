@@ -37,3 +37,21 @@ def _close_figures():
     import matplotlib.pyplot as plt
 
     plt.close("all")
+
+
+# ------------------------------------------------------------------------------ parallel runs (pytest-xdist)
+#: test files whose tests are spread over the workers one by one: long parametrised runs whose per-worker set-up
+#: is cheap (a kernel, a JupyterLab or Voilà server). Every other file runs whole on one worker, so that its
+#: module-scoped set-ups (the hostile class, the grading course, the hub, the Monte Carlo studies, the sites) are
+#: built once, not once per worker.
+SPREAD = {"test_notebooks.py", "test_no_answers_on_screen.py", "test_graded_tasks.py", "test_lab.py",
+          "test_voila.py", "test_lectures.py", "test_own_results.py", "test_displacement_notebooks.py"}
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """Group every test of a file on one xdist worker (``--dist loadgroup``), except the files in SPREAD."""
+    for item in items:
+        name = item.path.name
+        if name not in SPREAD and not any(True for _ in item.iter_markers("xdist_group")):
+            item.add_marker(pytest.mark.xdist_group(name=str(item.path.relative_to(ROOT))))

@@ -498,12 +498,15 @@ ALIASES = {"aerophoto": "aerophoto", "checks": "aerophoto.checks"}
     ("import importlib\nc = importlib.import_module('aerophoto.' + 'checks')", "patched_checks"),
     ("checks.check_value = lambda *a, **k: True", "patched_checks"),
     ("import sys\nsys.modules['aerophoto.checks'] = None", "patched_checks"),
+    ("from aerophoto import checks\nok = checks.task_passed('task-00-1')", "patched_checks"),
+    ("aerophoto.checks.check_task('task-00-1', H_m=1200, v=v)", "patched_checks"),
     ("import os\nos.environ['AEROPHOTO_RECORD_BOOK'] = '19-0400'", "variant_changed"),
     ("from aerophoto.variants import variant_for_index\nglobals().update(v=variant_for_index(0))", "variant_changed"),
     ("v = aerophoto.variants.variant_for_index(0)", "variant_changed"),
     ("aerophoto.setup('19-0400', quiet=True)", "variant_changed"),
     ("from aerophoto import tasks\nH_m = tasks.answers('task-00-1', v)['H_m']", "uses_package_answers"),
     ("from aerophoto import geometry\nH_m = geometry.flying_height_m(v.f_mm, v.m)", "uses_package_answers"),
+    ("from aerophoto.site import soils\nk = len(set(soils.soil_layer().classes.ravel()))", "uses_package_answers"),
     ("exec(open('x').read())", "dynamic_code"),
     ("getattr(get_ipython(), 'set_' + 'custom_exc')((Exception,), print)", "dynamic_code"),
     ("import sqlite3\nsqlite3.connect('../../../gradebook.db')", "system_access"),
@@ -523,6 +526,8 @@ def test_code_flags_catch_each_behaviour(code, expected):
     "H_m = 11859\non_mm = 35.11\noc_mm = -17.54",
     "from aerophoto import checks\nchecks.report()",
     "open('my_notes.txt', 'w').write('done')",
+    # the instruments a task's text tells the student to use (Task.tools), chapter 13's k-means
+    "from aerophoto import soilmap\nlabels = soilmap.segment_tones(patch.composite, k, seed=0)",
 ])
 def test_code_flags_leave_honest_work_alone(code):
     assert code_flags(code, where="cell x", answer_cell=True, aliases=ALIASES, known=set()) == []

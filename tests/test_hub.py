@@ -340,10 +340,13 @@ def _course_run(hub):
                                     "html": user.read(f"{A}/feedback/{stamps[0]}/{A}.html")["content"]
                                     if stamps else ""}
         phase("feedback fetched")
+        # the culler stops a server idle for CULL_TIMEOUT_S: on a loaded machine the feedback round can take that
+        # long, so petrov's server is (re)started right before it is used (his files stay either way)
+        users["petrov"].start_server()
         ev["probe"] = json.loads(users["petrov"].run(PROBE.format(
             state=str(hub.state), other="sidorova", tests=str(ROOT / "tests")))["stdout"])
-        teacher.start_server()
-        users["sidorova"].start_server()
+        for u in (teacher, users["sidorova"], users["petrov"]):
+            u.start_server()
         ev["http"] = _http_checks(hub, teacher, users)
         phase("isolation probed")
         ev["console_errors"] = console.relevant()

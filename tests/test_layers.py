@@ -24,7 +24,7 @@ PKG = Path(__file__).resolve().parents[1] / "src" / "aerophoto"
 LAYERS = {
     1: ("_validate", "geometry", "plane", "variants"),
     2: ("flight", "quality", "displacement", "mosaic", "triangulation", "stereo", "projective", "control",
-        "accuracy", "interpretation", "spectral", "bundle", "dem", "budget", "rectify"),
+        "accuracy", "interpretation", "spectral", "bundle", "dem", "budget", "rectify", "soilmap"),
     3: ("terrain", "site", "simulate", "render"),
     4: ("guide", "tasks"),
     5: ("plots", "widgets", "demos", "i18n"),

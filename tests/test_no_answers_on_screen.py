@@ -295,9 +295,11 @@ if not hasattr(_mod, "texts"):
         return [t.get_text() for t in fig.findobj(matplotlib.text.Text)
                 if id(t) not in ticks and t.get_visible() and t.get_text()]
     _mod.figure_texts = _figure_texts
-    _draw = matplotlib.figure.Figure.draw
-    def draw(self, renderer):
-        _mod.texts.extend(_figure_texts(self))
+    # the hook looks itself up in sys.modules at every draw: `%reset -f` and the `del` below clear the
+    # notebook's globals, so it must not refer to any of them
+    def draw(self, renderer, _draw=matplotlib.figure.Figure.draw):
+        _hook = sys.modules["_aero_screen"]
+        _hook.texts.extend(_hook.figure_texts(self))
         return _draw(self, renderer)
     matplotlib.figure.Figure.draw = draw
 _mod.texts.clear()
@@ -471,6 +473,15 @@ def test_no_graded_value_is_on_screen_before_it_is_answered(name, kernel):
     checks_out = [output_text(o) for c in nb_a.cells
                   if c.get("metadata", {}).get("nbgrader", {}).get("grade") for o in c.get("outputs", [])]
     assert checks_out and not any("passed" in t for t in checks_out), f"{name}: a check passed without an answer"
+    # and they failed cleanly: a check cell fails with WrongAnswer ("no answer yet"); no other cell raises
+    for run in (nb_a, nb_b):
+        for c in run.cells:
+            for o in c.get("outputs", []):
+                if o.get("output_type") != "error":
+                    continue
+                is_check = bool(c.get("metadata", {}).get("nbgrader", {}).get("grade"))
+                assert is_check and o.get("ename") == "WrongAnswer", (
+                    f"{name}: cell {c.get('id')} raised {o.get('ename')}: {o.get('evalue')}"[:600])
     seen_a, seen_b = seen_on_screen(nb_a), seen_on_screen(nb_b)
     leaks = [f"variant {va.i:02d}: {s}" for s in find_leaks(values_a, values_b, seen_a, seen_b)]
     leaks += [f"variant {vb.i:02d}: {s}" for s in find_leaks(values_b, values_a, seen_b, seen_a)]

@@ -265,6 +265,12 @@ class AerophotoSpawner(LocalProcessSpawner):
         if not self.system_users:
             passwd, group = UidTable(self.state_dir, self.uid_base).write_etc()
             args += ["--ro-bind", str(passwd), "/etc/passwd", "--ro-bind", str(group), "/etc/group"]
+        # /proc, /dev and a fresh /tmp before the environment and the book: a venv or a book checked out under
+        # /tmp is bound on top of the tmpfs, not hidden by it
+        args += ["--proc", "/proc"] if not self.is_instructor else ["--bind", "/proc", "/proc"]
+        args += ["--dev", "/dev", "--perms", "1777", "--size", str(64 * 1024 * 1024), "--tmpfs", "/dev/shm",
+                 "--perms", "1777", "--size", str(self.tmp_mb * 1024 * 1024), "--tmpfs", "/tmp"]
+        made.update({"/tmp", "/dev", "/proc"})
         for root in python_roots():
             if any(str(root) == m or str(root).startswith(m + "/") for m in _SYSTEM):
                 continue
@@ -278,9 +284,6 @@ class AerophotoSpawner(LocalProcessSpawner):
                 args += ["--ro-bind", str(book / rel), str(book / rel)]
         ancestors(Path(CONFIG_MOUNT))
         args += ["--ro-bind", str(Path(self.config_root) / self.role), CONFIG_MOUNT]
-        args += ["--proc", "/proc"] if not self.is_instructor else ["--bind", "/proc", "/proc"]
-        args += ["--dev", "/dev", "--perms", "1777", "--size", str(64 * 1024 * 1024), "--tmpfs", "/dev/shm",
-                 "--perms", "1777", "--size", str(self.tmp_mb * 1024 * 1024), "--tmpfs", "/tmp"]
         ancestors(Path(f"/home/{name}"))
         args += ["--bind", str(home), f"/home/{name}"]
         ancestors(Path(EXCHANGE_MOUNT))

@@ -221,9 +221,10 @@ class Hub:
         except (OSError, ValueError):
             return []
         procs = []
-        for p in psutil.process_iter(["uids"]):
+        for p in psutil.process_iter(["uids", "status"]):
             try:
-                if p.info["uids"] and p.info["uids"].real in uids:
+                # a zombie has ended: only its exit status waits to be collected by its parent
+                if p.info["uids"] and p.info["uids"].real in uids and p.info["status"] != psutil.STATUS_ZOMBIE:
                     procs.append(p)
             except psutil.Error:
                 continue
@@ -245,9 +246,11 @@ class Hub:
                 os.killpg(p.pid, signal.SIGKILL)
             with contextlib.suppress(subprocess.TimeoutExpired):
                 p.wait(timeout=20)
-        for q in self.user_processes():  # a server the hub could not stop: never left running
+        left = self.user_processes()
+        for q in left:  # a server the hub could not stop: never left running
             with contextlib.suppress(psutil.Error):
                 q.kill()
+        psutil.wait_procs(left, timeout=15)  # killed is not yet gone: wait until the kernel has ended them
         if self._log is not None:
             self._log.close()
             self._log = None

@@ -403,7 +403,7 @@ tasks.inputs("task-07-3", v)
 * Correlation finds parallaxes automatically where the ground is textured and seen twice; it fails on uniform or
   repetitive fields, in shadows, and where one photo cannot see.
 
-Next: **09 · Plan correction** (chapter 08, interpretation, is being written).
+Next: **08 · Interpretation** — reading what the photos show.
 """, id="summary"),
 ]
 

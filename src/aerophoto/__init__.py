@@ -16,7 +16,8 @@ course-design guide (Presnyakov & Tyuklenkova, Penza 2014), in six layers
                            ``tasks`` (graded tasks per chapter)
 5    presentation          ``plots``, ``widgets``, ``demos``
 6    course                ``checks``, ``book`` (setup, chapter registry),
-                           ``nbtools``, ``course`` (the instructor's CLI)
+                           ``nbtools``, ``course`` (the instructor's CLI),
+                           ``report`` (the student's course report, §15)
 ===  ====================  =====================================================
 
 Importing aerophoto has no side effects: submodules load on first use, and
@@ -42,6 +43,7 @@ _SUBMODULES = (
     "mosaic",
     "triangulation",
     "stereo",
+    "interpretation",
     "projective",
     "control",
     "rectify",
@@ -49,6 +51,7 @@ _SUBMODULES = (
     "budget",
     "bundle",
     "accuracy",
+    "soilmap",
     "terrain",
     "guide",
     "tasks",
@@ -59,6 +62,7 @@ _SUBMODULES = (
     "book",
     "nbtools",
     "course",
+    "report",
 )
 
 __all__ = ["__version__", "setup", "chapters", *_SUBMODULES]

@@ -169,6 +169,20 @@ CHAPTERS = (
                      "lens at the same scale flattens it",
                      (("B, m", "PageUp"), ("f, mm", "PageUp")), timed="B, m"),
             )),
+    Chapter("08", "interpretation", "guide §9", "interpreting aerial photos: conditions, keys, table 10",
+            "дешифрирование аэроснимков", (
+                Demo("demo-conditions", "aerophoto.demos.interpretation.ConditionsDemo",
+                     "What makes a photo readable", "season, then e (sun elevation) and V (visibility), then θ and t",
+                     "snow hides the fields; a low sun lengthens the shadows; haze greys the colours and flattens the "
+                     "contrast; wet soil darkens; a long exposure smears the photo along the flight",
+                     (("e (sun elevation), °", "PageDown"), ("θ (soil moisture), %", "PageUp")),
+                     timed="e (sun elevation), °"),
+                Demo("demo-key", "aerophoto.demos.interpretation.KeyDemo", "Table 10 as an interactive key",
+                     "table 10 row, then the film",
+                     "each row of table 10 shows the place on the site where its key applies: islands and the "
+                     "tributary give the flow, tone and crowns tell pine from spruce, curvature a railway from a road",
+                     (("table 10 row", "ArrowRight"),), timed="table 10 row"),
+            )),
     Chapter("09", "plan_correction", "guide §10", "correcting a plan by mutual projective grids",
             "корректировка плана методом взаимно-проектных сеток", (
                 Demo("demo-plan-correction", "aerophoto.demos.plan_correction.PlanCorrectionDemo",
@@ -202,6 +216,17 @@ CHAPTERS = (
                      "α max, q, pricking error",
                      "the same explorer with tilted photos: the reduced strip against the control points",
                      (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
+            )),
+    Chapter("13", "soil_mapping", "guide §14", "aerial and space photos in soil mapping: soil reflectance, "
+            "soil keys and contour interpretation", "применение аэро- и космических снимков при почвенном "
+            "картографировании", (
+                Demo("demo-spectral", "aerophoto.demos.spectral_explorer.SpectralExplorerDemo",
+                     "Spectral explorer — soil reflectance and a band composite",
+                     "θ (moisture) up, then H (humus), then d (particle size) below 0.4 mm",
+                     "wetting darkens every band and deepens the water dips at 1.45 and 1.95 µm; humus darkens "
+                     "the red band most and little beyond 5 %; fine particles brighten the soil; the patch "
+                     "follows",
+                     (("θ (moisture), %", "PageUp"), ("H (humus), %", "PageUp")), timed="θ (moisture), %"),
             )),
     Chapter("14", "triangulation_accuracy", "article 001", "accuracy of phototriangulation: error accumulation and "
             "control spacing", "точность фототриангуляционных сетей", (

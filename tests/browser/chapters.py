@@ -12,7 +12,20 @@ from __future__ import annotations
 from aerophoto.book import CHAPTERS as _BOOK
 from aerophoto.book import LECTURE_INDEX, Chapter, Demo
 
-__all__ = ["CHAPTERS", "LECTURE_INDEX", "Chapter", "Demo"]
+import pytest
+
+__all__ = ["CHAPTERS", "LECTURE_INDEX", "Chapter", "Demo", "CORE", "core_params"]
 
 #: the chapters with at least one live demo, in the book's order
 CHAPTERS = tuple(c for c in _BOOK if c.demos)
+
+#: the chapters whose whole notebook also runs in Voilà in the README's test command: the simplest (00) and the
+#: heaviest demo (05, the fotoschema). Every chapter's demos run in Voilà on its lecture page (test_lectures.py)
+#: and its whole notebook in JupyterLab (test_lab.py); the other whole-notebook Voilà runs are ``exhaustive``
+#: (a step of .ci/run of their own), so every chapter still runs in Voilà in CI.
+CORE = ("00", "05")
+
+
+def core_params(chapters=CHAPTERS, core=CORE):
+    """``chapters`` as pytest params, those outside ``core`` marked ``exhaustive``."""
+    return [pytest.param(c, id=c.name, marks=() if c.number in core else pytest.mark.exhaustive) for c in chapters]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from . import harness as h
-from .chapters import CHAPTERS, LECTURE_INDEX
+from .chapters import CHAPTERS, LECTURE_INDEX, core_params
 from .demo_checks import assert_clean, exercise_demo
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(1800)]
@@ -19,7 +19,7 @@ def voila_demo_root(page, demo):
     return loc.nth(demo.nth)
 
 
-@pytest.mark.parametrize("chapter", CHAPTERS, ids=lambda c: c.name)
+@pytest.mark.parametrize("chapter", core_params())
 def test_demos_in_voila(chapter, voila, tab):
     page = tab.page
     h.open_voila(page, voila, chapter.notebook)

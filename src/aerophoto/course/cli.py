@@ -72,6 +72,12 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--cache", type=Path, default=None,
                    help="downloads kept between builds (default: $AEROPHOTO_LITE_CACHE or ~/.cache/aerophoto-lite)")
 
+    p = sub.add_parser("report", help="the student's course report (guide §15, PDF and HTML) and fotoschema sheet "
+                                      "from their workbook, read without running it (no course set-up needed)")
+    from ..report.cli import add_arguments as _report_arguments
+
+    _report_arguments(p)
+
     p = sub.add_parser("gradebook", help="export the grades and flags as CSV")
     p.add_argument("--out", type=Path, default=None, help="CSV file (default: <course>/grades.csv)")
     p.add_argument("--by", choices=("submission", "student"), default="submission",
@@ -134,6 +140,10 @@ def _dispatch(args, out) -> int:
         return 0 if write_teacher(dest, args.notebooks, out=out) else 1
     if args.cmd == "check":
         return _check(args, out)
+    if args.cmd == "report":
+        from ..report.cli import run as report
+
+        return report(args, out)
     if args.cmd == "lite":
         from ..lite import main as lite
 

@@ -79,7 +79,8 @@ def package_answer_functions() -> frozenset:
     """The package's functions the graded tasks compute their answers with (from :mod:`aerophoto.tasks`' code).
 
     Every call in a ``tasks/chNN.py`` module of a function of another aerophoto module (``flight.plan``,
-    ``geometry.flying_height_m``, ``quality.variant_task_answers``, ...), plus ``aerophoto.tasks`` itself.
+    ``geometry.flying_height_m``, ``quality.variant_task_answers``, ...), plus ``aerophoto.tasks`` itself, less
+    the instruments a task's text tells the student to work with (``Task.tools``).
     """
     from .. import tasks
 
@@ -99,7 +100,8 @@ def package_answer_functions() -> frozenset:
                                                                                      "aerophoto.variants"))
                         and name.count(".") >= 2):
                     found.add(name)
-    return frozenset(found)
+    taught = {tool for t in tasks.all_tasks() for tool in t.tools}  # the instruments a task tells students to use
+    return frozenset(found - taught)
 
 
 def _aliases(tree, package: str = "") -> dict:
@@ -213,6 +215,12 @@ def code_flags(src: str, *, where: str, answer_cell: bool, aliases: dict, known:
                         hit("patched_checks", f"{fn}() on {target}", node)
                 if fn in ("globals", "vars", "locals"):
                     hit("variant_changed", f"calls {fn}()", node)
+                leaf_fn = fn.split(".")[-1]
+                if fn.split(".")[0] in ("aerophoto", "checks") and "checks" in fn.split(".")[:2] and (
+                        leaf_fn in ("task_passed", "grade_task", "check_task") or leaf_fn.startswith("check_")):
+                    # the check cells are the release's own (skipped above): a student's own call of a check
+                    # can only serve to probe or fake a pass
+                    hit("patched_checks", f"calls {fn}() in their own code", node)
                 if fn in _SYSTEM_CALLS or fn.startswith(("os.exec", "os.spawn", "subprocess.", "socket.",
                                                          "sqlite3.", "multiprocessing.", "ctypes.", "shutil.")):
                     hit("system_access", f"calls {fn}()", node)

@@ -281,17 +281,20 @@ class Box:
                 args += ["--symlink", os.readlink(p), top]
             elif p.is_dir():
                 args += ["--ro-bind", top, top]
+        # the fresh /tmp first: a Python environment that lives under /tmp (a clone checked out there) is bound
+        # on top of it below, not hidden by it
+        size = str(lim.tmpfs_mb * _MB)
+        args += ["--proc", "/proc", "--dev", "/dev",
+                 "--perms", "1777", "--size", size, "--tmpfs", "/tmp",
+                 "--perms", "1777", "--dir", "/tmp/mpl",
+                 "--perms", "1777", "--size", size, "--tmpfs", "/sbx"]
+        made.update({"/tmp", "/tmp/mpl", "/sbx"})
         for root in _python_roots():
             if any(str(root) == m or str(root).startswith(m + "/") for m in _SYSTEM):
                 continue
             ancestors(root)
             args += ["--ro-bind", str(root), str(root)]
             made.add(str(root))
-        size = str(lim.tmpfs_mb * _MB)
-        args += ["--proc", "/proc", "--dev", "/dev",
-                 "--perms", "1777", "--size", size, "--tmpfs", "/tmp",
-                 "--perms", "1777", "--dir", "/tmp/mpl",
-                 "--perms", "1777", "--size", size, "--tmpfs", "/sbx"]
         fonts = _font_cache()
         if fonts is not None:
             args += ["--ro-bind", str(fonts), f"/tmp/mpl/{fonts.name}"]

@@ -25,9 +25,11 @@ _SUBMODULES = (
     "block_accuracy",  # the error map of a block against its control layout and measuring error (chapter 14)
     "dem_contours",  # contours from a DEM of the site against the true ground (chapter 16)
     "error_budget",  # the live error budget of map updating (chapter 17)
+    "interpretation",  # what makes a photo readable; table 10 as an interactive key (chapter 08)
     "stereo",  # the floating mark over a stereo pair's anaglyph; base, height and focal length (chapter 07)
     "stereo_figures",  # the stereoscope and its check, parallax profile, height model, prints at true size (07)
     "site_views",  # views of the virtual world: the site as a map, a rendered photo (PhotoView)
+    "spectral_explorer",  # soil reflectance under a camera's bands and a patch's composite (chapter 13)
     "measure",  # the measuring tool: readings of pricked points on a photo or plan by clicking (chapters 03, 04)
 )
 

@@ -17,7 +17,7 @@ import importlib
 
 from .audit import TOLERANCE_UNITS, Audit, Printed, digit_unit, discrepancy_frame, printed, render
 
-_SUBMODULES = ("s02", "s03", "s04", "s05", "s06", "s07", "s08", "s10", "s11", "s12", "s13", "a000", "a001", "a002", "a003")
+_SUBMODULES = ("s02", "s03", "s04", "s05", "s06", "s07", "s08", "s09", "s10", "s11", "s12", "s13", "s14", "a000", "a001", "a002", "a003")
 
 __all__ = ["TOLERANCE_UNITS", "Audit", "Printed", "printed", "digit_unit", "render", "discrepancy_frame",
            *_SUBMODULES]

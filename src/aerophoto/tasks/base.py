@@ -131,6 +131,10 @@ class Task:
     cross_variant: ClassVar[bool] = True
     #: score in proportion to the checks passed (otherwise all or nothing, as nbgrader scores a test cell)
     partial: ClassVar[bool] = False
+    #: the package's functions the task's text tells the student to work with (``"aerophoto.soilmap.contingency"``):
+    #: the book's instruments for this task, so calling them in an answer cell is not flagged
+    #: ``uses_package_answers`` (:func:`aerophoto.course.flags.package_answer_functions`)
+    tools: ClassVar[tuple] = ()
 
     @property
     def chapter(self) -> str:

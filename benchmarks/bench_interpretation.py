@@ -1,0 +1,122 @@
+"""The interpretation chapter (08): colour photos against greyscale ones, and the conditions demo.
+
+* ``photo_512`` — a 512² photo of the interpretation site with the sun (shadows): ``greyscale`` is
+  :func:`aerophoto.render.render` of its site (the renderer every chapter uses); ``colour`` is
+  :func:`aerophoto.site.colour.render_colour` (the same render with the ground kept, plus the six bands, haze and
+  blur), both geometry caches cleared each time; ``colour_new_sun`` a new sun over a cached render (the shadows
+  and shading only); ``colour_recolour_only`` recolours a cached geometry (what every
+  slider but the sun's costs).  Goal: colour ≤ ~2× greyscale.
+* ``conditions_demo`` — :class:`aerophoto.demos.interpretation.ConditionsDemo` driven through slider changes
+  (``compute_render_only`` = ``demo.set``; ``live_set_plus_agg_draw`` adds one forced Agg draw), all sliders
+  mixed, and split into the sun's sliders (a new render of the patch's shadows; cached per sun position) and the
+  others (recolour only).  Goal: p95 ≤ 150 ms kernel side.
+* ``key_demo`` — :class:`aerophoto.demos.interpretation.KeyDemo` stepping through the rows (each a new close-up).
+* ``lab`` — the answer keys of all 100 variants, and one student's photo (1024², six bands).
+"""
+
+from __future__ import annotations
+
+import time
+
+from _timing import measure, summarize
+
+
+def _drive(demo, changes):
+    canvas = demo.fig.canvas
+    canvas.draw_idle = lambda *a, **k: None
+    demo.draw(force=True)
+    kernel, live, names = [], [], []
+    for ch in changes:
+        t0 = time.perf_counter()
+        demo.set(**ch)
+        t1 = time.perf_counter()
+        demo.draw(force=True)
+        t2 = time.perf_counter()
+        kernel.append(t1 - t0)
+        live.append(t2 - t0)
+        names.append(next(iter(ch)))
+    sun = [k for k, n in zip(kernel, names) if n.startswith("sun_")]
+    other = [k for k, n in zip(kernel, names) if not n.startswith("sun_")]
+    return {"slider_changes": len(changes), "compute_render_only": summarize(kernel),
+            "live_set_plus_agg_draw": summarize(live), "sun_sliders_kernel": summarize(sun),
+            "other_sliders_kernel": summarize(other), "target": "p95 ≤ 150 ms (kernel side)"}
+
+
+def run(quick: bool = False) -> dict:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from aerophoto import geometry as g
+    from aerophoto import interpretation as ip
+    from aerophoto import plots
+    from aerophoto.demos import interpretation as di
+    from aerophoto.render import Sun, render
+    from aerophoto.site import colour, cover
+    from aerophoto.tasks import ch08
+    from aerophoto.variants import variant_for_index
+
+    out = {}
+    t0 = time.perf_counter()
+    isite = cover.build_interpretation_site(0)
+    out["site_build_s"] = round(time.perf_counter() - t0, 2)
+    isite = cover.interpretation_site(0)
+    cam = g.Camera()
+    pose = colour.vertical_pose(isite, 800.0, 800.0, 8500.0)
+    cond = ip.Conditions()
+    n = 5 if quick else 15
+    grey = measure(lambda: render(isite.site, cam, pose, 512, sun=Sun(cond.sun_azimuth_deg, cond.sun_elevation_deg)),
+                   n, warmup=1)
+
+    def colour_fresh():
+        colour._geometry.cache_clear()
+        colour._base.cache_clear()
+        colour.render_colour(isite, cam, pose, 512, cond)
+
+    col = measure(colour_fresh, n, warmup=1)
+    suns = iter(range(10, 90))
+
+    def new_sun():
+        colour.colour_geometry(isite, cam, pose, 512, sun_elevation_deg=next(suns))
+
+    sun = measure(new_sun, min(n, 30), warmup=1)
+    geom = colour.colour_geometry(isite, cam, pose, 512)
+    recol = measure(lambda: colour.colour_photo(geom, cond), n, warmup=1)
+    out["photo_512"] = {"greyscale": grey, "colour": col, "colour_new_sun": sun, "colour_recolour_only": recol,
+                        "colour_over_greyscale_median": round(col["median_ms"] / grey["median_ms"], 2),
+                        "target": "colour ≤ ~2× greyscale"}
+
+    with plots.style_context():
+        demo = di.ConditionsDemo()
+        m = 24 if quick else 72
+        seasons = ("summer", "autumn", "spring", "winter")
+        changes = []
+        for i in range(m):
+            k = i % 8
+            changes.append(
+                {"visibility_km": 2 + (i * 7) % 58} if k in (0, 4) else
+                {"season": seasons[(i // 8) % 4]} if k == 1 else
+                {"moisture_pct": (i * 6) % 30} if k == 2 else
+                {"exposure_ms": 0.5 + (i * 1.5) % 19} if k == 3 else
+                {"speed_kmh": 100 + (i * 60) % 400} if k == 5 else
+                {"sun_elevation_deg": 10 + 5 * ((i * 3) % 15)} if k == 6 else
+                {"sun_azimuth_deg": 90 + 15 * ((i * 5) % 13)})
+        out["conditions_demo"] = _drive(demo, changes)
+        w, h = demo.fig.canvas.get_width_height()
+        out["conditions_demo"]["figure_px"] = [w, h]
+        key = di.KeyDemo()
+        out["key_demo"] = _drive(key, [{"row": r % di.N_KEY_ROWS} for r in range(1, (6 if quick else 18) + 1)])
+
+    t0 = time.perf_counter()
+    for i in range(100 if not quick else 10):
+        ch08._truth(i)
+    out["lab_answer_keys_100_s"] = round(time.perf_counter() - t0, 2)
+    t0 = time.perf_counter()
+    ch08.lab_photo(variant_for_index(57))
+    out["lab_photo_1024_s"] = round(time.perf_counter() - t0, 2)
+    return out
+
+
+if __name__ == "__main__":
+    import json
+
+    print(json.dumps(run(), indent=2))

@@ -1,0 +1,261 @@
+"""Write notebooks/08_interpretation.ipynb (guide §9) from its cells (safe to re-run).
+
+    python docs/tools/build_08_interpretation.py
+
+Cells are identified by id; the notebook is written without outputs.
+"""
+
+from pathlib import Path
+
+from aerophoto.nbtools import code, md, notebook, write
+
+from build_09_plan_correction import answer_cell, check_cell  # noqa: E402  (same folder)
+
+ROOT = Path(__file__).resolve().parents[2]
+PATH = ROOT / "notebooks" / "08_interpretation.ipynb"
+
+CELLS = [
+    md("""
+# 08 · Interpreting aerial photos (guide §9)
+
+A photo is only useful once somebody has said what is on it. **Interpretation** (дешифрирование) is finding the
+objects a photo shows, recognising them, and reading off their number and qualities — what a river is, which way
+it flows, whether a wood is pine or spruce, how wide a road is. How well a photo lends itself to that is its
+**interpretability** (дешифрируемость): it depends on the conditions the photo was taken in and on the physics of
+the image.
+
+**In this chapter you will**
+
+1. meet the conditions of photographing that make a photo readable or not (guide §9), and watch each of them act
+   on a colour photo of a new part of the virtual world, made for this chapter;
+2. learn the **direct keys** (прямые дешифровочные признаки: shape, size, tone, shadow) and the **indirect** ones
+   (косвенные), and see why colour and the near infrared help;
+3. walk through the guide's **table 10** of topographic keys (топографическое дешифрирование), each row shown on
+   the site where it applies;
+4. interpret **your own** photo: name six numbered objects, find the river's flow, tell pine from spruce, and
+   measure the river's width by the photo's scale.
+""", id="title"),
+    code("""
+RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
+import aerophoto
+from aerophoto import checks, guide, interpretation, plots, spectral, tasks
+from aerophoto.demos import interpretation as di
+v = aerophoto.setup(RECORD_BOOK)
+""", id="setup"),
+    md("""
+## What a photo shows, and what helps reading it
+
+The guide's list of the **conditions of photographing** (условия фотографирования) that matter most is short and
+practical: the season, the time of day, the moisture of the ground, the landscape's own contrast, haze, the tilt
+of the camera, the exposure time and the aircraft's speed, and steep slopes. Summer photos taken in the hours
+before noon are usually the most complete; snow, autumn's uniform colours, wet soil, smoke and a smeared image all
+take detail away.
+""", id="theory"),
+    code("""
+guide.s09.conditions_table()
+""", id="theory-conditions"),
+    md("""
+### How the book models them
+
+Every condition acts on the photo through physics, not by hand-painted effects (`aerophoto.interpretation`):
+
+* **Season** changes the spectra of the land covers: each class of the site is a linear mixture of typical spectra
+  (grass, crowns, soil, water, snow …), and the mixture changes with the season — snow on open ground in winter,
+  bare branches in spring, dull vegetation and wetter soil in autumn.
+* **Sun**: objects cast shadows of length $L = h/\\tan e$ away from the sun (azimuth $A + 180°$); a slope is lit in
+  proportion to the cosine of the sun's angle of incidence (Lambert's law), so steep slopes turned away darken.
+* **Moisture** darkens soil at every wavelength and most in the short-wave infrared, where water absorbs (the soil
+  model of chapter 13).
+* **Haze**: the air below the aircraft scatters light into the camera and dims the ground's own light; every
+  contrast shrinks, more in blue than in the infrared. The book takes the aerosol from the meteorological
+  visibility $V$ (Koschmieder's law) and treats it as a scattering layer.
+* **Image motion**: while the shutter is open the aircraft moves $W t$ over the ground, which is
+  $\\delta = W t / m$ on a photo of scale $1:m$ — the same quantity that chapter 01 limits to 0.1 mm.
+* **Tilt** changes the scale across the photo; the book's exact camera renders it.
+""", id="theory-model"),
+    code("""
+interpretation.conditions_table()
+""", id="theory-model-table"),
+    md("""
+### Tone and colour: reflectance in bands
+
+The **tone** (тон изображения) of an object is its brightness in the band the film or sensor records. Underneath it
+is the object's **reflectance** (коэффициент спектральной яркости, КСЯ): the share of the light it sends back, at
+each wavelength. Green plants reflect little red light but a lot of near infrared; water absorbs the infrared
+almost completely; asphalt is dark everywhere, gravel light. A **natural-colour** film records blue, green and red;
+a **colour-infrared** (spectrozonal, спектрозональный) film records green, red and near infrared and shows them as
+blue, green and red — vegetation turns red, water black, and conifers separate from broadleaf trees more clearly
+than to the eye.
+""", id="theory-tone"),
+    code("""
+plots.static(di.spectra_figure(),
+             alt="Line chart of reflectance against wavelength for nine land-cover classes of the site, with the six "
+                 "bands shaded. Water is low everywhere and falls to almost zero in the infrared; grass and the "
+                 "three forests are low in the visible and high in the near infrared, deciduous highest, spruce "
+                 "lowest; the raised bog lies between; asphalt is flat and dark; gravel rises gently and is "
+                 "brighter than asphalt in every band.")
+""", id="figure-spectra"),
+    md("""
+## Live: what makes a photo readable
+
+Below is one patch of the chapter's site: the river with an island, a tributary joining it, a spruce wood, two
+fields, and the floodplain meadow with haystacks, at 1:4 000, in natural colour and colour infrared. Change the conditions and
+watch what you can still tell apart. The table gives the photo's RMS contrast, the shadow of a 20 m tree and the
+image motion.
+""", id="demo-theory"),
+    code("""
+conditions = di.ConditionsDemo()
+conditions
+""", id="demo-conditions"),
+    md("""
+**Try this.** (1) Winter: the fields, the meadow and the river vanish under one white — only the forests and the
+roads' lines stay. (2) Lower the sun to 15°: the spruce crowns throw long shadows and the wood turns darker; the
+haystacks' shadows stretch away from the sun. (3) Visibility 3 km: every colour greys and the RMS contrast drops.
+(4) Wet the soil (θ): the ploughed field darkens and its furrows fade. (5) An exposure of 20 ms at 500 km/h
+smears the photo by more than a pixel along the flight (the photo's x).
+""", id="try-this"),
+    md("""
+## Direct and indirect keys
+
+Objects are recognised by their **direct keys** (прямые признаки) — shape, size, tone and shadow — and, where those
+are not enough, by **indirect keys** (косвенные): the links between objects. A bog is told partly by where it lies
+(on a watershed, or along a valley floor), a pond by the dam on its stream, a meadow by its haystacks. The guide
+calls the objects that point to something unseen **indicators** (индикаторы).
+""", id="theory-keys"),
+    code("""
+guide.s09.keys_table()
+""", id="theory-keys-table"),
+    md("""
+## Table 10: the keys of topographic interpretation
+
+The guide's table 10 (guide §9) lists, for rivers, lakes, ponds, bogs, forest, lowlands and meadows, arable land,
+railways and roads, what to determine and by which key. Here it is as printed, with our English beside it.
+""", id="example-theory"),
+    code("""
+guide.s09.table_10()
+""", id="example-table-10"),
+    md("""
+**Notes on the table.** The guide places the **shallows on the downstream side of islands**: true of the bars that
+trail behind an island where the two currents meet again, but an island's head often gathers a bar too — so use it
+together with the island's shape, which narrows downstream. A river's own width is no key to its flow (rivers
+usually widen downstream; on the site it does). The scan's "технологии ческое" in §9's classification of
+interpretation by content is read *топографическое*.
+
+### Each key on the site
+
+Move the row slider: the photo shows the place on the site where that row's key applies, and the table says what to
+look at. Compare the three forests at the same large scale: pine even and grey with convex crowns; spruce darker,
+mottled, with small pointed crowns and long thin shadows; deciduous lighter and coarse. Compare the railway's long
+straights and wide curve with the asphalt road's tight bends.
+""", id="example-key-theory"),
+    code("""
+key = di.KeyDemo()
+key
+""", id="demo-key"),
+    md("""
+### A worked example
+
+A photo taken like yours (a different crop and conditions; nobody's variant), with its numbered marks, stands P
+and Q, and the river's flow read with table 10's keys.
+""", id="example-1-theory"),
+    code("""
+example = tasks.ch08.example_photo()
+plots.static(di.lab_figure(example),
+             alt="A colour aerial photo of the interpretation site with six yellow numbered marks, two blue marks P "
+                 "and Q on two forest stands, and two red marks A and B on opposite banks of the river.", dpi=72)
+""", id="example-1"),
+    code("""
+tasks.ch08.example_key()
+""", id="example-1-key"),
+    md("""
+## Task 08.1 — name the numbered objects (graded)
+
+Your photo is below: your own crop of the site, at your own scale, turned by your own swing κ, in your own light and
+air. Six objects are numbered. Name each of them with one of the names of `tasks.ch08.OBJECT_NAMES` (copy the
+text exactly, e.g. `obj1 = "lake (озеро)"`):
+
+* `obj1` … `obj6` — the names of objects 1 to 6.
+
+Each name is graded on its own (half a point for each right one).
+""", id="task-08-1"),
+    code("""
+lab = tasks.inputs("task-08-1", v)
+print(lab)
+print("the names to choose from:")
+for name in tasks.ch08.OBJECT_NAMES:
+    print("   ", repr(name))
+""", id="task-08-1-data"),
+    code("""
+plots.static(di.lab_figure(lab),
+             alt="Your colour aerial photo of the interpretation site with six numbered yellow marks, two blue "
+                 "marks P and Q on two forest stands, and red marks A and B on the two banks of the river.", dpi=72)
+""", id="task-08-1-photo"),
+    code("""
+plots.static(di.lab_figure(lab, "colour-infrared film"),
+             alt="The same photo as colour infrared: vegetation red, water black, with the same marks.", dpi=72)
+""", id="task-08-1-cir"),
+    answer_cell("task-08-1"),
+    check_cell("task-08-1"),
+    md("""
+## Task 08.2 — which way does the river flow, and which wood is spruce? (graded)
+
+On your photo:
+
+* `flow` — the direction the river flows **on the photo**, one of `tasks.ch08.FLOW_OPTIONS`
+  (`"towards +x (right)"`, `"towards −x (left)"`, `"towards +y (up)"`, `"towards −y (down)"`); use the islands'
+  shape and the tributary (table 10);
+* `spruce` — which of the two stands marked P and Q is spruce: `"P"` or `"Q"` (the other is pine).
+""", id="task-08-2"),
+    answer_cell("task-08-2"),
+    check_cell("task-08-2"),
+    md("""
+## Task 08.3 — the river's width by the scale (graded)
+
+Marks A and B stand on the two banks of the river, across its flow. Their photo coordinates, read on your photo, are
+in the table below (mm), and your photo's scale is $1:m$ (printed with the photo above). Compute
+
+* `width_m` — the river's width on the ground, $|AB| \\cdot m$, in metres (tolerance 5 %: the scale of a tilted
+  photo of uneven ground is not quite $1:m$ everywhere).
+""", id="task-08-3"),
+    code("""
+lab.marks_table().loc[["A", "B"]]
+""", id="task-08-3-data"),
+    answer_cell("task-08-3"),
+    check_cell("task-08-3"),
+    md("""
+## Summary
+
+* Interpretability depends on the conditions of photographing (guide §9): summer photos taken before noon, in
+  clear air, of dry ground, with a short exposure are the most readable; snow, haze, wet soil and image motion
+  ($\\delta = W t/m$) take detail away, and the sun's height sets the shadows ($L = h/\\tan e$).
+* Objects are told by direct keys (shape, size, tone, shadow) and indirect ones (their links to other objects).
+* Table 10: shallow water is light and deep water dark; islands narrow downstream and tributaries meet a river at an
+  acute angle pointing downstream; a pond is widest at its dam; raised bogs lie on watersheds, low bogs along
+  valleys; pine is even and grey, spruce darker and mottled with pointed crowns, deciduous lighter; railways have
+  long straights and wide curves, roads tight bends and ditches; asphalt is dark, gravel light.
+
+**Sources of the spectral model** (`aerophoto.spectral.SOURCES`): the typical spectra of the USGS, ECOSTRESS and
+ASTER spectral libraries, urban materials after Herold et al. (2004), mosses and bogs after Bubier et al. (1997),
+snow after Wiscombe and Warren (1980), linear mixtures after Adams et al. (1986), soil after Stoner and
+Baumgardner (1981), Bowers and Hanks (1965) and Lobell and Asner (2002), water absorption after Hale and Querry
+(1973) and Kou et al. (1993), haze after Koschmieder (1924), Ångström (1929), Hansen and Travis (1974) and Bohren
+(1987). The full list:
+""", id="summary"),
+    code("""
+for source in spectral.SOURCES:
+    print("•", source)
+""", id="summary-sources"),
+    md("""
+Next: **09 · Plan correction**; the soil application of these spectra is chapter **13 · Soil mapping**.
+""", id="summary-next"),
+]
+
+
+def main():
+    nb = notebook(CELLS, title="08 · Interpreting aerial photos")
+    write(nb, PATH)
+    print("wrote", PATH.relative_to(ROOT))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,303 @@
+"""Chapter 08's live demos: what makes a photo readable, and table 10 as an interactive key (guide §9).
+
+* :class:`ConditionsDemo` — one patch of the interpretation site (the river with an island, the tributary, spruce
+  forest, the floodplain meadow with haystacks) in natural colour and colour infrared; sliders for the season,
+  the sun's elevation e and azimuth A, the visibility V, the topsoil's moisture θ, the ground speed W and the
+  exposure t.  The photos update in place (``AxesImage.set_data``); the table gives the photo's RMS contrast, the
+  shadow length of a 20 m tree L = h/tan e and the image motion δ = W·t/m.  The patch is rendered once; a new sun
+  recomputes only its shadows and shading (cached per position); every other slider only recolours.  It opens on the example (variant 00's
+  conditions are the chapter's example: summer, e = 45°, A = 150°, V = 30 km).
+* :class:`KeyDemo` — pick a row of table 10: a close-up photo of the site where that key applies, with the key in
+  English and Russian (flow direction from islands and the tributary; pine, spruce and deciduous by tone and
+  crown shape; railway against road by curvature; …).
+* :func:`lab_figure` — the student's own photo with its numbered marks (the static figure of the lab).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from .. import geometry as g
+from .. import interpretation as ip
+from .. import plots
+from ..widgets import LiveDemo, Param
+
+__all__ = ["ConditionsResult", "conditions_model", "ConditionsView", "ConditionsDemo", "KEY_VIEWS", "KeyResult",
+           "key_model", "KeyView", "KeyDemo", "lab_figure", "PATCH", "N_KEY_ROWS", "spectra_figure"]
+
+#: the conditions demo's patch: centre X, Y (m), scale 1:m, pixels
+PATCH = (620.0, 980.0, 4000.0, 320)
+_SEASONS = (("summer (лето)", "summer"), ("autumn (осень)", "autumn"), ("spring, leaf-off (весна)", "spring"),
+            ("winter, snow (зима)", "winter"))
+
+
+def _site():
+    from ..site.cover import interpretation_site
+
+    return interpretation_site(0)
+
+
+@dataclass(frozen=True, eq=False)
+class ConditionsResult:
+    natural: np.ndarray
+    cir: np.ndarray
+    conditions: ip.Conditions
+    contrast: float
+    shadow_m: float
+    blur_mm: float
+    blur_px: float
+
+    def table(self) -> pd.DataFrame:
+        c = self.conditions
+        rows = [("RMS contrast of the photo (red band)", f"{self.contrast:.3f}"),
+                ("shadow of a 20 m tree, L = h / tan e", f"{self.shadow_m:.1f} m"),
+                ("shadows fall towards (azimuth)", f"{ip.shadow_azimuth_deg(c.sun_azimuth_deg):.0f}°"),
+                ("image motion δ = W·t/m", f"{self.blur_mm:.3f} mm = {self.blur_px:.1f} px"),
+                ("season", c.season)]
+        return pd.DataFrame(rows, columns=["quantity", "value"]).set_index("quantity")
+
+
+def conditions_model(season="summer", sun_elevation_deg=45.0, sun_azimuth_deg=150.0, visibility_km=30.0,
+                     moisture_pct=0.0, speed_kmh=200.0, exposure_ms=2.0) -> ConditionsResult:
+    """The patch's photo under these conditions (see the module notes)."""
+    from ..site.colour import colour_geometry, colour_photo
+
+    cond = ip.Conditions(season=season, sun_elevation_deg=sun_elevation_deg, sun_azimuth_deg=sun_azimuth_deg,
+                         visibility_km=visibility_km, moisture_pct=moisture_pct, speed_kmh=speed_kmh,
+                         exposure_ms=exposure_ms)
+    isite = _site()
+    X, Y, m, n = PATCH
+    pose = g.Pose(X, Y, isite.site.mean_height_m + g.flying_height_m(100.0, m), 0.0, 0.0, 0.0)
+    geom = colour_geometry(isite, g.Camera(100.0, 180.0), pose, n, sun_elevation_deg=cond.sun_elevation_deg,
+                           sun_azimuth_deg=cond.sun_azimuth_deg)
+    cp = colour_photo(geom, cond)
+    red = cp.band("red")
+    return ConditionsResult(natural=cp.natural_colour(), cir=cp.colour_infrared(), conditions=cond,
+                            contrast=ip.contrast(red, geom.photo.valid), shadow_m=float(ip.shadow_length_m(20.0, cond.sun_elevation_deg)),
+                            blur_mm=cp.blur_mm, blur_px=cp.blur_mm / geom.photo.pixel_mm)
+
+
+class ConditionsView:
+    """Natural colour (left) and colour infrared (right) of the patch; ``update`` sets the images' data."""
+
+    def __init__(self, result: ConditionsResult | None = None, ax=None):
+        if ax is None:
+            fig = plots.figure(figsize=(9.6, 4.9))
+            ax_nat, ax_cir = fig.subplots(1, 2)
+        else:
+            ax_nat, ax_cir = ax
+            fig = ax_nat.figure
+        self.fig, self.ax_nat, self.ax_cir = fig, ax_nat, ax_cir
+        blank = np.zeros((PATCH[3], PATCH[3], 3), np.float32)
+        h = 90.0
+        self.im_nat = ax_nat.imshow(blank, extent=(-h, h, -h, h), interpolation="nearest")
+        self.im_cir = ax_cir.imshow(blank, extent=(-h, h, -h, h), interpolation="nearest")
+        ax_nat.set_title("natural colour (цветной)")
+        ax_cir.set_title("colour infrared (спектрозональный)")
+        for a in (ax_nat, ax_cir):
+            a.set_xlabel("x, mm")
+        ax_nat.set_ylabel("y, mm")
+        # north arrow: the photo's +y is north (κ = 0)
+        ax_nat.annotate("N", xy=(80, 80), xytext=(80, 55), color="white", ha="center",
+                        arrowprops=dict(arrowstyle="->", color="white"))
+        if result is not None:
+            self.update(result)
+
+    def update(self, r: ConditionsResult) -> None:
+        self.im_nat.set_data(r.natural)
+        self.im_cir.set_data(r.cir)
+
+
+class ConditionsDemo(LiveDemo):
+    """What makes a photo readable: the shooting conditions of guide §9 on one patch of the site."""
+
+    title = "What makes a photo readable (дешифрируемость)"
+    hint = ("Change the season, lower the sun, thicken the haze, wet the soil, slow the shutter: "
+            "watch what you can still tell apart.")
+    params = (
+        Param("season", "season", default="summer", kind="choice", options=_SEASONS, group="Season and moisture"),
+        Param("moisture_pct", "θ (soil moisture), %", 0, 30, 2, 0, group="Season and moisture",
+              help="volumetric moisture of the topsoil above the season's"),
+        # a new sun recomputes the patch's shadows over its cached render (about 70 ms)
+        Param("sun_elevation_deg", "e (sun elevation), °", 10, 80, 5, 45, group="Sun",
+              help="the sun's height above the horizon"),
+        Param("sun_azimuth_deg", "A (sun azimuth), °", 90, 270, 15, 150, group="Sun",
+              help="clockwise from north"),
+        Param("visibility_km", "V (visibility), km", 2, 60, 1, 30, group="Air",
+              help="meteorological visibility: smaller V, thicker haze"),
+        Param("speed_kmh", "W (ground speed), km/h", 100, 500, 20, 200, group="Image motion"),
+        Param("exposure_ms", "t (exposure), ms", 0.5, 20, 0.5, 2, group="Image motion"),
+    )
+
+    def build(self):
+        self.view = ConditionsView()
+        self.fig = self.view.fig
+
+    def compute(self, **v):
+        return conditions_model(**v)
+
+    def render(self, result):
+        self.view.update(result)
+        self.table.value = plots.html_table(result.table(), caption="The photo under these conditions")
+
+
+# =========================================================================== table 10 as a key
+#: the close-ups of the interactive key: site object → (centre X, Y in m, scale denominator, what to look at)
+KEY_VIEWS = {
+    "river width": ((900.0, None), 3000.0, "the river between its banks: measure its width by the scale"),
+    "island": ((505.0, None), 2500.0, "a blunt head upstream, a tail narrowing downstream"),
+    "shallows": ((1330.0, None), 2000.0, "light water and a sand spit below the island's tail"),
+    "tributary": ((610.0, 830.0), 5500.0, "the tributary meets the river at an acute angle pointing downstream; "
+                  "the island narrows downstream too — the river flows east (right)"),
+    "lake": ((270.0, 230.0), 3500.0, "a closed shoreline, a light shallow rim"),
+    "pond": ((1322.0, 380.0), 2500.0, "the water is widest at the dam"),
+    "dam": ((1322.0, 420.0), 2000.0, "the dam closes the pond at its downstream end: the brook flows north"),
+    "raised bog": ((1300.0, 1400.0), 6000.0, "on the watershed, far from streams; mottled tone, bog lakelets, "
+                   "sparse small pines"),
+    "low bog": ((1330.0, 720.0), 4000.0, "a ribbon along the valley floor; shrub thick at its edges"),
+    "pine forest": ((160.0, 1320.0), 1200.0, "even grey tone, convex crowns of one height"),
+    "spruce forest": ((670.0, 1360.0), 1200.0, "darker, mottled; small pointed crowns with long thin shadows"),
+    "deciduous forest": ((745.0, 200.0), 1200.0, "lighter, coarse grain of broad soft crowns"),
+    "shrub": ((1330.0, 650.0), 1500.0, "lighter than forest, fine grain, short shadows"),
+    "haystacks": ((None, None), 1200.0, "small round bright heaps with shadows on an even meadow"),
+    "arable land": ((1300.0, 170.0), 4000.0, "straight boundaries, even tone, furrows"),
+    "railway": ((700.0, 470.0), 7000.0, "even width, long straights joined by a curve of large radius"),
+    "asphalt road": ((1000.0, 640.0), 3000.0, "dark, winding in tight curves, edged by ditches"),
+    "gravel road": ((820.0, 420.0), 2500.0, "light, edged by ditches"),
+}
+
+
+def _key_rows():
+    from ..guide import s09
+
+    return [r for r in s09.TABLE_10 if r[5] is not None]
+
+
+#: how many rows of table 10 the site illustrates (the key's slider runs over them)
+N_KEY_ROWS = 18
+
+
+@dataclass(frozen=True, eq=False)
+class KeyResult:
+    image: np.ndarray
+    row: tuple
+    look: str
+
+    def table(self) -> pd.DataFrame:
+        g_, e, e_ru, k, k_ru, obj = self.row
+        return pd.DataFrame({"": [f"{g_}: {e} ({e_ru})", k, k_ru, self.look]},
+                            index=["table 10", "key", "признак", "on this photo"])
+
+
+def key_model(row: int = 0, camera: str = "colour film") -> KeyResult:
+    """The close-up photo of table 10's row ``row`` (of the rows the site illustrates) and its key."""
+    from ..site.colour import render_colour
+    from ..site.cover import _river_y
+
+    rows = _key_rows()
+    if not 0 <= int(row) < len(rows):
+        raise ValueError(f"row = {row!r} is outside the valid range 0 ≤ row ≤ {len(rows) - 1}")
+    r = rows[int(row)]
+    isite = _site()
+    (X, Y), m, look = KEY_VIEWS[r[5]]
+    if r[5] == "shallows":
+        X = float(isite.features["islands"][1]["tail_m"][0])
+    if r[5] == "haystacks":
+        X, Y = (float(v) for v in isite.features["haystacks"][0, :2])
+    if Y is None:
+        Y = float(_river_y(X))
+    pose = g.Pose(X, Y, isite.site.mean_height_m + g.flying_height_m(100.0, m))
+    cp = render_colour(isite, g.Camera(100.0, 180.0), pose, 384, ip.Conditions(speed_kmh=0.0))
+    return KeyResult(image=cp.composite(camera), row=r, look=look)
+
+
+class KeyView:
+    """The close-up of one key; ``update`` swaps the image's data."""
+
+    def __init__(self, result: KeyResult | None = None, ax=None):
+        self.fig, self.ax = plots.new_axes(ax, figsize=(5.6, 5.4))
+        self.im = self.ax.imshow(np.zeros((384, 384, 3), np.float32), extent=(-90, 90, -90, 90))
+        self.ax.set_xlabel("x, mm")
+        self.ax.set_ylabel("y, mm (north up)")
+        self.ax.set_title("the site, close up")
+        if result is not None:
+            self.update(result)
+
+    def update(self, r: KeyResult) -> None:
+        self.im.set_data(r.image)
+
+
+class KeyDemo(LiveDemo):
+    """Table 10 as an interactive key: pick a row, see where it applies on the site."""
+
+    title = "Table 10 as a key (топографическое дешифрирование)"
+    hint = "Pick a row of table 10: the photo shows the site where that key applies, and what to look at."
+    params = (
+        Param("row", "table 10 row", 0, N_KEY_ROWS - 1, 1, 0, kind="int", group="Key",
+              help="the rows of table 10 that the site shows, in the table's order"),
+        Param("camera", "film", default="colour film", kind="choice",
+              options=(("natural colour", "colour film"), ("colour infrared", "colour-infrared film")), group="Key"),
+    )
+
+    def build(self):
+        self.view = KeyView()
+        self.fig = self.view.fig
+        self._seen = {}  # close-ups already rendered (a row revisited is instant)
+
+    def compute(self, **v):
+        k = (int(v["row"]), v["camera"])
+        if k not in self._seen:
+            self._seen[k] = key_model(**v)
+        return self._seen[k]
+
+    def render(self, result):
+        self.view.update(result)
+        self.table.value = plots.html_table(result.table(), caption="Table 10 (guide §9)")
+
+
+# =========================================================================== the lab's photo
+def lab_figure(lab, camera: str = "colour film", ax=None, *, marks: bool = True):
+    """The student's photo (:class:`aerophoto.tasks.ch08.LabPhoto`) with its numbered marks, in photo mm."""
+    fig, ax = plots.new_axes(ax, figsize=(7.0, 7.0))
+    ax.imshow(lab.composite(camera), extent=lab.extent_mm, interpolation="nearest")
+    if marks:
+        for name, row in lab.marks.iterrows():
+            x, y = row["x, mm"], row["y, mm"]
+            colour = "#F0E442" if name.isdigit() else ("#56B4E9" if name in "PQ" else "#D55E00")
+            ax.plot([x], [y], "o", ms=5, mfc="none", mec=colour, mew=1.5)
+            ax.annotate(name, (x, y), xytext=(5, 5), textcoords="offset points", color=colour, fontsize=12,
+                        fontweight="bold")
+    ax.set_xlabel("x, mm")
+    ax.set_ylabel("y, mm")
+    ax.set_xlim(-90, 90)
+    ax.set_ylim(-90, 90)
+    return fig
+
+
+def spectra_figure(classes=("deep water", "shallow water", "meadow", "pine forest", "spruce forest",
+                            "deciduous forest", "raised bog", "asphalt road", "gravel road"), season: str = "summer",
+                   ax=None):
+    """The classes' band reflectances (:func:`aerophoto.site.colour.class_band_table`) against the bands' centres."""
+    from .. import spectral as sp
+    from ..site.colour import class_band_table
+    from ..site.cover import CLASS_CODES, CLASS_RU
+
+    fig, ax = plots.new_axes(ax, figsize=(8.6, 4.6))
+    fixed, soil = class_band_table(season)
+    wl = [sp.BANDS[b].centre_um for b in sp.BAND_NAMES]
+    for name in classes:
+        if name not in CLASS_CODES:
+            raise ValueError(f"classes: {name!r} is not one of the classes {list(CLASS_CODES)}")
+        ax.plot(wl, fixed[CLASS_CODES[name]], "o-", lw=1.5, ms=4, label=f"{name} ({CLASS_RU[name]})")
+    for b in sp.BAND_NAMES:
+        band = sp.BANDS[b]
+        ax.axvspan(band.lo_um, band.hi_um, color=band.colour, alpha=0.12, lw=0)
+    ax.set_xlabel("wavelength λ, µm (shaded: the six bands)")
+    ax.set_ylabel("reflectance ρ (КСЯ)")
+    ax.set_title(f"reflectance of the site's classes by band, {season}")
+    ax.legend(fontsize=8, ncol=2, loc="upper right")
+    return fig
+

@@ -1,0 +1,263 @@
+"""Colour and multispectral photos of the interpretation site through the book's one camera.
+
+:func:`render_colour` photographs :class:`aerophoto.site.cover.InterpretationSite` in the six bands of
+:data:`aerophoto.spectral.BANDS` under the shooting conditions of guide §9
+(:class:`aerophoto.interpretation.Conditions`), in two steps:
+
+1. **Geometry** (:func:`colour_geometry`, cached): :func:`aerophoto.render.render` of the site — the exact central
+   projection, the canopy, haystacks and bog pines ray-cast — once per camera and pose, with the normals of the
+   object pixels (:func:`aerophoto.render.trace`); then, per sun, the *illumination* as the renderer computes it:
+   1 on level ground in full sun, crowns shaded by Lambert's law with the ambient 0.35
+   (:func:`aerophoto.site.raycast.light_factor`), cast shadows (:func:`aerophoto.site.raycast.in_shadow`) down to
+   0.35; level ground further shaded by the DEM's slope and exposure (the formula of
+   :func:`aerophoto.interpretation.slope_illumination` on the DEM's normal).  A new sun costs only the shadows.
+   The ground point of each pixel gives its land-cover class.
+2. **Colour** (:func:`colour_photo`, cheap): per pixel, the class's band reflectance in the season
+   (:func:`aerophoto.spectral.cover_bands`; the soil of arable land per texel from its humus and moisture through
+   :class:`aerophoto.spectral.SoilBandTable`) × the class's grain × illumination; then the haze of the air below the
+   camera (:func:`aerophoto.interpretation.haze`) and the image motion blur δ = W·t/m along the photo's x
+   (:func:`aerophoto.interpretation.motion_blur`).  No vignetting: level, lit ground of a class shows its
+   reflectance.
+
+The other chapters' greyscale photos do not pass through here and are unchanged.  Data only (layer 3).
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import geometry as g
+from .. import interpretation as ip
+from .. import spectral as sp
+from .cover import CLASSES, CLASS_CODES, InterpretationSite
+
+__all__ = ["ColourGeometry", "ColourPhoto", "colour_geometry", "colour_photo", "render_colour", "class_band_table",
+           "GAIN", "GAMMA", "to_display", "vertical_pose"]
+
+#: the display stretch of every composite: value = (gain·ρ*)^(1/γ), the same for all conditions (no auto-stretch)
+GAIN = 2.6
+GAMMA = 1.8
+
+
+@dataclass(frozen=True, eq=False)
+class ColourGeometry:
+    """What a photo sees, before colour: the :class:`aerophoto.render.Photo`, illumination, classes, soil per pixel."""
+
+    photo: object
+    illumination: np.ndarray  # (n, n) float32
+    classes: np.ndarray  # (n, n) uint8
+    humus_pct: np.ndarray
+    moisture_pct: np.ndarray
+    grain: np.ndarray
+    H_m: float  # height of the camera above the mean ground, m
+    shadow: np.ndarray  # (n, n) bool: in an object's or the canopy's cast shadow
+    sun_elevation_deg: float
+    sun_azimuth_deg: float
+
+
+@dataclass(frozen=True, eq=False)
+class ColourPhoto:
+    """A multispectral photo: ``bands`` (n, n, 6) float32 apparent reflectance, :data:`aerophoto.spectral.BAND_NAMES`."""
+
+    bands: np.ndarray
+    geometry: ColourGeometry
+    conditions: ip.Conditions
+    blur_mm: float
+
+    @property
+    def photo(self):
+        return self.geometry.photo
+
+    @property
+    def classes(self) -> np.ndarray:
+        return self.geometry.classes
+
+    def band(self, name: str) -> np.ndarray:
+        """One band (n, n), apparent reflectance 0…1."""
+        if name not in sp.BANDS:
+            raise ValueError(f"band = {name!r} is not one of the bands {list(sp.BANDS)}")
+        return self.bands[..., sp.BAND_NAMES.index(name)]
+
+    def composite(self, camera: str = "colour film") -> np.ndarray:
+        """An RGB image (n, n, 3) 0…1 of three bands (:data:`aerophoto.spectral.CAMERAS`), fixed stretch."""
+        if camera not in sp.CAMERAS:
+            raise ValueError(f"camera = {camera!r} is not one of {list(sp.CAMERAS)}")
+        idx = [sp.BAND_NAMES.index(b) for b in sp.CAMERAS[camera]]
+        return to_display(self.bands[..., idx])
+
+    def natural_colour(self) -> np.ndarray:
+        return self.composite("colour film")
+
+    def colour_infrared(self) -> np.ndarray:
+        return self.composite("colour-infrared film")
+
+    def panchromatic(self) -> np.ndarray:
+        """A black-and-white (panchromatic, 0.5–0.9 µm) photo: the mean of green, red and near infrared."""
+        i = [sp.BAND_NAMES.index(b) for b in ("green", "red", "nir")]
+        return self.bands[..., i].mean(axis=-1)
+
+
+def to_display(rho) -> np.ndarray:
+    """Reflectance → display value: (GAIN·ρ)^(1/GAMMA), clipped to 0…1 (float32)."""
+    a = np.clip(np.asarray(rho, np.float32) * np.float32(GAIN), 0.0, 1.0)
+    return np.power(a, np.float32(1.0 / GAMMA))
+
+
+# =========================================================================== geometry
+def _dem_normals(site):
+    s = site.dem_spacing_m
+    gy, gx = np.gradient(site.dem, s)
+    return gx, gy
+
+
+@functools.lru_cache(maxsize=8)
+def _base(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int, objects: bool) -> tuple:
+    """What does not depend on the sun: the render (no sun), and the surface normals of the object pixels."""
+    from ..render import render, trace
+
+    site = isite.site
+    photo = render(site, camera, pose, n_px, vignetting=0.0, fiducials=False, level=0, keep_ground=True,
+                   objects=objects, sun=None, background=0.0)
+    obj_pix = np.flatnonzero(photo.surface.ravel() != 0) if photo.surface is not None else np.zeros(0, np.int64)
+    normals = np.zeros((0, 3))
+    if len(obj_pix):  # the rays of the pixel centres hit exactly what the pixels show (render.trace)
+        xy = photo.pixel_centres_mm().reshape(-1, 2)[obj_pix]
+        normals = trace(site, camera, pose, xy).normal
+    return photo, obj_pix, normals
+
+
+@functools.lru_cache(maxsize=24)
+def _geometry(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int, sun_el: float, sun_az: float,
+              objects: bool, relief_shading: bool) -> ColourGeometry:
+    from scipy.ndimage import map_coordinates
+
+    from ..render import Sun
+    from .raycast import AMBIENT, in_shadow, light_factor
+
+    site = isite.site
+    photo, obj_pix, normals = _base(isite, camera, pose, n_px, objects)
+    sun = Sun(sun_az % 360.0, sun_el)
+    L = sun.direction
+    n = n_px
+    illum = np.ones(n * n, np.float32)
+    Xg = photo.ground_m[..., 0]
+    Yg = photo.ground_m[..., 1]
+    if len(obj_pix):  # crowns, haystacks, bog pines: Lambert with the renderer's ambient (as render does)
+        illum[obj_pix] = light_factor(normals, L)
+    if relief_shading:  # level ground: the DEM's slope and exposure
+        gx, gy = _dem_normals(site)
+        s = site.dem_spacing_m
+        crd = [Yg.ravel() / s, Xg.ravel() / s]
+        zx = map_coordinates(gx, crd, order=1, mode="nearest")
+        zy = map_coordinates(gy, crd, order=1, mode="nearest")
+        cos = np.clip((-zx * L[0] - zy * L[1] + L[2]) / np.sqrt(zx * zx + zy * zy + 1.0), 0.0, None)
+        ground = np.ones(n * n, bool)
+        ground[obj_pix] = False
+        illum[ground] *= (ip.AMBIENT + (1.0 - ip.AMBIENT) * cos[ground] / max(L[2], 1e-6)).astype(np.float32)
+    shadow = np.zeros(n * n, bool)
+    if objects and site.objects is not None:  # cast shadows: down to the ambient light
+        Zg = photo.ground_m[..., 2].ravel()
+        shadow = in_shadow(site.objects, site, Xg.ravel(), Yg.ravel(), Zg, photo.object_id.ravel().astype(np.int64),
+                           L, camera, pose, n)
+        illum[shadow] = np.float32(AMBIENT)
+    illum = illum.reshape(n, n)
+    illum[~photo.valid] = 0.0
+    cls = isite.class_at(Xg, Yg)
+    cls[~photo.valid] = 0
+    t = isite.texel_m
+    nt = isite.classes.shape[0]
+    r = np.clip((Yg / t).astype(np.int64), 0, nt - 1)
+    c = np.clip((Xg / t).astype(np.int64), 0, nt - 1)
+    H = float(pose.Z_m - site.mean_height_m)
+    shadow = shadow.reshape(n, n)
+    for a in (illum, cls, shadow):
+        a.flags.writeable = False
+    return ColourGeometry(photo=photo, illumination=illum, classes=cls, humus_pct=isite.humus_pct[r, c],
+                          moisture_pct=isite.moisture_pct[r, c], grain=isite.grain[r, c], H_m=H, shadow=shadow,
+                          sun_elevation_deg=float(sun_el), sun_azimuth_deg=float(sun_az))
+
+
+def colour_geometry(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int = 512, *,
+                    sun_elevation_deg: float = 45.0, sun_azimuth_deg: float = 150.0, objects: bool = True,
+                    relief_shading: bool = True) -> ColourGeometry:
+    """The geometry step (cached for the last 24 calls): see the module notes."""
+    if not isinstance(isite, InterpretationSite):
+        raise ValueError(f"isite = {isite!r} must be an InterpretationSite (aerophoto.site.cover.interpretation_site)")
+    ip.Conditions(sun_elevation_deg=sun_elevation_deg, sun_azimuth_deg=sun_azimuth_deg)  # validates
+    return _geometry(isite, camera, pose, int(n_px), float(sun_elevation_deg), float(sun_azimuth_deg), bool(objects),
+                     bool(relief_shading))
+
+
+# =========================================================================== colour
+_WET = ("wet meadow", "low bog", "raised bog")
+
+
+@functools.lru_cache(maxsize=8)
+def class_band_table(season: str) -> tuple:
+    """(fixed (K+1, 6), soil share (K+1,)): each class's band values without its soil, and its soil fraction."""
+    fixed = np.zeros((len(CLASSES) + 1, len(sp.BAND_NAMES)), np.float32)
+    soil = np.zeros(len(CLASSES) + 1, np.float32)
+    for name in CLASSES:
+        k = CLASS_CODES[name]
+        mix = sp.mixture(name, season)
+        soil[k] = mix.pop("soil", 0.0)
+        for member, f in mix.items():
+            fixed[k] += f * np.asarray(sp.ENDMEMBERS[member][2], np.float32)
+    fixed.flags.writeable = False
+    soil.flags.writeable = False
+    return fixed, soil
+
+
+def colour_photo(geom: ColourGeometry, conditions: ip.Conditions | None = None) -> ColourPhoto:
+    """The colour step: reflectance × grain × illumination, then haze and image motion (see the module notes)."""
+    cond = conditions or ip.Conditions()
+    fixed, soil_share = class_band_table(cond.season)
+    cls = geom.classes
+    refl = fixed[cls]  # (n, n, 6)
+    fs = soil_share[cls]
+    has_soil = fs > 0
+    if has_soil.any():
+        theta = geom.moisture_pct[has_soil] + sp.SEASON_MOISTURE_PCT[cond.season] + cond.moisture_pct
+        sb = sp.soil_band_table().bands(theta, geom.humus_pct[has_soil], 0.1, sp.PARENTS["loam"])
+        refl[has_soil] += fs[has_soil, None] * sb
+    if cond.moisture_pct > 0:  # standing water on wet meadows and bogs
+        w = np.float32(min(cond.moisture_pct / 100.0, 0.3))
+        water = np.asarray(sp.ENDMEMBERS["shallow water"][2], np.float32)
+        wet = np.isin(cls, [CLASS_CODES[c] for c in _WET])
+        refl[wet] = (1 - w) * refl[wet] + w * water
+    refl *= (geom.grain * geom.illumination)[..., None]
+    if cond.visibility_km is not None:
+        for k, b in enumerate(sp.BAND_NAMES):
+            refl[..., k] = ip.haze(refl[..., k], b, cond.visibility_km, geom.H_m)
+    photo = geom.photo
+    m = geom.H_m / (photo.camera.f_mm / 1000.0)
+    blur_mm = float(ip.image_motion_mm(cond.speed_kmh, cond.exposure_ms, m))
+    refl = ip.motion_blur(refl, min(blur_mm / photo.pixel_mm, 200.0), axis=1)
+    refl = np.clip(refl, 0.0, 1.0).astype(np.float32)
+    return ColourPhoto(bands=refl, geometry=geom, conditions=cond, blur_mm=blur_mm)
+
+
+def render_colour(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int = 512,
+                  conditions: ip.Conditions | None = None, *, objects: bool = True,
+                  relief_shading: bool = True) -> ColourPhoto:
+    """A multispectral photo of the interpretation site under ``conditions``.
+
+    The tilt α of ``conditions`` (§9, condition 6), when not 0, replaces the pose's; otherwise the pose's stands.
+    """
+    cond = conditions or ip.Conditions()
+    if cond.alpha_deg:
+        pose = pose.with_(alpha_deg=cond.alpha_deg)
+    geom = colour_geometry(isite, camera, pose, n_px, sun_elevation_deg=cond.sun_elevation_deg,
+                           sun_azimuth_deg=cond.sun_azimuth_deg, objects=objects, relief_shading=relief_shading)
+    return colour_photo(geom, cond)
+
+
+def vertical_pose(isite: InterpretationSite, X_m: float, Y_m: float, m: float, f_mm: float = 100.0, *,
+                  alpha_deg: float = 0.0, lambda_deg: float = 0.0, kappa_deg: float = 0.0) -> g.Pose:
+    """A pose over (X, Y) for scale 1:m above the site's mean ground (H = f·m), with tilt α and swing κ."""
+    H = g.flying_height_m(f_mm, m)
+    return g.Pose(X_m, Y_m, isite.site.mean_height_m + H, alpha_deg, lambda_deg, kappa_deg)
+

@@ -1,0 +1,532 @@
+"""The interpretation site: a land-cover map with the objects of the guide's table 10 (§9), for colour photos.
+
+The book's main site (:func:`aerophoto.site.get_site`) is greyscale and stays as it is: every other chapter's
+photos and numbers are unchanged.  Chapter 08 photographs a second, smaller site built here — a separate
+*edition* of the virtual world made for interpretation (дешифрирование).  What is where is a **land-cover class
+map** (:data:`CLASSES`, the classes of :data:`aerophoto.spectral.COVERS`); what a class looks like in a band is
+its reflectance (:func:`aerophoto.spectral.cover_bands`), rendered through the book's one camera by
+:mod:`aerophoto.site.colour`.
+
+The objects of table 10 (guide §9)
+----------------------------------
+=============================  ============================================================================
+object (Russian)               how it is built (X east, Y north, metres; the site is 1600 m × 1600 m)
+=============================  ============================================================================
+river (река)                   flows **east** along a sine-shaped valley, 36 m wide widening to 46 m
+                               downstream, deep water with a shallow margin
+islands (острова)              two teardrops: a blunt head upstream, a long tail **narrowing downstream**,
+                               with shallows and a sand spit on their downstream side (table 10)
+tributary (приток)             a stream from the north-west entering at an **acute angle** (35°) that
+                               points downstream
+lake (озеро)                   a rotated ellipse with a shallow rim, south-west
+pond with a dam (пруд,         a brook flowing north into the river; the pond is widest at the dam
+плотина)                       (its downstream end), the dam an earth bank across the valley
+raised bog (верховое болото)   on the northern watershed, far from streams, mottled tone, bog lakelets and
+                               small sparse pines
+low bog (низинное болото)      a ribbon along the river's valley floor, sedge and reed, shrub at its edges
+pine / spruce / deciduous      stands of crowns on the canopy height field: pine — even height, convex
+forest (лес)                   crowns; spruce — pointed cones of uneven height (mottled, darker, long thin
+                               shadows); deciduous — broad soft crowns, lighter
+shrub (кустарник)              small low crowns (shorter shadows, finer grain)
+meadow with haystacks          floodplain meadow, mown strips, wet patches; haystacks are ellipsoids
+(луг, стога сена)              (r 2.5–3 m, 3–4 m high) that cast shadows
+arable land (пашня)            straight-edged fields: ploughed (furrows), crops, stubble; their soil from
+                               :mod:`aerophoto.site.soils` when it exists, else :func:`default_soil`
+railway (железная дорога)      long straights joined by a curve of radius 700 m; ballast 8 m, two rail lines
+roads (автомобильные дороги)   an asphalt road (dark) winding in curves of small radius and a gravel road
+                               (light), both edged by ditches (кюветы)
+=============================  ============================================================================
+
+The site's greyscale ``texture`` is white (255): :func:`aerophoto.render.render` of this site therefore gives the
+**illumination** of every pixel (shadows, the shading of crowns and haystacks), which :mod:`aerophoto.site.colour`
+multiplies by the class reflectance.  ``grain`` is a multiplicative texture (furrows, mowing stripes, the bog's
+mottling, ripples), mean 1 within each class.  Data only (layer 3); deterministic from the seed.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from .. import spectral as sp
+from .._validate import check_int_range, check_range
+from .model import Site, SiteParams
+from .objects import OBJECT_KINDS, SiteObjects
+
+__all__ = ["CLASSES", "CLASS_CODES", "CLASS_RU", "FLOW_AZIMUTH_DEG", "InterpretationSite", "interpretation_site",
+           "build_interpretation_site", "default_soil", "SIZE_M"]
+
+#: the land-cover classes of the interpretation site (code = index + 1; 0 = nothing)
+CLASSES = ("deep water", "shallow water", "sand bank", "ploughed field", "crop", "stubble", "meadow",
+           "mown meadow", "wet meadow", "haystack", "pine forest", "spruce forest", "deciduous forest", "shrub",
+           "raised bog", "low bog", "asphalt road", "gravel road", "dirt road", "railway", "ditch", "dam")
+CLASS_CODES = {name: k + 1 for k, name in enumerate(CLASSES)}
+CLASS_RU = {name: sp.COVERS[name][0] for name in CLASSES}
+#: the river flows east: azimuth of the flow, degrees clockwise from north
+FLOW_AZIMUTH_DEG = 90.0
+SIZE_M = 1600.0
+_T = 1.0  # texel, m
+_C = CLASS_CODES
+
+
+def default_soil(humus_pct: float = 3.0, moisture_pct: float = 12.0) -> dict:
+    """The soil of the arable fields when :mod:`aerophoto.site.soils` does not provide one: a loam (spectral.py).
+
+    humus_pct 0…100 %, moisture_pct 0…60 %; keywords of :func:`aerophoto.spectral.soil_reflectance`.
+    """
+    h = check_range("humus_pct", humus_pct, 0.0, 100.0, unit="%")
+    m = check_range("moisture_pct", moisture_pct, 0.0, 60.0, unit="%")
+    return dict(parent="loam", humus_pct=h, moisture_pct=m, particle_mm=0.1)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class InterpretationSite:
+    """The interpretation site (see the module notes).
+
+    Attributes
+    ----------
+    site : :class:`aerophoto.site.Site`
+        The DEM, a white texture and the objects (canopy, haystacks, bog pines): what
+        :func:`aerophoto.render.render` ray-casts.
+    classes : ndarray (n, n) uint8
+        Land-cover code per texel (:data:`CLASS_CODES`), row 0 at the south edge, texel ``texel_m``.
+    grain : ndarray (n, n) float32
+        Multiplicative texture, mean ≈ 1 per class.
+    humus_pct, moisture_pct : ndarray (n, n) float32
+        The topsoil's humus and moisture where soil shows (arable land): tied to relief (more humus and moisture
+        low down), from :mod:`aerophoto.site.soils` if available.
+    features : dict
+        The truth of the objects (metres): ``river`` (k, 2) centre line (flowing east), ``river_width_m`` (k,),
+        ``islands`` (list of dicts: head, tail, outline), ``tributary`` (k, 2) in flow order, ``lake`` (centre,
+        axes, angle), ``pond`` (outline), ``dam`` (2, 2), ``brook`` (k, 2) in flow order, ``railway``,
+        ``asphalt``, ``gravel`` (k, 2), ``stands`` (dict name → (x0, x1, y0, y1)), ``bogs``, ``haystacks`` (n, 3)
+        X, Y, height.
+    """
+
+    site: Site
+    classes: np.ndarray
+    grain: np.ndarray
+    humus_pct: np.ndarray
+    moisture_pct: np.ndarray
+    features: dict
+    seed: int
+
+    def __repr__(self) -> str:
+        return f"InterpretationSite({SIZE_M:g} m × {SIZE_M:g} m, {len(CLASSES)} classes, seed {self.seed})"
+
+    @property
+    def texel_m(self) -> float:
+        return self.site.params.texture_m
+
+    def class_at(self, X, Y) -> np.ndarray:
+        """Class code of the texel holding each ground point (0 off the site)."""
+        X = np.asarray(X, float)
+        Y = np.asarray(Y, float)
+        n = self.classes.shape[0]
+        c = np.clip((X / self.texel_m).astype(np.int64), 0, n - 1)
+        r = np.clip((Y / self.texel_m).astype(np.int64), 0, n - 1)
+        inside = (X >= 0) & (X <= SIZE_M) & (Y >= 0) & (Y <= SIZE_M)
+        return np.where(inside, self.classes[r, c], 0).astype(np.uint8)
+
+    def class_table(self) -> pd.DataFrame:
+        """Every class: code, Russian name and share of the site, %."""
+        counts = np.bincount(self.classes.ravel(), minlength=len(CLASSES) + 1)
+        return pd.DataFrame({"code": [_C[c] for c in CLASSES], "class": CLASSES, "Russian": [CLASS_RU[c] for c in CLASSES],
+                             "share, %": 100.0 * counts[1:] / counts.sum()}).set_index("code")
+
+
+# =========================================================================== geometry helpers
+def _grid(n):
+    x = (np.arange(n) + 0.5) * _T
+    return x
+
+
+def _polyline_sn(pts, n, reach):
+    """For texels within ``reach`` of a polyline: distance d, signed offset (left +) and arc length s."""
+    pts = np.asarray(pts, float)
+    d = np.full((n, n), np.inf, np.float32)
+    off = np.zeros((n, n), np.float32)
+    s = np.zeros((n, n), np.float32)
+    seg = np.diff(pts, axis=0)
+    L = np.hypot(seg[:, 0], seg[:, 1])
+    s0 = np.r_[0.0, np.cumsum(L)]
+    for k in range(len(seg)):
+        a, b = pts[k], pts[k + 1]
+        x0, x1 = min(a[0], b[0]) - reach, max(a[0], b[0]) + reach
+        y0, y1 = min(a[1], b[1]) - reach, max(a[1], b[1]) + reach
+        c0, c1 = max(int(x0 / _T), 0), min(int(x1 / _T) + 1, n)
+        r0, r1 = max(int(y0 / _T), 0), min(int(y1 / _T) + 1, n)
+        if c0 >= c1 or r0 >= r1 or L[k] == 0:
+            continue
+        X = (np.arange(c0, c1) + 0.5) * _T
+        Y = (np.arange(r0, r1) + 0.5) * _T
+        px = X[None, :] - a[0]
+        py = Y[:, None] - a[1]
+        u = np.clip((px * seg[k, 0] + py * seg[k, 1]) / L[k] ** 2, 0.0, 1.0)
+        dx = px - u * seg[k, 0]
+        dy = py - u * seg[k, 1]
+        dist = np.hypot(dx, dy).astype(np.float32)
+        cross = (seg[k, 0] * py - seg[k, 1] * px) / L[k]
+        win = d[r0:r1, c0:c1]
+        better = dist < win
+        win[better] = dist[better]
+        off[r0:r1, c0:c1][better] = cross[better]
+        s[r0:r1, c0:c1][better] = (s0[k] + u * L[k])[better]
+    return d, off, s
+
+
+def _ellipse(n, centre, a, b, angle_deg):
+    """Normalised radius ρ of the ellipse (ρ ≤ 1 inside) at every texel."""
+    x = _grid(n)
+    X, Y = np.meshgrid(x - centre[0], x - centre[1])
+    t = math.radians(angle_deg)
+    u = X * math.cos(t) + Y * math.sin(t)
+    v = -X * math.sin(t) + Y * math.cos(t)
+    return np.sqrt((u / a) ** 2 + (v / b) ** 2).astype(np.float32)
+
+
+def _arc_polyline(start, heading_deg, pieces, step=4.0):
+    """A polyline of straights and circular arcs: pieces ("s", length) or ("a", radius, turn°, + left)."""
+    p = np.array(start, float)
+    h = math.radians(heading_deg)  # from the X axis, counter-clockwise
+    out = [p.copy()]
+    for piece in pieces:
+        if piece[0] == "s":
+            k = max(int(piece[1] / step), 1)
+            for _ in range(k):
+                p = p + piece[1] / k * np.array([math.cos(h), math.sin(h)])
+                out.append(p.copy())
+        else:
+            R, turn = piece[1], math.radians(piece[2])
+            length = abs(turn) * R
+            k = max(int(length / step), 1)
+            for _ in range(k):
+                h += turn / k
+                p = p + length / k * np.array([math.cos(h), math.sin(h)])
+                out.append(p.copy())
+    return np.array(out)
+
+
+def _river_y(x):
+    return 820.0 + 90.0 * np.sin(2 * np.pi * np.asarray(x, float) / 1100.0 + 0.6)
+
+
+# =========================================================================== the build
+def build_interpretation_site(seed: int = 0) -> InterpretationSite:
+    """Build the interpretation site (about 4 s; seed 0 ≤ seed < 2**32); :func:`interpretation_site` caches it."""
+    seed = check_int_range("seed", seed, 0, 2**32 - 1)
+    rng = np.random.default_rng([int(seed), 9009])
+    n = int(SIZE_M / _T)
+    x = _grid(n)
+    X, Y = np.meshgrid(x, x)
+    cls = np.full((n, n), _C["meadow"], np.uint8)
+    grain = np.ones((n, n), np.float32)
+    feats: dict = {}
+
+    # ---- the river: centre line, width widening downstream, islands
+    rx = np.arange(-20.0, SIZE_M + 21.0, 6.0)
+    river = np.column_stack([rx, _river_y(rx)])
+    width = 36.0 + 10.0 * (rx + 20.0) / (SIZE_M + 40.0)
+    d_r, off_r, s_r = _polyline_sn(river, n, 260.0)
+    half = np.interp(s_r, np.r_[0.0, np.cumsum(np.hypot(*np.diff(river, axis=0).T))], width / 2.0).astype(np.float32)
+    islands = []
+    s_river = np.r_[0.0, np.cumsum(np.hypot(*np.diff(river, axis=0).T))]
+    isl_mask = np.zeros((n, n), bool)
+    tail_mask = np.zeros((n, n), bool)
+    for x_head, L, B in ((430.0, 150.0, 16.0), (1120.0, 190.0, 19.0)):
+        s_head = float(np.interp(x_head, rx, s_river))
+        u = (s_r - s_head) / L
+        b = B * np.sqrt(np.clip(u / 0.15, 0.0, 1.0)) * np.clip(1.0 - u, 0.0, 1.0) ** 0.9
+        b = np.where((u >= 0) & (u <= 1), b, 0.0)
+        half = half + np.where((u > -0.3) & (u < 1.35),
+                               B * 1.05 * np.clip(np.minimum((u + 0.3) / 0.4, (1.35 - u) / 0.5), 0, 1), 0.0)
+        inside = (np.abs(off_r) < b) & (d_r < 200)
+        isl_mask |= inside
+        tail = (u > 0.9) & (u < 1.45) & (np.abs(off_r) < 0.35 * B * np.clip((1.45 - u) / 0.55, 0, 1) + 1.0)
+        tail_mask |= tail & ~inside & (d_r < 200)
+        x_tail = float(np.interp(s_head + L, s_river, rx))
+        islands.append({"head_m": (x_head, float(_river_y(x_head))), "tail_m": (x_tail, float(_river_y(x_tail))),
+                        "length_m": L, "width_m": 2 * B * 0.96})
+    water = d_r <= half
+    feats["river"] = river
+    feats["river_width_m"] = width
+    feats["islands"] = islands
+
+    # ---- the DEM (8 m): valley along the river falling east, northern watershed, the brook's valley
+    s_dem = 8.0
+    nd = int(SIZE_M / s_dem) + 1
+    xd = np.arange(nd) * s_dem
+    XD, YD = np.meshgrid(xd, xd)
+    dist_dem = np.abs(YD - _river_y(XD))
+    dem = (150.0 + 5.0 * (1.0 - XD / SIZE_M) + 12.0 * (1.0 - np.exp(-(dist_dem / 240.0) ** 2))
+           + 9.0 / (1.0 + np.exp(-(YD - 1250.0) / 70.0)) - 3.0 * np.exp(-((XD - 1330.0) / 45.0) ** 2) * (YD < _river_y(XD)))
+
+    # ---- arable fields, south-east: straight edges, furrows
+    fields = []
+    kinds = ("ploughed field", "crop", "stubble", "crop", "ploughed field", "stubble", "crop", "ploughed field")
+    k = 0
+    for fx0 in (1060.0, 1200.0, 1340.0, 1470.0):
+        for fy0 in (40.0, 300.0, 960.0):
+            fx1, fy1 = min(fx0 + 128.0, 1590.0), fy0 + (230.0 if fy0 < 900 else 200.0)
+            m = (X > fx0) & (X < fx1) & (Y > fy0) & (Y < fy1)
+            kind = kinds[k % len(kinds)]
+            k += 1
+            cls[m] = _C[kind]
+            phase = rng.uniform(0, 2 * np.pi)
+            if kind == "ploughed field":
+                grain[m] = (1.0 + 0.12 * np.sin(2 * np.pi * X[m] / 3.0 + phase)).astype(np.float32)
+            elif kind == "stubble":
+                grain[m] = (1.0 + 0.06 * np.sin(2 * np.pi * Y[m] / 6.0 + phase)).astype(np.float32)
+            fields.append((kind, fx0, fx1, fy0, fy1))
+    for kind, fx0, fx1 in (("ploughed field", 600.0, 722.0), ("crop", 730.0, 860.0)):  # north of the river
+        m = (X > fx0) & (X < fx1) & (Y > 905.0) & (Y < 1120.0)
+        cls[m] = _C[kind]
+        if kind == "ploughed field":
+            grain[m] = (1.0 + 0.12 * np.sin(2 * np.pi * Y[m] / 3.0)).astype(np.float32)
+        fields.append((kind, fx0, fx1, 905.0, 1120.0))
+    feats["fields"] = fields
+
+    # ---- forest stands, shrub, the raised bog, the low bog
+    stands = {"pine forest": (40.0, 270.0, 1090.0, 1560.0), "spruce forest": (480.0, 860.0, 1150.0, 1570.0),
+              "deciduous forest": (560.0, 930.0, 50.0, 350.0)}
+    for name, (x0, x1, y0, y1) in stands.items():
+        edge = 8.0 * np.sin(Y / 37.0) + 6.0 * np.cos(X / 29.0)
+        m = (X > x0 + edge) & (X < x1 - edge) & (Y > y0 + edge) & (Y < y1 - edge)
+        cls[m] = _C[name]
+    feats["stands"] = stands
+    bog_rho = _ellipse(n, (1300.0, 1400.0), 250.0, 150.0, 10.0)
+    bog_rho = bog_rho + 0.06 * np.sin(X / 23.0) * np.cos(Y / 31.0)
+    raised = bog_rho < 1.0
+    cls[raised] = _C["raised bog"]
+    mott = (np.sin(X / 9.0 + np.cos(Y / 13.0)) * np.cos(Y / 11.0 - np.sin(X / 17.0))).astype(np.float32)
+    grain[raised] = 1.0 + 0.18 * mott[raised]
+    lakelets = []
+    for _ in range(6):
+        while True:
+            c = rng.uniform([1120, 1300], [1480, 1500])
+            if ((c[0] - 1300) / 250) ** 2 + ((c[1] - 1400) / 150) ** 2 < 0.5:
+                break
+        r = rng.uniform(7.0, 16.0)
+        m = (X - c[0]) ** 2 + (Y - c[1]) ** 2 < r * r
+        cls[m] = _C["deep water"]
+        lakelets.append((float(c[0]), float(c[1]), float(r)))
+    feats["bogs"] = {"raised": {"centre_m": (1300.0, 1400.0), "axes_m": (250.0, 150.0), "lakelets": lakelets},
+                     "low": {"x_m": (1150.0, 1500.0)}}
+    low = (X > 1150 + 10 * np.sin(Y / 15)) & (X < 1500) & (off_r < -half - 25) & (off_r > -half - 125 - 20 * np.sin(X / 40))
+    cls[low] = _C["low bog"]
+    low_edge = low & ((off_r > -half - 35) | (off_r < -half - 110 - 20 * np.sin(X / 40)))
+    cls[low_edge] = _C["shrub"]
+
+    # ---- meadows on the floodplain: mown strips, wet patches; haystacks
+    mead = (X > 80) & (X < 820) & (off_r < -half - 20) & (off_r > -half - 230) & (cls == _C["meadow"])
+    mown = mead & (((X - 80) // 60) % 3 == 1)
+    cls[mown] = _C["mown meadow"]
+    grain[mown] = (1.0 + 0.05 * np.sin(2 * np.pi * Y[mown] / 4.0)).astype(np.float32)
+    wet = mead & (off_r > -half - 60) & (np.sin(X / 35.0) > 0.2)
+    cls[wet] = _C["wet meadow"]
+    stacks = []
+    while len(stacks) < 14:
+        p = rng.uniform([100, 0], [800, 1])
+        yc = float(_river_y(p[0])) - rng.uniform(80, 200)
+        if all((p[0] - q[0]) ** 2 + (yc - q[1]) ** 2 > 900 for q in stacks):
+            stacks.append((float(p[0]), yc, float(rng.uniform(3.0, 4.0)), float(rng.uniform(2.5, 3.0))))
+    feats["haystacks"] = np.array(stacks)
+    for xs_, ys_, _h, r_ in stacks:
+        cls[(X - xs_) ** 2 + (Y - ys_) ** 2 < r_ * r_] = _C["haystack"]
+
+    # ---- the lake; the brook with the pond and its dam; the tributary
+    lake_rho = _ellipse(n, (270.0, 230.0), 170.0, 95.0, 20.0)
+    cls[lake_rho < 1.0] = _C["shallow water"]
+    cls[lake_rho < 0.88] = _C["deep water"]
+    feats["lake"] = {"centre_m": (270.0, 230.0), "axes_m": (170.0, 95.0), "angle_deg": 20.0}
+    y_join = float(_river_y(1330.0))
+    brook = np.array([[1290.0, -5.0], [1300.0, 150.0], [1320.0, 300.0], [1325.0, 420.0], [1330.0, 560.0],
+                      [1335.0, y_join - 40], [1330.0, y_join]])
+    d_b, _, _ = _polyline_sn(brook, n, 70.0)
+    brook_w = (d_b < 3.0) & (Y < y_join)
+    pond = (Y > 300) & (Y < 420) & (np.abs(X - 1322.0) < 8.0 + (Y - 300.0) * 0.42)
+    fields_mask = np.isin(cls, [_C["ploughed field"], _C["crop"], _C["stubble"]])
+    cls[(d_b < 12.0) & fields_mask] = _C["meadow"]  # the brook's banks are grass
+    cls[pond & ~(Y > 412)] = _C["deep water"]
+    cls[pond & (np.abs(X - 1322.0) > 2.0 + (Y - 300.0) * 0.42)] = _C["shallow water"]
+    cls[brook_w & ~pond] = _C["shallow water"]
+    dam = (Y >= 420) & (Y < 432) & (np.abs(X - 1322.0) < 75.0)
+    cls[dam] = _C["dam"]
+    feats["brook"] = brook
+    feats["pond"] = {"y_m": (300.0, 420.0), "x_m": 1322.0}
+    feats["dam"] = np.array([[1247.0, 426.0], [1397.0, 426.0]])
+    a = math.radians(35.0)
+    x_j = 760.0
+    join = np.array([x_j, float(_river_y(x_j))])
+    trib = np.array([[300.0, 1610.0], [330.0, 1380.0], [380.0, 1150.0], join + 260 * np.array([-math.cos(a), math.sin(a)]),
+                     join + 140 * np.array([-math.cos(a), math.sin(a)]), join])
+    d_t, _, _ = _polyline_sn(trib, n, 30.0)
+    cls[(d_t < 5.0) & ~water] = _C["shallow water"]
+    cls[(d_t < 3.0) & ~water] = _C["deep water"]
+    feats["tributary"] = trib
+
+    # ---- the river's water over everything; islands; shallows below them
+    cls[water] = _C["deep water"]
+    cls[water & (d_r > half - 4.0)] = _C["shallow water"]
+    cls[tail_mask] = _C["shallow water"]
+    cls[isl_mask] = _C["meadow"]
+    cls[isl_mask & (np.abs(off_r) < 0.5 * np.max(half))] = _C["shrub"]
+    spit = tail_mask & (np.abs(off_r) < 2.0)
+    cls[spit] = _C["sand bank"]
+    ripple = water & (d_r < half - 4.0)
+    grain[ripple] = (1.0 + 0.05 * np.sin(2 * np.pi * s_r[ripple] / 7.0 + off_r[ripple] / 3.0)).astype(np.float32)
+
+    # ---- roads with ditches, the railway (painted last)
+    yy = np.arange(-5.0, SIZE_M + 6.0, 5.0)
+    asphalt = np.column_stack([1000.0 + 38.0 * np.sin(yy / 55.0) + 20.0 * np.sin(yy / 23.0), yy])
+    d_a, _, _ = _polyline_sn(asphalt, n, 20.0)
+    gravel = _arc_polyline((1000.0, 400.0), 180.0, [("s", 120), ("a", 60, 40), ("s", 90), ("a", 50, -70),
+                                                     ("s", 100), ("a", 70, 35), ("s", 700)])
+    d_g, _, _ = _polyline_sn(gravel, n, 20.0)
+    rail = _arc_polyline((-10.0, 560.0), 0.0, [("s", 460), ("a", 700, -25), ("s", 1300)])
+    d_rl, _, _ = _polyline_sn(rail, n, 20.0)
+    not_water = ~water
+    for d, w, road in ((d_g, 3.0, "gravel road"), (d_a, 3.5, "asphalt road")):
+        cls[(d >= w + 1.0) & (d < w + 3.0) & not_water] = _C["ditch"]
+        cls[(d < w + 1.0) & not_water] = _C["dirt road"]  # shoulders
+        cls[d < w] = _C[road]  # the asphalt crosses the river by a bridge
+    cls[(d_rl >= 5.0) & (d_rl < 7.0) & not_water & (cls != _C["asphalt road"])] = _C["ditch"]
+    cls[(d_rl < 4.0)] = _C["railway"]
+    rails = (np.abs(d_rl - 0.76) < 0.2)
+    grain[cls == _C["railway"]] = 1.0
+    grain[rails & (cls == _C["railway"])] = 0.55
+    feats["asphalt"] = asphalt
+    feats["gravel"] = gravel
+    feats["railway"] = rail
+    feats["railway_radius_m"] = 700.0
+    feats["flow_azimuth_deg"] = FLOW_AZIMUTH_DEG
+
+    # ---- fine grain everywhere (±3 %), seeded
+    grain *= (1.0 + 0.03 * rng.standard_normal((n, n))).astype(np.float32)
+
+    # ---- soil: humus and moisture tied to relief (low ground: more of both)
+    from scipy.ndimage import map_coordinates
+
+    Zt = map_coordinates(dem, [Y.ravel() / s_dem, X.ravel() / s_dem], order=1).reshape(n, n).astype(np.float32)
+    low_ness = np.clip((Zt.max() - Zt) / (Zt.max() - Zt.min() + 1e-9), 0, 1)
+    humus, moist = _soil_fields(low_ness, X, Y)
+
+    # ---- objects: the canopy of crowns, haystacks, bog pines
+    objs = _objects(rng, cls, dem, s_dem, stacks, raised)
+    params = SiteParams(width_m=SIZE_M, height_m=SIZE_M, relief_m=float(dem.max() - dem.min()),
+                        base_height_m=float(dem.min()), seed=int(seed), texture_m=_T, dem_spacing_m=s_dem)
+    tex = np.full((n, n), 255, np.uint8)
+    cat = pd.DataFrame({"id": pd.Series([], dtype=np.int64), "kind": pd.Series([], dtype=object),
+                        "X_m": pd.Series([], dtype=float), "Y_m": pd.Series([], dtype=float),
+                        "Z_m": pd.Series([], dtype=float), "control": pd.Series([], dtype=bool)})
+    site = Site(params=params, dem=dem, texture=tex, cover=cls, catalogue=cat, features=feats, _levels=[],
+                objects=objs)
+    for arr in (cls, grain, humus, moist):
+        arr.flags.writeable = False
+    return InterpretationSite(site=site, classes=cls, grain=grain, humus_pct=humus, moisture_pct=moist,
+                              features=feats, seed=int(seed))
+
+
+def _soil_fields(low_ness, X, Y):
+    """Humus and moisture of the topsoil, % — from :mod:`aerophoto.site.soils` when it provides them.
+
+    The hook: a function ``soils.interpretation_fields(low_ness, X, Y) -> (humus_pct, moisture_pct)`` (arrays as
+    ``X``).  Without it, the default soil of :func:`default_soil`: humus 2…6 % and moisture 10…24 % rising towards
+    low ground (the guide's indirect key, §14: soils follow relief and wetness).
+    """
+    try:
+        from . import soils  # the soil engineer's module (chapter 13)
+
+        fn = getattr(soils, "interpretation_fields", None)
+    except ImportError:
+        fn = None
+    if fn is not None:
+        h, m = fn(low_ness, X, Y)
+        return np.asarray(h, np.float32), np.asarray(m, np.float32)
+    base = default_soil()
+    h = (base["humus_pct"] - 1.0 + 4.0 * low_ness).astype(np.float32)
+    m = (base["moisture_pct"] - 2.0 + 14.0 * low_ness ** 2).astype(np.float32)
+    return h, m
+
+
+def _stamp(canopy, cx, cy, R, top, shape):
+    """Raise the canopy (m) to a crown: ``shape`` 'cone' (spruce), 'dome' (pine), 'round' (deciduous, shrub)."""
+    n = canopy.shape[0]
+    r0, r1 = max(int(cy - R), 0), min(int(cy + R) + 2, n)
+    c0, c1 = max(int(cx - R), 0), min(int(cx + R) + 2, n)
+    if r0 >= r1 or c0 >= c1:
+        return
+    yy = (np.arange(r0, r1) + 0.5)[:, None] - cy
+    xx = (np.arange(c0, c1) + 0.5)[None, :] - cx
+    q = np.sqrt(xx * xx + yy * yy) / R
+    if shape == "cone":
+        h = top - 0.75 * top * q
+    elif shape == "dome":
+        h = top - 3.0 * q ** 2
+    else:
+        h = top - 0.35 * top * q ** 2
+    h = np.where(q <= 1.0, h, 0.0)
+    win = canopy[r0:r1, c0:c1]
+    np.maximum(win, h, out=win)
+
+
+_STANDS = {  # class: (spacing m, crown radius m, heights m, shape)
+    "pine forest": (5.0, (2.3, 2.9), (21.0, 23.0), "dome"),
+    "spruce forest": (4.2, (1.7, 2.3), (14.0, 25.0), "cone"),
+    "deciduous forest": (7.5, (3.4, 4.6), (15.0, 21.0), "round"),
+    "shrub": (3.0, (1.0, 1.6), (1.8, 3.5), "round"),
+}
+
+
+def _objects(rng, cls, dem, s_dem, stacks, raised) -> SiteObjects:
+    n = cls.shape[0]
+    canopy = np.zeros((n, n), np.float32)
+    for name, (sp_m, (r_lo, r_hi), (h_lo, h_hi), shape) in _STANDS.items():
+        mask = cls == _C[name]
+        ys, xs = np.nonzero(mask[::int(sp_m), ::int(sp_m)]) if sp_m >= 1 else (None, None)
+        cx = xs * int(sp_m) + rng.uniform(-0.35, 0.35, len(xs)) * sp_m + 0.5
+        cy = ys * int(sp_m) + rng.uniform(-0.35, 0.35, len(ys)) * sp_m + 0.5
+        R = rng.uniform(r_lo, r_hi, len(xs))
+        H = rng.uniform(h_lo, h_hi, len(xs))
+        for i in range(len(xs)):
+            _stamp(canopy, cx[i], cy[i], R[i], H[i], shape)
+    canopy[~np.isin(cls, [_C[k] for k in _STANDS])] = 0.0
+    canopy_dm = np.clip(np.round(canopy * 10.0), 0, 255).astype(np.uint8)
+
+    def ground(xy):
+        from scipy.ndimage import map_coordinates
+
+        xy = np.atleast_2d(xy)
+        return map_coordinates(dem, [xy[:, 1] / s_dem, xy[:, 0] / s_dem], order=1, mode="nearest")
+
+    ell = [(x, y, h, r) for x, y, h, r in stacks]
+    names = [f"haystack {k + 1}" for k in range(len(stacks))]
+    ys, xs = np.nonzero(raised[::9, ::9])
+    pick = rng.random(len(xs)) < 0.12
+    for x, y in zip(xs[pick] * 9.0 + 4.5, ys[pick] * 9.0 + 4.5):
+        if cls[int(y), int(x)] == _C["raised bog"]:
+            ell.append((float(x), float(y), float(rng.uniform(3.0, 5.0)), float(rng.uniform(0.8, 1.3))))
+            names.append(f"bog pine {len(names) + 1}")
+    E = np.array(ell, float)
+    gz = ground(E[:, :2])
+    c = E[:, 2] / 2.0
+    centre = np.column_stack([E[:, 0], E[:, 1], gz + c])
+    radii = np.column_stack([E[:, 3], c])
+    top = gz + 2 * c
+    bbox = np.column_stack([E[:, 0] - E[:, 3], E[:, 0] + E[:, 3], E[:, 1] - E[:, 3], E[:, 1] + E[:, 3], gz - 0.5, top])
+    tree = OBJECT_KINDS.index("tree")
+    objs = SiteObjects(planes=np.zeros((0, 14, 4)), face=np.zeros((0, 14), np.uint8), textured=np.zeros((0, 14), bool),
+                       albedo=np.zeros((0, 2), np.float32), kind=np.full(len(E), tree, np.int64), centre_m=E[:, :2].copy(),
+                       ground_Z_m=gz, top_Z_m=top, bbox=bbox, ell_centre=centre, ell_radii=radii,
+                       ell_albedo=np.ones(len(E), np.float32), canopy_dm=canopy_dm, texel_m=_T, names=tuple(names))
+    return objs
+
+
+@functools.lru_cache(maxsize=2)
+def interpretation_site(seed: int = 0) -> InterpretationSite:
+    """The interpretation site for ``seed`` (0 ≤ seed < 2**32), built once and cached."""
+    return build_interpretation_site(check_int_range("seed", seed, 0, 2**32 - 1))

@@ -35,6 +35,40 @@ def measure(fn, n: int, *, warmup: int = 2, args_for=None) -> dict:
     return summarize(samples)
 
 
+def time_demo_moves(demo, changes) -> dict:
+    """Drive a LiveDemo through ``changes`` (dicts for ``demo.set``) and time each move, in ms.
+
+    Per move: ``compute_render_only`` (``set``: the model and the artists moved in place),
+    ``live_set_plus_agg_draw`` (plus a full Agg draw, what a redraw costs the kernel), ``live_cpu_time`` (the
+    process's CPU time of the two, less sensitive to a busy machine) and ``live_plus_png_encode`` (plus the PNG
+    frame ipympl would send).  Returns those summaries and ``figure_px``; the demo stays open.
+    """
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    canvas = demo.fig.canvas
+    kernel, live, live_png, cpu = [], [], [], []
+    for ch in changes:
+        c0 = time.process_time()
+        t0 = time.perf_counter()
+        demo.set(**ch)
+        t1 = time.perf_counter()
+        demo.draw(force=True)
+        t2 = time.perf_counter()
+        cpu.append(time.process_time() - c0)
+        buf = io.BytesIO()
+        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(buf, format="png")
+        t3 = time.perf_counter()
+        kernel.append(t1 - t0)
+        live.append(t2 - t0)
+        live_png.append(t3 - t0)
+    return {"figure_px": list(canvas.get_width_height()), "compute_render_only": summarize(kernel),
+            "live_set_plus_agg_draw": summarize(live), "live_cpu_time": summarize(cpu),
+            "live_plus_png_encode": summarize(live_png)}
+
+
 def machine() -> dict:
     import os
 

@@ -17,10 +17,9 @@
 
 from __future__ import annotations
 
-import io
 import time
 
-from _timing import summarize
+from _timing import summarize, time_demo_moves
 
 
 def _cycle(n: int, sheets) -> list:
@@ -54,8 +53,6 @@ def run(quick: bool = False) -> dict:
 
 
 def _run(quick: bool) -> dict:
-    import numpy as np
-    from PIL import Image
 
     from aerophoto import dem
     from aerophoto.demos.dem_contours import SHEETS, ContourDemo
@@ -77,21 +74,7 @@ def _run(quick: bool) -> dict:
         demo._preview = False
     demo.reset()
     demo.draw(force=True)
-    kernel, live, live_png, cpu = [], [], [], []
-    for ch in changes:
-        c0 = time.process_time()
-        t0 = time.perf_counter()
-        demo.set(**ch)
-        t1 = time.perf_counter()
-        demo.draw(force=True)
-        t2 = time.perf_counter()
-        cpu.append(time.process_time() - c0)
-        buf = io.BytesIO()
-        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(buf, format="png")
-        t3 = time.perf_counter()
-        kernel.append(t1 - t0)
-        live.append(t2 - t0)
-        live_png.append(t3 - t0)
+    moves = time_demo_moves(demo, changes)
     # what a drag does: the same changes on the preview raster (10 m), as ContourDemo.on_slider renders them
     preview, preview_cpu = [], []
     for ch in changes:
@@ -106,7 +89,6 @@ def _run(quick: bool) -> dict:
         demo.draw(force=True)
         preview.append(time.perf_counter() - t0)
         preview_cpu.append(time.process_time() - c0)
-    w, h = canvas.get_width_height()
     demo.close()
 
     sheet = dem.Sheet(2000.0, 3000.0)
@@ -123,12 +105,8 @@ def _run(quick: bool) -> dict:
     study_s = time.perf_counter() - t0
     return {
         "slider_changes": n,
-        "figure_px": [w, h],
         "first_build_s": round(first_s, 3),
-        "compute_render_only": summarize(kernel),
-        "live_set_plus_agg_draw": summarize(live),
-        "live_cpu_time": summarize(cpu),
-        "live_plus_png_encode": summarize(live_png),
+        **moves,
         "preview_set_plus_agg_draw": summarize(preview),
         "preview_cpu_time": summarize(preview_cpu),
         "structural_lines_s": round(lines_s, 3),

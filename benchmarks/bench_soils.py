@@ -13,10 +13,9 @@
 
 from __future__ import annotations
 
-import io
 import time
 
-from _timing import summarize
+from _timing import time_demo_moves
 
 
 def _cycle(n: int, cameras) -> list:
@@ -52,8 +51,6 @@ def run(quick: bool = False) -> dict:
 
 
 def _run(quick: bool) -> dict:
-    import numpy as np
-    from PIL import Image
 
     from aerophoto import soilmap, spectral
     from aerophoto.demos.spectral_explorer import SpectralExplorerDemo
@@ -74,22 +71,7 @@ def _run(quick: bool) -> dict:
         demo.set(camera=cam)
     demo.reset()
     demo.draw(force=True)
-    kernel, live, live_png, cpu = [], [], [], []
-    for ch in changes:
-        c0 = time.process_time()
-        t0 = time.perf_counter()
-        demo.set(**ch)
-        t1 = time.perf_counter()
-        demo.draw(force=True)
-        t2 = time.perf_counter()
-        cpu.append(time.process_time() - c0)
-        buf = io.BytesIO()
-        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(buf, format="png")
-        t3 = time.perf_counter()
-        kernel.append(t1 - t0)
-        live.append(t2 - t0)
-        live_png.append(t3 - t0)
-    w, h = canvas.get_width_height()
+    moves = time_demo_moves(demo, changes)
     demo.close()
 
     t0 = time.perf_counter()
@@ -105,12 +87,8 @@ def _run(quick: bool) -> dict:
     seg_s = time.perf_counter() - t0
     return {
         "slider_changes": n,
-        "figure_px": [w, h],
         "first_build_s": round(first_s, 3),
-        "compute_render_only": summarize(kernel),
-        "live_set_plus_agg_draw": summarize(live),
-        "live_cpu_time": summarize(cpu),
-        "live_plus_png_encode": summarize(live_png),
+        **moves,
         "soil_layer_site_s": round(layer_s, 3),
         "patch_s": round(patch_s, 3),
         "segment_s": round(seg_s, 3),

@@ -48,10 +48,23 @@ SPREAD = {"test_notebooks.py", "test_no_answers_on_screen.py", "test_graded_task
           "test_voila.py", "test_lectures.py", "test_own_results.py", "test_displacement_notebooks.py"}
 
 
-@pytest.hookimpl(tryfirst=True)
-def pytest_collection_modifyitems(config, items):
-    """Group every test of a file on one xdist worker (``--dist loadgroup``), except the files in SPREAD."""
-    for item in items:
-        name = item.path.name
-        if name not in SPREAD and not any(True for _ in item.iter_markers("xdist_group")):
-            item.add_marker(pytest.mark.xdist_group(name=str(item.path.relative_to(ROOT))))
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadgroup`` here: every file whole on one worker, except the files in SPREAD (test by test).
+
+    xdist's own loadgroup reads ``xdist_group`` marks by appending the group to each item's node id, which
+    pytest 9.2 no longer lets a plugin do (``Item._nodeid`` is gone; xdist 3.8 assigns it to no effect), so
+    the marks were silently ignored and a file's module-scoped set-ups were built on both workers.  The
+    scheduler below gets the same grouping from the node ids themselves, through xdist's public hook.
+    """
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadGroupScheduling
+
+    class FileGroups(LoadGroupScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            if nodeid.rfind("@") > nodeid.rfind("]"):  # an explicit xdist_group, should xdist read them again
+                return super()._split_scope(nodeid)
+            path = nodeid.split("::", 1)[0]
+            return nodeid if Path(path).name in SPREAD else path
+
+    return FileGroups(config, log)

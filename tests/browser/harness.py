@@ -176,18 +176,21 @@ class Server:
     def log_tail(self, n: int = 60) -> str:
         return "\n".join(self.log_text().splitlines()[-n:])
 
-    def _graceful(self) -> None:
-        """Ask the server to shut down (and stop its kernels)."""
+    def _graceful(self) -> bool:
+        """Ask the server to shut down (and stop its kernels); False when it has no way to be asked."""
+        return False
 
     def stop(self) -> None:
         p = self.proc
         if p is not None and p.poll() is None:
+            asked = False
             with contextlib.suppress(Exception):
-                self._graceful()
-            try:
-                p.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                pass
+                asked = self._graceful()
+            if asked:  # a server with no shutdown request (Voilà) goes straight to SIGTERM below
+                try:
+                    p.wait(timeout=30)
+                except subprocess.TimeoutExpired:
+                    pass
         if p is not None:
             # the whole group: kernels and their children too
             for sig in (signal.SIGTERM, signal.SIGKILL):
@@ -217,9 +220,21 @@ class Server:
 
 
 class LabServer(Server):
-    """JupyterLab on 127.0.0.1 with the notebooks folder as its root."""
+    """JupyterLab on 127.0.0.1 with (a copy of) the notebooks folder as its root.
+
+    By default the root is a fresh copy of ``notebooks/`` in the server's private folder: JupyterLab saves
+    the notebooks it has open (autosave, every 120 s), and a test or benchmark that ran long enough wrote a
+    notebook with its outputs back into the repository.
+    """
 
     kind = "lab"
+
+    def __init__(self, root_dir: Path | None = None, **kw):
+        super().__init__(root_dir or NOTEBOOKS, **kw)
+        if root_dir is None:
+            copy = self.tmp / "notebooks"
+            shutil.copytree(NOTEBOOKS, copy, ignore=shutil.ignore_patterns(".ipynb_checkpoints"))
+            self.root_dir = copy
 
     def env(self) -> dict:
         env = super().env()
@@ -254,10 +269,11 @@ class LabServer(Server):
     def ready_url(self) -> str:
         return f"{self.base}/api/status?token={self.token}"
 
-    def _graceful(self) -> None:
+    def _graceful(self) -> bool:
         req = urllib.request.Request(f"{self.base}/api/shutdown", method="POST",
                                      headers={"Authorization": f"token {self.token}"})
         urllib.request.urlopen(req, timeout=20).close()
+        return True
 
     def _api(self, path: str, method: str = "GET"):
         req = urllib.request.Request(f"{self.base}{path}", method=method,

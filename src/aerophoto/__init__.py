@@ -14,7 +14,7 @@ course-design guide (Presnyakov & Tyuklenkova, Penza 2014), in six layers
 3    the virtual world     ``terrain``, ``site``, ``simulate``, ``render``
 4    the course's content  ``guide`` (printed tables and their audits),
                            ``tasks`` (graded tasks per chapter)
-5    presentation          ``plots``, ``widgets``, ``demos``
+5    presentation          ``plots``, ``widgets``, ``demos``, ``i18n`` (EN/RU)
 6    course                ``checks``, ``book`` (setup, chapter registry),
                            ``nbtools``, ``course`` (the instructor's CLI),
                            ``report`` (the student's course report, §15)
@@ -58,6 +58,7 @@ _SUBMODULES = (
     "plots",
     "widgets",
     "demos",
+    "i18n",
     "checks",
     "book",
     "nbtools",

@@ -30,6 +30,7 @@ from .plots import use_style
 from .variants import Variant, variant, variant_for_index
 
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
+           "remembered_language", "remember_language", "GLOSSARY_PAGE", "glossary_markdown",
            "Demo", "Chapter", "CHAPTERS", "LECTURE_INDEX", "LECTURES_DIR", "chapter", "chapter_table_markdown",
            "lecture_table_markdown", "lecture_page", "lecture_notebook", "sync_generated"]
 
@@ -370,6 +371,52 @@ def lecture_notebook(c: Chapter, root=None):
     return nbtools.notebook(out, title=f"{c.number} · {_title(c)} — lecture")
 
 
+# =========================================================================== the glossary page
+GLOSSARY_PAGE = "glossary.ipynb"
+"""The glossary page in ``notebooks/`` (not a chapter: its name does not start with a number)."""
+
+
+def glossary_markdown() -> str:
+    """The glossary's table: every key term English ↔ Russian and the chapters (§) where it appears.
+
+    Generated from :data:`aerophoto.i18n.glossary.TERMS` (the one source); a test keeps
+    ``notebooks/glossary.ipynb`` current.
+    """
+    from .i18n.glossary import terms
+
+    by_source = {c.source: c for c in CHAPTERS}
+    lines = ["| English | Русский | where (chapter · source) |", "|---|---|---|"]
+    for term in terms():
+        where = ", ".join(f"[{by_source[s].number} · {s}]({by_source[s].notebook})" if s in by_source else s
+                          for s in term.where)
+        lines.append(f"| {term.en} | {term.ru} | {where} |")
+    return "\n".join(lines)
+
+
+def glossary_notebook():
+    """The glossary page: the terms' table, and how to switch the book's sliders and messages to Russian."""
+    from . import nbtools
+
+    return nbtools.notebook([
+        nbtools.md("# Glossary · Словарь терминов\n\n"
+                   "Every key term of the book in English and Russian, with the chapters where it appears. The "
+                   "chapters are written in English with the Russian term in brackets at its first use; this page "
+                   "collects them.", id="title"),
+        nbtools.code("import aerophoto\nfrom aerophoto.i18n import glossary   # this page's one source: glossary.TERMS",
+                     id="setup"),
+        nbtools.md("## Русский интерфейс · the book in Russian\n\n"
+                   "The sliders, tables and figures of the live demos, the answer checks and the banner speak Russian "
+                   "after `v = aerophoto.setup(RECORD_BOOK, lang=\"ru\")` in any chapter's first cell; the choice "
+                   "is remembered for the other chapters (`lang=\"en\"` switches back). The prose stays English.",
+                   id="language"),
+        nbtools.md(f"{_GLOSSARY_NOTE}\n## The terms\n\n" + glossary_markdown(), id="terms"),
+    ], title="Glossary — словарь терминов")
+
+
+_GLOSSARY_NOTE = ("<!-- generated from aerophoto.i18n.glossary and aerophoto.book.CHAPTERS by "
+                  "`python -m aerophoto.book`; do not edit -->")
+
+
 def _notebook_text(nb) -> str:
     import json
 
@@ -397,6 +444,7 @@ def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     for c in CHAPTERS:
         if c.demos:
             out.append((root / "notebooks" / lecture_page(c), "notebook", "lecture page", c))
+    out.append((root / "notebooks" / GLOSSARY_PAGE, "page", "glossary", glossary_notebook()))
     return out
 
 
@@ -435,6 +483,13 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
                 if write:
                     path.parent.mkdir(parents=True, exist_ok=True)
                     nbtools.write(lecture_notebook(content, root), path)
+        elif kind == "page":  # a whole generated page (the glossary)
+            text = _notebook_text(content)
+            old = path.read_text(encoding="utf-8") if path.is_file() else None
+            if old != text:
+                stale.append(f"{path.name} [{place}]")
+                if write:
+                    nbtools.write(content, path)
         else:
             nb = nbtools.read(path)
             _, cell = nbtools.find_cell(nb, place)
@@ -477,14 +532,38 @@ def remembered_record_book() -> str | None:
         return None
 
 
-def remember_record_book(record_book: str) -> None:
-    """Save the number so later chapters can leave their first cell at None."""
+def _state() -> dict:
+    """What ``student.json`` holds (``record_book``, ``lang``), or {}."""
+    try:
+        data = json.loads((state_dir() / "student.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    return data if isinstance(data, dict) else {}
+
+
+def _save_state(**fields) -> None:
     d = state_dir()
     try:
         d.mkdir(parents=True, exist_ok=True)
-        (d / "student.json").write_text(json.dumps({"record_book": str(record_book)}), encoding="utf-8")
+        (d / "student.json").write_text(json.dumps({**_state(), **fields}), encoding="utf-8")
     except OSError:
         pass  # a read-only home must not stop the book
+
+
+def remember_record_book(record_book: str) -> None:
+    """Save the number so later chapters can leave their first cell at None."""
+    _save_state(record_book=str(record_book))
+
+
+def remembered_language() -> str | None:
+    """The language of the last ``setup(..., lang=...)`` (``"en"``/``"ru"``), or None (``$AEROPHOTO_LANG`` still wins)."""
+    lang = _state().get("lang")
+    return lang if lang in ("en", "ru") else None
+
+
+def remember_language(lang: str) -> None:
+    """Save the language so later chapters speak it without being told."""
+    _save_state(lang=str(lang))
 
 
 def _version_tuple(text: str) -> tuple:
@@ -517,7 +596,8 @@ def _in_ipython():
     return get_ipython()
 
 
-def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: bool = False) -> Variant:
+def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: bool = False,
+          lang: str | None = None) -> Variant:
     """Prepare a chapter and return the student's variant.
 
     Parameters
@@ -536,7 +616,22 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
         example, variant 00 — whatever number is remembered on the machine or
         set in ``AEROPHOTO_RECORD_BOOK`` — nothing remembered, no banner.
         ``record_book`` must then be None.
+    lang : {"en", "ru"} or None
+        The language of the demos' sliders, tables and figures, the check
+        messages and this banner (:mod:`aerophoto.i18n`); remembered like the
+        number (not on a lecture page).  None: the remembered one, else English.
+        ``$AEROPHOTO_LANG`` overrides both.
     """
+    from .i18n import set_language, t
+
+    if lang is not None:
+        set_language(lang)  # checks it: "en" or "ru"
+        if not lecture:
+            remember_language(str(lang).strip().lower())
+    else:
+        saved = remembered_language()
+        if saved:
+            set_language(saved)
     use_style()
     problems = check_installation()
     if problems:
@@ -557,21 +652,25 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
         saved = remembered_record_book()
         if saved:
             v = variant(saved)
-            note = f"(remembered from an earlier chapter: {saved})"
+            note = t("(remembered from an earlier chapter: {saved})", saved=saved)
         else:
             v = variant_for_index(0, "not given — the guide's worked example")
-            note = "Type your record-book number in the first cell to get your own variant."
+            note = t("Type your record-book number in the first cell to get your own variant.")
     if not quiet:
         _banner(v, note, ip)
     return v
 
 
 def _banner(v: Variant, note: str, ip) -> None:
+    from .i18n import t
+
     text = (
-        f"aerophoto {__version__} · variant i = {v.i:02d} · record book: {v.record_book} {note}\n"
-        f"f = {v.f_mm:g} mm, 1/m = 1:{v.m:.0f}, W = {v.W_kmh:g} km/h, α = {v.alpha_deg:g}°, λ = {v.lambda_deg:g}°. "
-        "The code behind every figure is in the package: add ?? to a name to read it, "
-        "e.g. aerophoto.geometry.ground_to_photo??"
+        t("aerophoto {version} · variant i = {i:02d} · record book: {record_book} {note}", version=__version__, i=v.i,
+          record_book=v.record_book, note=note) + "\n"
+        + t("f = {f:g} mm, 1/m = 1:{m:.0f}, W = {W:g} km/h, α = {alpha:g}°, λ = {lam:g}°. "
+            "The code behind every figure is in the package: add ?? to a name to read it, "
+            "e.g. aerophoto.geometry.ground_to_photo??", f=v.f_mm, m=v.m, W=v.W_kmh, alpha=v.alpha_deg,
+            lam=v.lambda_deg)
     )
     if ip is None:
         print(text)

@@ -57,6 +57,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from numbers import Real
 
+from .i18n import t, translate_unit
+from .i18n import t as _t  # report() calls its loop variable t
+
 __all__ = [
     "WrongAnswer",
     "check_task",
@@ -160,17 +163,18 @@ class _Report(str):
 def report() -> str:
     """A pass/fail summary of every check run in this session (printed and returned)."""
     if not _RESULTS and not _TASKS:
-        text = "No answers checked yet: run the check cell under each task."
+        text = _t("No answers checked yet: run the check cell under each task.")
     else:
         lines = []
         for t in _TASKS.values():
-            lines.append(f"✓ {_task_title(t.name)} passed" + (f" ({t.message})" if t.message else ""))
+            lines.append(_t("✓ {task} passed", task=_task_title(t.name)) + (f" ({t.message})" if t.message else ""))
         lines.extend(
             f"{'✓' if r.passed else '✗'} {r.name}" + ("" if r.passed else f" — {r.message}")
             for r in _RESULTS.values()
         )
         n = sum(r.passed for r in _RESULTS.values())
-        lines.append(f"{n} of {len(_RESULTS)} checks passed; {len(_TASKS)} task(s) passed completely")
+        lines.append(_t("{n} of {total} checks passed; {tasks} task(s) passed completely", n=n, total=len(_RESULTS),
+                        tasks=len(_TASKS)))
         text = "\n".join(lines)
     print(text)
     return _Report(text)
@@ -180,7 +184,7 @@ def _task_title(task: str) -> str:
     """``"task-04-2"`` → ``"Task 04.2"``; other names unchanged."""
     parts = str(task).split("-")
     if len(parts) >= 3 and parts[0] == "task":
-        return f"Task {parts[1]}.{'-'.join(parts[2:])}"
+        return t("Task {nn}.{k}", nn=parts[1], k="-".join(parts[2:]))
     return str(task)
 
 
@@ -194,9 +198,9 @@ def task_passed(task: str, *, quiet: bool = False) -> None:
     """
     claimed = list(dict.fromkeys(_UNCLAIMED))
     _UNCLAIMED.clear()
-    _TASKS[str(task)] = TaskResult(str(task), True, f"{len(claimed)} check(s)" if claimed else "")
+    _TASKS[str(task)] = TaskResult(str(task), True, t("{n} check(s)", n=len(claimed)) if claimed else "")
     if not quiet:
-        print(f"✓ {_task_title(task)} passed")
+        print(t("✓ {task} passed", task=_task_title(task)))
 
 
 def _close(a: float, b: float, tol_abs: float | None, tol_rel: float | None) -> bool:
@@ -209,20 +213,20 @@ def _close(a: float, b: float, tol_abs: float | None, tol_rel: float | None) -> 
 
 def _diagnose(answer: float, expected: float, tol_abs, tol_rel, integer, of_variant, variant, alternatives) -> str:
     if expected != 0 and _close(-answer, expected, tol_abs, tol_rel):
-        return "the size is right but the sign is wrong — check the guide's sign convention."
+        return t("the size is right but the sign is wrong — check the guide's sign convention.")
     if integer:
         if answer == math.floor(expected - 1e-9) and answer != expected:
-            return "one too few — the guide rounds this count up (to the larger whole number)."
+            return t("one too few — the guide rounds this count up (to the larger whole number).")
         if abs(answer - expected) == 1:
-            return "off by one — did you forget the '+ 1' in the formula, or round the wrong way?"
+            return t("off by one — did you forget the '+ 1' in the formula, or round the wrong way?")
     for label, value in (alternatives or {}).items():
         if value is not None and _close(answer, value, tol_abs, tol_rel):
-            return label
+            return t(label)  # a task's slip hint (aerophoto.i18n.slips)
     if expected != 0 and answer != 0:
         ratio = answer / expected
         for factor, hint in _UNIT_FACTORS.items():
             if abs(ratio / factor - 1) <= max(tol_rel or TOL_REL, TOL_REL) * 2:
-                return f"your value is off by {hint}"
+                return t("your value is off by {hint}", hint=t(hint))
     if of_variant is not None and variant is not None:
         other = _other_variant(variant, lambda w: _close(answer, float(of_variant(w)), tol_abs, tol_rel))
         if other is not None:
@@ -230,8 +234,8 @@ def _diagnose(answer: float, expected: float, tol_abs, tol_rel, integer, of_vari
     if expected != 0:
         off = abs(answer - expected) / abs(expected)
         if off <= 0.05:
-            return "close, but outside the tolerance — keep more digits in the intermediate steps."
-    return "not right — go back to the formula and check each input."
+            return t("close, but outside the tolerance — keep more digits in the intermediate steps.")
+    return t("not right — go back to the formula and check each input.")
 
 
 def _other_variant(variant, matches):
@@ -250,8 +254,8 @@ def _other_variant(variant, matches):
 
 
 def _variant_message(other: int, variant) -> str:
-    return (f"this is the answer for variant {other:02d}, not yours ({variant.i:02d}) — "
-            "check the record-book number in the first cell and use your own inputs.")
+    return t("this is the answer for variant {other:02d}, not yours ({mine:02d}) — "
+             "check the record-book number in the first cell and use your own inputs.", other=other, mine=variant.i)
 
 
 def _is_bool(x) -> bool:
@@ -317,22 +321,24 @@ def check_value(
     True when the answer is accepted (otherwise it raises).  In a check cell
     call it as a statement and end the cell with :func:`task_passed`.
     """
-    unit_txt = f" (in {unit})" if unit else ""
+    unit_txt = t(" (in {unit})", unit=translate_unit(unit)) if unit else ""
     answer = _scalar(answer)
     if answer is None or answer is Ellipsis:
-        return _fail(name, f"{name}: no answer yet — replace the ... with your value{unit_txt}.")
+        return _fail(name, t("{name}: no answer yet — replace the ... with your value{unit_txt}.", name=name, unit_txt=unit_txt))
     if _is_bool(answer):
-        return _fail(name, f"{name}: {answer} is a yes/no verdict — this task asks for a number{unit_txt}.")
+        return _fail(name, t("{name}: {answer} is a yes/no verdict — this task asks for a number{unit_txt}.", name=name,
+                             answer=answer, unit_txt=unit_txt))
     if getattr(answer, "size", 1) != 1 or isinstance(answer, (list, tuple, dict, set)):
-        return _fail(name, f"{name}: give a single value{unit_txt}, not a list of values.")
+        return _fail(name, t("{name}: give a single value{unit_txt}, not a list of values.", name=name, unit_txt=unit_txt))
     try:
         a = float(answer)
     except (TypeError, ValueError):
-        return _fail(name, f"{name}: {answer!r} is not a number — give a single value{unit_txt}.")
+        return _fail(name, t("{name}: {answer!r} is not a number — give a single value{unit_txt}.", name=name,
+                             answer=answer, unit_txt=unit_txt))
     if math.isnan(a):
-        return _fail(name, f"{name}: the answer is nan — an operation went wrong before this line.")
+        return _fail(name, t("{name}: the answer is nan — an operation went wrong before this line.", name=name))
     if math.isinf(a):
-        return _fail(name, f"{name}: the answer is infinite — a division by zero before this line?")
+        return _fail(name, t("{name}: the answer is infinite — a division by zero before this line?", name=name))
     e = float(expected)
     if integer:
         ok = a == e
@@ -343,10 +349,11 @@ def check_value(
     if ok:
         _pass(name)
         if not quiet:
-            print(f"✓ {name}: correct")
+            print(t("✓ {name}: correct", name=name))
         return True
     if integer and not a.is_integer():
-        return _fail(name, f"{name}: {a:g} is not a whole number — a count of strips or photos must be rounded{unit_txt}.")
+        return _fail(name, t("{name}: {a:g} is not a whole number — a count of strips or photos must be rounded{unit_txt}.",
+                             name=name, a=a, unit_txt=unit_txt))
     why = _diagnose(a, e, tol_abs, None if integer else tol_rel, integer, of_variant, variant, alternatives)
     return _fail(name, f"{name}: {why}")
 
@@ -382,28 +389,29 @@ def check_count(
     """
     if rounding not in _ROUNDING:
         raise ValueError(f"rounding = {rounding!r} is not valid; expected one of {sorted(_ROUNDING)}")
-    unit_txt = f" (in {unit})" if unit else ""
+    unit_txt = t(" (in {unit})", unit=translate_unit(unit)) if unit else ""
     a = _scalar(answer)
     if a is None or a is Ellipsis:
-        return _fail(name, f"{name}: no answer yet — replace the ... with your count{unit_txt}.")
+        return _fail(name, t("{name}: no answer yet — replace the ... with your count{unit_txt}.", name=name, unit_txt=unit_txt))
     if _is_bool(a):
-        return _fail(name, f"{name}: {a} is a yes/no verdict — this task asks for a count.")
+        return _fail(name, t("{name}: {a} is a yes/no verdict — this task asks for a count.", name=name, a=a))
     try:
         x = float(a)
     except (TypeError, ValueError):
-        return _fail(name, f"{name}: {a!r} is not a number — give a whole number{unit_txt}.")
+        return _fail(name, t("{name}: {a!r} is not a number — give a whole number{unit_txt}.", name=name, a=a, unit_txt=unit_txt))
     if math.isnan(x) or math.isinf(x):
-        return _fail(name, f"{name}: the answer is {x} — an operation went wrong before this line.")
+        return _fail(name, t("{name}: the answer is {x} — an operation went wrong before this line.", name=name, x=x))
     e = float(expected)
     if x == e:
         _pass(name)
         if not quiet:
-            print(f"✓ {name}: correct")
+            print(t("✓ {name}: correct", name=name))
         return True
     if not x.is_integer():
-        return _fail(name, f"{name}: {x:g} is not a whole number — {_ROUNDING[rounding]}.")
+        return _fail(name, t("{name}: {x:g} is not a whole number — {rule}.", name=name, x=x, rule=t(_ROUNDING[rounding])))
     if (rounding == "up" and x == e - 1) or (rounding == "down" and x == e + 1):
-        return _fail(name, f"{name}: one {'too few' if x < e else 'too many'} — {_ROUNDING[rounding]}.")
+        key = "{name}: one too few — {rule}." if x < e else "{name}: one too many — {rule}."
+        return _fail(name, t(key, name=name, rule=t(_ROUNDING[rounding])))
     why = _diagnose(x, e, None, None, True, of_variant, variant, alternatives)
     return _fail(name, f"{name}: {why}")
 
@@ -458,16 +466,18 @@ def check_values(
     shows one mistake (every entry off by a unit factor, every sign flipped,
     the order reversed, another variant), says so — never the values.
     """
-    unit_txt = f" (in {unit})" if unit else ""
+    unit_txt = t(" (in {unit})", unit=translate_unit(unit)) if unit else ""
     if isinstance(expected, Mapping):
         if not isinstance(answers, Mapping):
-            return _fail(name, f"{name}: give a dict {{name: value}} with the entries {list(expected)}.")
+            return _fail(name, t("{name}: give a dict {{name: value}} with the entries {entries}.", name=name,
+                                 entries=list(expected)))
         missing = [k for k in expected if k not in answers]
         extra = [k for k in answers if k not in expected]
         if missing:
-            return _fail(name, f"{name}: no value for {', '.join(map(str, missing))}.")
+            return _fail(name, t("{name}: no value for {missing}.", name=name, missing=", ".join(map(str, missing))))
         if extra:
-            return _fail(name, f"{name}: unexpected entries {', '.join(map(str, extra))} — use the names the task gives.")
+            return _fail(name, t("{name}: unexpected entries {extra} — use the names the task gives.", name=name,
+                                 extra=", ".join(map(str, extra))))
         labels = [str(k) for k in expected]
         exp = [expected[k] for k in expected]
         ans = [answers[k] for k in expected]
@@ -477,13 +487,16 @@ def check_values(
             raise ValueError(f"expected = {expected!r} is not a sequence or a dict of numbers")
         ans = _as_sequence(answers)
         if answers is None or answers is Ellipsis:
-            return _fail(name, f"{name}: no answer yet — replace the ... with your {len(exp)} values{unit_txt}.")
+            return _fail(name, t("{name}: no answer yet — replace the ... with your {n} values{unit_txt}.", name=name,
+                                 n=len(exp), unit_txt=unit_txt))
         if ans is None:
-            return _fail(name, f"{name}: give a list of {len(exp)} values{unit_txt}, one per entry.")
+            return _fail(name, t("{name}: give a list of {n} values{unit_txt}, one per entry.", name=name, n=len(exp),
+                                 unit_txt=unit_txt))
         if len(ans) != len(exp):
-            return _fail(name, f"{name}: {len(ans)} values given, the task asks for {len(exp)}.")
+            return _fail(name, t("{name}: {n_given} values given, the task asks for {n}.", name=name, n_given=len(ans),
+                                 n=len(exp)))
     if labels is None:
-        labels = [f"entry {k + 1}" for k in range(len(exp))]
+        labels = [t("entry {k}", k=k + 1) for k in range(len(exp))]
     elif len(labels) != len(exp):
         raise ValueError(f"labels has {len(labels)} entries; expected {len(exp)} (one per value)")
     e = [float(x) for x in exp]
@@ -491,15 +504,16 @@ def check_values(
     for lab, x in zip(labels, ans):
         x = _scalar(x)
         if x is None or x is Ellipsis:
-            return _fail(name, f"{name}: no value yet for {lab}{unit_txt}.")
+            return _fail(name, t("{name}: no value yet for {lab}{unit_txt}.", name=name, lab=lab, unit_txt=unit_txt))
         if _is_bool(x):
-            return _fail(name, f"{name}: {lab} is a yes/no verdict — give a number{unit_txt}.")
+            return _fail(name, t("{name}: {lab} is a yes/no verdict — give a number{unit_txt}.", name=name, lab=lab,
+                                 unit_txt=unit_txt))
         try:
             xf = float(x)
         except (TypeError, ValueError):
-            return _fail(name, f"{name}: {lab} = {x!r} is not a number{unit_txt}.")
+            return _fail(name, t("{name}: {lab} = {x!r} is not a number{unit_txt}.", name=name, lab=lab, x=x, unit_txt=unit_txt))
         if math.isnan(xf):
-            return _fail(name, f"{name}: {lab} is nan — an operation went wrong before this line.")
+            return _fail(name, t("{name}: {lab} is nan — an operation went wrong before this line.", name=name, lab=lab))
         a.append(xf)
 
     def ok(x, y):
@@ -509,21 +523,21 @@ def check_values(
     if not wrong:
         _pass(name)
         if not quiet:
-            print(f"✓ {name}: all {len(e)} values correct")
+            print(t("✓ {name}: all {n} values correct", name=name, n=len(e)))
         return True
     nonzero = [k for k in range(len(e)) if e[k] != 0]
     why = None
     if len(e) > 1 and all(ok(a[k], e[len(e) - 1 - k]) for k in range(len(e))):
-        why = "the values are right but in reverse order — keep the order the task gives."
+        why = t("the values are right but in reverse order — keep the order the task gives.")
     elif nonzero and all(ok(-a[k], e[k]) for k in range(len(e))):
-        why = "the sizes are right but every sign is wrong — check the guide's sign convention."
+        why = t("the sizes are right but every sign is wrong — check the guide's sign convention.")
     elif nonzero and all(a[k] != 0 for k in nonzero):
         for factor, hint in _UNIT_FACTORS.items():
             if all(abs(a[k] / e[k] / factor - 1) <= max(tol_rel or TOL_REL, TOL_REL) * 2 for k in nonzero):
-                why = f"every value is off by {hint}"
+                why = t("every value is off by {hint}", hint=t(hint))
                 break
     if why is None and len(wrong) > 1 and all(any(ok(a[k], y) for y in e) for k in range(len(e))):
-        why = "the values are right but not in the order the task gives."
+        why = t("the values are right but not in the order the task gives.")
     if why is None and of_variant is not None and variant is not None:
         def same(w):
             other = [float(x) for x in (_as_sequence(of_variant(w)) or [])]
@@ -534,8 +548,9 @@ def check_values(
     if why is None:
         named = ", ".join(labels[k] for k in wrong[:5]) + (" …" if len(wrong) > 5 else "")
         flipped = [k for k in wrong if e[k] != 0 and ok(-a[k], e[k])]
-        detail = " (the sign of " + ", ".join(labels[k] for k in flipped) + " is wrong)" if flipped else ""
-        why = f"{len(wrong)} of {len(e)} values are not right: {named}{detail}."
+        detail = t(" (the sign of {labels} is wrong)", labels=", ".join(labels[k] for k in flipped)) if flipped else ""
+        why = t("{n_wrong} of {n} values are not right: {named}{detail}.", n_wrong=len(wrong), n=len(e), named=named,
+                detail=detail)
     return _fail(name, f"{name}: {why}")
 
 
@@ -554,15 +569,17 @@ def check_bool(name: str, answer, expected: bool, *, hint: str = "", quiet: bool
         guide's 56 % minimum (§3)"`` — shown in the message.
     """
     if answer is None or answer is Ellipsis:
-        return _fail(name, f"{name}: no answer yet — replace the ... with True or False.")
+        return _fail(name, t("{name}: no answer yet — replace the ... with True or False.", name=name))
     if not (_is_bool(answer)):
-        return _fail(name, f"{name}: {answer!r} is not a verdict — write True or False (without quotes).")
+        return _fail(name, t("{name}: {answer!r} is not a verdict — write True or False (without quotes).", name=name,
+                             answer=answer))
     if bool(answer) == bool(expected):
         _pass(name)
         if not quiet:
-            print(f"✓ {name}: correct")
+            print(t("✓ {name}: correct", name=name))
         return True
-    return _fail(name, f"{name}: the verdict is wrong — " + (hint or "check your value against the guide's tolerance."))
+    return _fail(name, t("{name}: the verdict is wrong — {hint}", name=name,
+                         hint=t(hint or "check your value against the guide's tolerance.")))
 
 
 def check_choice(name: str, answer, expected: str, options, *, hint: str = "", quiet: bool = False) -> bool:
@@ -588,15 +605,15 @@ def check_choice(name: str, answer, expected: str, options, *, hint: str = "", q
     if norm(expected) not in {norm(o) for o in opts}:
         raise ValueError(f"expected = {expected!r} is not one of the options {opts}")
     if answer is None or answer is Ellipsis:
-        return _fail(name, f"{name}: no answer yet — replace the ... with one of {opts}.")
+        return _fail(name, t("{name}: no answer yet — replace the ... with one of {opts}.", name=name, opts=opts))
     if not isinstance(answer, str) or norm(answer) not in {norm(o) for o in opts}:
-        return _fail(name, f"{name}: {answer!r} is not one of the options {opts}.")
+        return _fail(name, t("{name}: {answer!r} is not one of the options {opts}.", name=name, answer=answer, opts=opts))
     if norm(answer) == norm(expected):
         _pass(name)
         if not quiet:
-            print(f"✓ {name}: correct")
+            print(t("✓ {name}: correct", name=name))
         return True
-    return _fail(name, f"{name}: not this one — " + (hint or "read the task's definitions again."))
+    return _fail(name, t("{name}: not this one — {hint}", name=name, hint=t(hint or "read the task's definitions again.")))
 
 
 def _pass(name: str) -> None:

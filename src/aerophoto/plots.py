@@ -31,6 +31,10 @@ __all__ = [
     "draw",
     "freeze_layout",
     "fast_frames",
+    "Blitter",
+    "snapped_limits",
+    "steady_title",
+    "steady_limits",
     "html_table",
     "legend_html",
     "mark_points",
@@ -212,6 +216,341 @@ def freeze_layout(fig) -> None:
     fig._aerophoto_freeze = fig.canvas.mpl_connect("draw_event", freeze)
 
 
+def snapped_limits(lo: float, hi: float, *, steps: int = 40) -> tuple[float, float]:
+    """``(lo, hi)`` widened outwards to multiples of a round step (1, 2 or 5 × 10^k, about (hi − lo)/steps).
+
+    Limits that follow the data on every slider move make the axes' ticks and
+    labels change with it — the most costly part of a redraw.  Snapped, they
+    stay put while the data moves by less than a step (about 2.5 % of the
+    span), so the axes can stay in a live demo's cached background; the framing
+    differs from the unsnapped one by less than a step on each side.
+    """
+    import math
+
+    lo, hi = float(lo), float(hi)
+    span = hi - lo
+    if not (math.isfinite(span) and span > 0):
+        return lo, hi
+    raw = span / steps
+    e = math.floor(math.log10(raw))
+    step = next(m * 10.0**e for m in (1.0, 2.0, 5.0, 10.0) if m * 10.0**e >= raw)
+    return math.floor(lo / step) * step, math.ceil(hi / step) * step
+
+
+def _overlapping_axes_labels(fig, top: list, ids: set) -> set:
+    """The axes (ticks and labels) of later Axes that reach over an Axes with animated artists.
+
+    Figure order draws a later Axes' labels over an earlier Axes' data (e.g. one panel's y label crossing
+    its neighbour's spine); such an axis is animated too, so it is drawn after the animated data, as before.
+    """
+    from matplotlib.axes import Axes
+
+    try:
+        renderer = fig.canvas.get_renderer()
+    except Exception:  # a canvas without an Agg renderer: keep the declared set
+        return set()
+    extra = set()
+    axes = [a for a in top if isinstance(a, Axes)]
+    for i, A in enumerate(axes):
+        if id(A) not in ids and not any(id(c) in ids for c in A.get_children()):
+            continue
+        region = A.get_tightbbox(renderer)
+        if region is None:
+            continue
+        for B in axes[i + 1:]:
+            if id(B) in ids:
+                continue
+            for axis in B._axis_map.values():
+                box = axis.get_tightbbox(renderer) if axis.get_visible() else None
+                if box is not None and box.overlaps(region):
+                    extra.add(id(axis))
+    return extra
+
+
+def steady_title(ax) -> None:
+    """Make ``ax.set_title(label)`` do nothing when ``label`` is the title already (and no style is passed).
+
+    ``set_title`` marks the axes changed even for the same text, which would
+    make a live demo that re-sets its title on every move redraw in full.
+    """
+    original = ax.set_title
+
+    def set_title(label, fontdict=None, loc=None, pad=None, *, y=None, **kwargs):
+        same_size = set(kwargs) <= {"fontsize"} and (
+            "fontsize" not in kwargs or _same_fontsize(ax.title, kwargs["fontsize"]))
+        if (fontdict is None and loc in (None, "center") and pad is None and y is None and same_size
+                and str(label) == ax.get_title()):
+            return ax.title
+        return original(label, fontdict, loc, pad, y=y, **kwargs)
+
+    ax.set_title = set_title
+
+
+def _same_fontsize(text, size) -> bool:
+    try:
+        return float(size) == float(text.get_fontsize())
+    except (TypeError, ValueError):  # "large" etc.: cannot tell, treat as a change
+        return False
+
+
+def steady_limits(ax, *, snap: bool = True) -> None:
+    """Make ``ax.set_xlim(lo, hi)`` / ``set_ylim`` round the limits outwards (``snap``, :func:`snapped_limits`)
+    and do nothing when they are the current limits already.
+
+    A live demo whose view sets its limits from the data on every move keeps
+    its axes (ticks, labels) — and so its cached background — while the data
+    moves by less than a rounding step.  Calls with other arguments (one bound,
+    ``auto=None`` from autoscaling, ``xmin=``) pass through unchanged.
+    """
+    for name, get, auto_on in (("set_xlim", ax.get_xlim, ax.get_autoscalex_on),
+                               ("set_ylim", ax.get_ylim, ax.get_autoscaley_on)):
+        original = getattr(ax, name)
+
+        def steady(left=None, right=None, *, emit=True, auto=False, _original=original, _get=get,
+                   _auto_on=auto_on, **kwargs):
+            if right is None and np.iterable(left) and len(left) == 2:
+                left, right = left
+            simple = not kwargs and auto is False and left is not None and right is not None
+            if not simple:
+                return _original(left, right, emit=emit, auto=auto, **kwargs)
+            lo, hi = (snapped_limits(left, right) if snap and left < right else (float(left), float(right)))
+            if not _auto_on() and tuple(map(float, _get())) == (lo, hi):
+                return lo, hi
+            return _original(lo, hi, emit=emit, auto=auto)
+
+        setattr(ax, name, steady)
+
+
+def _axes_draw_order(ax) -> list:
+    """The children of ``ax`` in the order ``Axes.draw`` draws them (patch first, left out here)."""
+    kids = [a for a in ax.get_children() if a is not ax.patch]
+    if not (ax.axison and ax._frameon):
+        kids = [a for a in kids if a not in ax.spines.values()]
+    if not ax.axison:
+        kids = [a for a in kids if a not in ax._axis_map.values()]
+    return sorted(kids, key=lambda a: a.get_zorder())  # stable, as matplotlib's sort
+
+
+def _outside_data_area(ax, artist) -> bool:
+    """Whether ``artist`` of ``ax`` never paints inside the axes box (its titles, placed above it)."""
+    return artist in (ax.title, ax._left_title, ax._right_title)
+
+
+def _ticks_out(axis) -> bool:
+    """Whether all of ``axis``'s tick marks point out of the axes box (labels are outside it anyway)."""
+    return all(t._tickdir == "out" for t in axis.get_major_ticks() + axis.get_minor_ticks())
+
+
+def _grid_on(axis) -> bool:
+    return any(t.gridline.get_visible() for t in axis.get_major_ticks() + axis.get_minor_ticks())
+
+
+class _GridLines:
+    """Stand-in for an Axis in the animated set: its grid lines (the only part of it inside the axes box).
+
+    While active, the Axis draws without its grid in a normal (non-saving) draw, so the background holds its
+    ticks and labels but no grid; the grid is drawn here, in the Axis' turn, over the animated artists.
+    """
+
+    def __init__(self, axis):
+        self.axis = axis
+        self.axes = axis.axes
+        self.active = False
+
+    def _gridlines(self):
+        return [t.gridline for t in self.axis.get_major_ticks() + self.axis.get_minor_ticks()]
+
+    def _draw_axis(self, renderer, *args, **kwargs):
+        axis = self.axis
+        if not self.active or axis.figure.canvas.is_saving():
+            return type(axis).draw(axis, renderer, *args, **kwargs)
+        axis._update_ticks()  # creates the ticks this draw will use (a new tick copies the grid setting)
+        hidden = [(g, g._visible) for g in self._gridlines()]
+        for g, _ in hidden:
+            g._visible = False  # not set_visible: that would mark the figure stale
+        try:
+            return type(axis).draw(axis, renderer, *args, **kwargs)
+        finally:
+            for g, v in hidden:
+                g._visible = v
+
+    def set_animated(self, value) -> None:
+        self.active = bool(value)
+        if self.active:
+            self.axis.draw = self._draw_axis
+        else:
+            self.axis.__dict__.pop("draw", None)
+
+    def get_zorder(self):
+        return self.axis.get_zorder()
+
+    def draw(self, renderer) -> None:
+        if not self.axis.get_visible():
+            return
+        for tick in self.axis._update_ticks():
+            if tick.get_visible():
+                tick.gridline.draw(renderer)
+
+
+class Blitter:
+    """Draw only the artists of a figure that change, over a cached picture of the rest (blitting).
+
+    ``Blitter(fig, artists)`` marks ``artists`` as animated: a full draw of the
+    figure paints everything else, keeps that picture (the *background*) and
+    then paints the animated artists on top — so every full draw (``canvas.draw()``,
+    ipympl's own redraws, ``savefig``) still shows the whole figure.  An artist
+    may be a whole Axes (e.g. one whose limits and ticks change on every move).
+
+    :meth:`update` restores the background, draws only the animated artists and
+    blits (ipympl sends the changed pixels as one PNG diff, at once, without
+    the browser round trip of ``draw_idle``).  It declines — returns False, the
+    caller then draws in full — when there is no background yet, when the
+    figure's size or dpi changed, or when anything *not* animated changed since
+    the background was taken (matplotlib marks the figure ``stale``; animated
+    artists do not).
+
+    The picture equals a full draw's because the animated set is closed
+    upwards: within an Axes, every artist drawn after the first animated one
+    (higher zorder: spines, later lines, texts) is animated as well and redrawn
+    in matplotlib's order — except those that never paint inside the axes box:
+    its titles, and an axis with outward ticks, which stays in the background
+    with only its grid lines redrawn (:class:`_GridLines`).  The axis of a later
+    Axes whose labels reach over animated artists is animated too, so it is
+    drawn over them as before.  The set is recomputed before every full draw
+    (artists added meanwhile join it).  ``savefig`` (and so the inline
+    backend) draws the figure as if nothing were animated.  tests/test_blit.py
+    compares blitted moves with full draws pixel by pixel.
+    """
+
+    def __init__(self, fig, artists):
+        self.fig = fig
+        self.declared = list(artists)
+        self._grids = {}  # Axis → its _GridLines stand-in (one per Axis, kept across refreshes)
+        self.artists = []
+        self._refresh()
+        self.background = None
+        self._key = None
+        self.n_full = 0  # full draws that took a background
+        self.n_blit = 0  # moves drawn by blitting
+        self._cid = fig.canvas.mpl_connect("draw_event", self._on_draw)
+        fig.draw = self._draw_figure
+
+    def _refresh(self) -> None:
+        """(Re)compute the animated set: artists added since (e.g. more labels) take their place in it."""
+        new = self._closure(self.fig, self.declared, self._grids)
+        keep = {id(a) for a in new}
+        for a in self.artists:
+            if id(a) not in keep:
+                a.set_animated(False)
+        for a in new:
+            a.set_animated(True)
+        self.artists = new
+
+    @staticmethod
+    def _closure(fig, declared: list, grids: dict) -> list:
+        from matplotlib.axes import Axes
+        from matplotlib.axis import Axis
+
+        ids = {id(a) for a in declared}
+        out = []
+        top = sorted((a for a in fig.get_children() if a is not fig.patch), key=lambda a: a.get_zorder())
+        ids |= _overlapping_axes_labels(fig, top, ids)
+        for a in top:
+            if id(a) in ids:
+                out.append(a)
+            elif isinstance(a, Axes):
+                order = _axes_draw_order(a)
+                first = next((i for i, c in enumerate(order) if id(c) in ids), None)
+                if first is not None:
+                    for c in order[first:]:
+                        if id(c) in ids:
+                            out.append(c)
+                        elif isinstance(c, Axis) and _ticks_out(c):
+                            if _grid_on(c):  # only its grid lies over the data: the grid is redrawn, not the labels
+                                out.append(grids.setdefault(c, _GridLines(c)))
+                        elif not _outside_data_area(a, c):
+                            out.append(c)
+        missing = ids - {id(a) for a in out if not isinstance(a, _GridLines)}
+        if missing:
+            raise ValueError("some animated artists are neither Axes of the figure nor children of its Axes")
+        return out
+
+    def _layout_key(self):
+        canvas = self.fig.canvas
+        return (canvas.get_width_height(physical=True), float(self.fig.dpi), tuple(self.fig.bbox.bounds))
+
+    def _draw_figure(self, renderer, *args, **kwargs):
+        """``fig.draw`` while blitting: a saved figure (``savefig``, the inline backend) is drawn as if nothing
+        were animated — exactly the picture without blitting; an on-screen draw leaves the animated set out."""
+        fig = self.fig
+        if not fig.canvas.is_saving():
+            return type(fig).draw(fig, renderer, *args, **kwargs)
+        for a in self.artists:
+            a.set_animated(False)
+        try:
+            return type(fig).draw(fig, renderer, *args, **kwargs)
+        finally:
+            for a in self.artists:
+                a.set_animated(True)
+
+    def _quiet(self):
+        """While the animated set is drawn or measured: no ``draw_idle`` from stale artists (pyplot's interactive
+        mode asks for one whenever an artist is marked stale — here that would be another full draw per move)."""
+        cntx = getattr(self.fig.canvas, "_idle_draw_cntx", None)
+        return cntx() if cntx is not None else contextlib.nullcontext()
+
+    def _on_draw(self, event) -> None:
+        with self._quiet():
+            self._after_full_draw(event)
+
+    def _after_full_draw(self, event) -> None:
+        canvas = self.fig.canvas
+        renderer = event.renderer
+        if canvas.is_saving():  # drawn whole by _draw_figure
+            return
+        take = hasattr(canvas, "copy_from_bbox") and renderer is getattr(canvas, "renderer", None)
+        if take:
+            self.background = canvas.copy_from_bbox(self.fig.bbox)
+            self._key = self._layout_key()
+            self.n_full += 1
+        for a in self.artists:
+            a.draw(renderer)
+        if take:
+            # this draw laid the figure out (its first, or a new size): if that changed which labels overlap
+            # the animated artists, the set is recomputed and the next move draws in full once more
+            if [id(a) for a in self._closure(self.fig, self.declared, self._grids)] != [id(a) for a in self.artists]:
+                self._refresh()
+                self.background = None
+        # drawing an axis (or measuring it) re-places its label, marking it, its Axes and the figure stale:
+        # the picture is current
+        self.fig.stale = False
+
+    def update(self) -> bool:
+        """Redraw the animated artists over the background and blit; False if a full draw is needed instead."""
+        fig, canvas = self.fig, self.fig.canvas
+        if self.background is None or fig.stale or self._key != self._layout_key():
+            self._refresh()  # the full draw that follows takes the background without the animated set
+            return False
+        with self._quiet():
+            canvas.restore_region(self.background)
+            renderer = canvas.get_renderer()
+            for a in self.artists:
+                a.draw(renderer)
+            fig.stale = False  # as after a full draw (see _on_draw)
+        canvas.blit(fig.bbox)
+        self.n_blit += 1
+        return True
+
+    def disconnect(self) -> None:
+        """Stop blitting: the artists are ordinary again (a full draw shows them as before)."""
+        self.fig.canvas.mpl_disconnect(self._cid)
+        self.fig.__dict__.pop("draw", None)
+        for a in [*self.artists, *self._grids.values()]:
+            a.set_animated(False)
+        self.background = None
+        self.fig.stale = True
+
+
 #: zlib level of the PNG frames a live figure sends to the browser (matplotlib uses the default, 6)
 FRAME_COMPRESS_LEVEL = 1
 
@@ -281,27 +620,29 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=Non
     True cells are shaded (e.g. a tolerance exceeded).  ``notes`` is a list of
     strings printed under the table.
     """
+    from .i18n import translate as _tr  # the reader's language (aerophoto.i18n); English unchanged
+
     def fmt(v):
         if isinstance(v, (float, np.floating)):
             if np.isnan(v):
                 return "—"
             return float_format.format(v)
-        return _html.escape(str(v))
+        return _html.escape(_tr(str(v)))
 
     hl = None if highlight is None else np.asarray(highlight, dtype=bool)
-    head = "".join(f"<th>{_html.escape(str(c))}</th>" for c in df.columns)
-    index_name = _html.escape(str(df.index.name or ""))
+    head = "".join(f"<th>{_html.escape(_tr(str(c)))}</th>" for c in df.columns)
+    index_name = _html.escape(_tr(str(df.index.name or "")))
     rows = []
     for i, (idx, row) in enumerate(df.iterrows()):
         cells = []
         for j, v in enumerate(row.values):
             style = ' style="background:#F0E442"' if hl is not None and hl[i, j] else ""
             cells.append(f"<td{style}>{fmt(v)}</td>")
-        rows.append(f"<tr><th>{_html.escape(str(idx))}</th>{''.join(cells)}</tr>")
-    cap = f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{_html.escape(caption)}</caption>" if caption else ""
+        rows.append(f"<tr><th>{_html.escape(_tr(str(idx)))}</th>{''.join(cells)}</tr>")
+    cap = f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{_html.escape(_tr(caption))}</caption>" if caption else ""
     foot = ""
     if notes:
-        foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(f"<li>{_html.escape(n)}</li>" for n in notes) + "</ul>"
+        foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(f"<li>{_html.escape(_tr(n))}</li>" for n in notes) + "</ul>"
     return (
         "<div class='aerophoto-table' style='font-size:15px'>"
         "<table style='border-collapse:collapse' border='1' cellpadding='3'>"

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 from dataclasses import dataclass
 
 from ._validate import check_range
@@ -111,10 +112,12 @@ class Param:
     def make_widget(self):
         import ipywidgets as w
 
+        from .i18n import t, translate_options
+
         style = {"description_width": "initial"}
         layout = w.Layout(width="340px")
         if self.kind == "choice":
-            wid = w.Dropdown(options=list(self.options), value=self.default, description=self.label,
+            wid = w.Dropdown(options=translate_options(self.options), value=self.default, description=self.label,
                              style=style, layout=layout)
         elif self.kind == "int":
             wid = w.IntSlider(value=int(self.default), min=int(self.lo), max=int(self.hi), step=int(self.step),
@@ -123,8 +126,9 @@ class Param:
             fmt = self.fmt or _auto_format(self.step)
             wid = w.FloatSlider(value=self.default, min=self.lo, max=self.hi, step=self.step, readout_format=fmt,
                                 description=self.label, continuous_update=self.continuous, style=style, layout=layout)
+        wid.description = t(self.label)  # the reader's language (aerophoto.i18n); English: unchanged
         if self.help:
-            wid.tooltip = self.help
+            wid.tooltip = t(self.help)
         return wid
 
 
@@ -172,9 +176,14 @@ class LiveDemo:
     fixed_layout: bool = True
     #: show the figure's legends as HTML under it instead of drawing them on every update
     legend_beside: bool = True
+    #: the artists a move changes (lines, markers, whole Axes whose limits move), set in :meth:`build`;
+    #: when given, a move redraws only these over a cached picture of the rest (:class:`plots.Blitter`)
+    animated: tuple = ()
 
     def __init__(self, **values):
         import ipywidgets as w
+
+        from .i18n import translate_figure
 
         self._params = {p.name: p for p in self.params}
         self.values = {p.name: p.default for p in self.params}
@@ -188,6 +197,7 @@ class LiveDemo:
         self._syncing = False
         self._layout = None
         self.build()
+        translate_figure(self.fig)  # titles, axis labels, legends in the reader's language (aerophoto.i18n)
         from .plots import fast_frames, freeze_layout, legend_html
 
         #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)
@@ -195,6 +205,12 @@ class LiveDemo:
         if self.fixed_layout:
             freeze_layout(self.fig)
         fast_frames(self.fig)  # cheaper PNG frames to the browser (ipympl only)
+        #: draws only ``animated`` on a move (None: every move draws the whole figure)
+        self.blitter = None
+        if self.animated and getattr(self, "fig", None) is not None and os.environ.get("AEROPHOTO_BLIT", "1") != "0":
+            from .plots import Blitter
+
+            self.blitter = Blitter(self.fig, self.animated)
         #: where Reset returns: the values the demo was built with (e.g. the student's variant)
         self.start_values = dict(self.values)
         self.update()
@@ -246,11 +262,19 @@ class LiveDemo:
         self.draw()
 
     def draw(self, force: bool = False) -> None:
-        """Redraw the figure (``force=True`` renders now, e.g. in tests and benchmarks)."""
+        """Redraw the figure (``force=True`` renders the whole figure now, e.g. in tests and benchmarks).
+
+        With ``animated`` artists a move redraws only those over the cached
+        rest of the figure and blits it; a full draw happens instead whenever
+        anything else changed (limits, ticks, titles) or the size did.
+        """
         from .plots import draw
 
-        if getattr(self, "fig", None) is not None:
-            draw(self.fig, force=force)
+        if getattr(self, "fig", None) is None:
+            return
+        if not force and self.blitter is not None and self.blitter.update():
+            return
+        draw(self.fig, force=force)
 
     # ----------------------------------------------------------- widgets
     def _sync_controls(self, values: dict) -> None:
@@ -278,10 +302,12 @@ class LiveDemo:
     def _on_change(self, change) -> None:
         if self._syncing:
             return
+        from .i18n import t
+
         name = change["owner"]._aerophoto_name
         try:
             self.values[name] = self._params[name].validate(change["new"])
-            self.status.value = self.on_slider()
+            self.status.value = t(self.on_slider())
         except Exception as exc:  # never let a callback die silently
             self.status.value = error_html(exc)
 
@@ -311,15 +337,17 @@ class LiveDemo:
             return self._layout
         import ipywidgets as w
 
+        from .i18n import t
+
         ctls = self.controls()
         groups: dict[str, list] = {}
         for p in self.params:
             groups.setdefault(p.group, []).append(ctls[p.name])
         column = []
         for g, items in groups.items():
-            head = [w.HTML(f"<b>{g}</b>")] if g else []
+            head = [w.HTML(f"<b>{t(g)}</b>")] if g else []
             column.append(w.VBox(head + items, layout=w.Layout(margin="0 0 6px 0")))
-        reset = w.Button(description="Reset", icon="undo", tooltip="Back to the starting values",
+        reset = w.Button(description=t("Reset"), icon="undo", tooltip=t("Back to the starting values"),
                          layout=w.Layout(width="110px"))
         reset.on_click(lambda _b: self.reset())
         self.reset_button = reset
@@ -327,9 +355,9 @@ class LiveDemo:
         left = w.VBox(column, layout=w.Layout(width="350px", min_width="350px", margin="0 12px 0 0"))
         parts = [w.HTML(_DEMO_CSS)]
         if self.title:
-            parts.append(w.HTML(f"<h3 style='margin:4px 0'>{self.title}</h3>"))
+            parts.append(w.HTML(f"<h3 style='margin:4px 0'>{t(self.title)}</h3>"))
         if self.hint:
-            parts.append(w.HTML(f"<div class='aerophoto-hint'>{self.hint}</div>"))
+            parts.append(w.HTML(f"<div class='aerophoto-hint'>{t(self.hint)}</div>"))
         right = w.VBox([self.figure_widget(), self.legend], layout=w.Layout(max_width="900px"))
         parts.append(w.HBox([left, right], layout=w.Layout(align_items="flex-start")))
         self._layout = w.VBox(parts, layout=w.Layout(max_width="1260px"))

@@ -420,6 +420,10 @@ class ConsoleLog:
                                               "the icons are missing"),
         ("/voila/api/shutdown/", "Voilà's page-unload beacon carries no XSRF token and gets 403; the kernel of "
                                  "a closed page is culled instead (voila.json)"),
+        ("Error setting state: Failed to execute 'drawImage' on 'CanvasRenderingContext2D': The HTMLImageElement "
+         "provided is in the 'broken' state", "ipympl's front end, now and then on a busy machine: a frame's image "
+         "is drawn before it decoded (known upstream: matplotlib/matplotlib#19116, matplotlib/ipympl#472); the "
+         "next frame repaints, and the tests check that the picture did change"),
     )
 
     def attach(self, page) -> "ConsoleLog":

@@ -88,15 +88,19 @@ def check_notebook(path, *, timeout: int = DEFAULT_TIMEOUT_S, record_book: str |
 
 
 def print_check(result: CheckResult, out=print) -> None:
+    from ..i18n import t as _t  # the loop below names its task t
+
     out(f"{result.path}:")
     if result.problem:
         out(f"  ✗ {result.problem}")
         return
     for t in result.tasks:
-        out(f"  {'✓' if t.passed else '✗'} {t.task} ({t.points:g} pt)" + ("" if t.passed else f" — {t.message}"))
+        out(_t("  {mark} {task} ({points:g} pt)", mark="✓" if t.passed else "✗", task=t.task, points=t.points)
+            + ("" if t.passed else f" — {t.message}"))
     for cid, err in result.errors:
-        out(f"  ✗ cell {cid}: {err}")
+        out(_t("  ✗ cell {cell}: {error}", cell=cid, error=err))
     for f in result.flags:
         out(f"  ! {f}")
     n = sum(t.passed for t in result.tasks)
-    out(f"  {n} of {len(result.tasks)} task(s) passed" + (f"; {len(result.errors)} cell error(s)" if result.errors else ""))
+    out(_t("  {n} of {total} task(s) passed", n=n, total=len(result.tasks))
+        + (_t("; {n} cell error(s)", n=len(result.errors)) if result.errors else ""))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..i18n import t
 from .common import DEFAULT_TIMEOUT_S, ensure_path, notebook_problem
 
 
@@ -86,6 +87,28 @@ def _parser() -> argparse.ArgumentParser:
     p = sub.add_parser("feedback", help="HTML feedback per student (nbgrader)")
     p.add_argument("--assignment", action="append", help="only this chapter (repeatable)")
     p.add_argument("--student", action="append", help="only this student (repeatable)")
+    return _localized(ap)
+
+
+def _localized(ap: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """The parser's description and help texts in the user's language (:mod:`aerophoto.i18n`; English: as written)."""
+    from ..i18n import get_language, translate
+
+    if get_language() == "en":
+        return ap
+
+    def walk(p):
+        p.description = translate(p.description)
+        for a in p._actions:
+            if a.help and a.help is not argparse.SUPPRESS:
+                a.help = translate(a.help)
+            if isinstance(a, argparse._SubParsersAction):
+                for ca in a._choices_actions:
+                    ca.help = translate(ca.help)
+                for sp in a.choices.values():
+                    walk(sp)
+
+    walk(ap)
     return ap
 
 
@@ -103,10 +126,10 @@ def main(argv=None) -> int:
     try:
         return _dispatch(args, out)
     except SandboxUnavailable as exc:
-        out(f"aerophoto-course {args.cmd}: {exc}")
+        out(t("aerophoto-course {cmd}: {error}", cmd=args.cmd, error=exc))
         return 2
     except CourseBusy as exc:
-        out(f"aerophoto-course {args.cmd}: {exc}")
+        out(t("aerophoto-course {cmd}: {error}", cmd=args.cmd, error=exc))
         return 3
 
 
@@ -124,8 +147,8 @@ def _dispatch(args, out) -> int:
         done = write_workbook(args.dest, args.notebooks, out=out)
         n_new = sum(a == "written" for a, _ in done)
         n_failed = sum(a == "failed" for a, _ in done)
-        out(f"workbook: {n_new} chapter(s) written, {len(done) - n_new - n_failed} kept as they were"
-            + (f", {n_failed} skipped" if n_failed else ""))
+        out(t("workbook: {n_new} chapter(s) written, {n_kept} kept as they were", n_new=n_new,
+              n_kept=len(done) - n_new - n_failed) + (t(", {n_failed} skipped", n_failed=n_failed) if n_failed else ""))
         return 1 if done and n_failed == len(done) else 0
     if args.cmd == "strip-solutions":
         from .common import default_notebooks_dir
@@ -163,17 +186,18 @@ def _dispatch(args, out) -> int:
         from .sandbox import MAX_JOBS
 
         if not 1 <= args.jobs <= MAX_JOBS:
-            out(f"autograde: --jobs {args.jobs} is not valid; expected 1 … {MAX_JOBS}")
+            out(t("autograde: --jobs {jobs} is not valid; expected 1 … {max_jobs}", jobs=args.jobs, max_jobs=MAX_JOBS))
             return 2
         results = course.autograde(args.student, args.assignment, force=args.force, jobs=args.jobs)
         if not results:
-            out(f"autograde: no submissions in {course.root / 'submitted'} — run aerophoto-course import first")
+            out(t("autograde: no submissions in {folder} — run aerophoto-course import first",
+                  folder=course.root / "submitted"))
             return 1
         failed = [r for r in results if r.status == "failed"]
         if failed:
-            out(f"autograde: {len(failed)} submission(s) could not be graded: "
-                + ", ".join(f"{r.student} · {r.assignment}" for r in failed[:10]) + (" …" if len(failed) > 10 else "")
-                + f" (see {course.root / 'aerophoto-course.log'})")
+            which = ", ".join(f"{r.student} · {r.assignment}" for r in failed[:10]) + (" …" if len(failed) > 10 else "")
+            out(t("autograde: {n} submission(s) could not be graded: {which} (see {log})", n=len(failed), which=which,
+                  log=course.root / "aerophoto-course.log"))
             return 1
         return 0
     if args.cmd == "gradebook":
@@ -181,7 +205,8 @@ def _dispatch(args, out) -> int:
         dest = args.out or course.root / "grades.csv"
         dest.parent.mkdir(parents=True, exist_ok=True)
         df.to_csv(dest, index=False)
-        out(f"gradebook: {len(df)} row(s), {int((df['flags'] != '').sum()) if len(df) else 0} flagged → {dest}")
+        out(t("gradebook: {rows} row(s), {flagged} flagged → {dest}", rows=len(df),
+              flagged=int((df["flags"] != "").sum()) if len(df) else 0, dest=dest))
         return 0
     if args.cmd == "feedback":
         course.feedback(args.student, args.assignment)
@@ -198,19 +223,19 @@ def _check(args, out) -> int:
     status = 0
     for nb_path in args.notebook:
         if not nb_path.is_file():
-            out(f"{nb_path}: no such notebook")
+            out(t("{path}: no such notebook", path=nb_path))
             status = max(status, 2)
             continue
         problem = notebook_problem(nb_path)
         if problem:
-            out(f"{nb_path}: {problem}")
+            out(t("{path}: {problem}", path=nb_path, problem=problem))
             status = max(status, 2)
             continue
         try:
             res = check_notebook(nb_path, timeout=args.timeout, record_book=args.record_book,
                                  unsafe_no_sandbox=args.unsafe_no_sandbox)
         except Exception as exc:  # the sandbox or the kernel could not start: nothing verified
-            out(f"{nb_path}: could not be run ({type(exc).__name__}: {exc})")
+            out(t("{path}: could not be run ({error})", path=nb_path, error=f"{type(exc).__name__}: {exc}"))
             status = max(status, 2)
             continue
         print_check(res, out)

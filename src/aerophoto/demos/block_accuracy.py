@@ -25,6 +25,7 @@ from .. import bundle as B
 from .. import geometry as g
 from .. import plots, simulate
 from .. import site as _site
+from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["F_MM", "M", "N_PHOTOS", "SPACINGS", "block_geometry", "block_map", "BlockMap", "BlockErrorView",
@@ -154,8 +155,9 @@ class BlockErrorView:
         pad = 0.15
         self.ax_map.set_xlim(lo[0] - pad, hi[0] + pad)
         self.ax_map.set_ylim(lo[1] - pad - 0.3, hi[1] + pad + 0.6)
-        self.ax_map.set_title(f"{r.n_strips} strip{'s' if r.n_strips > 1 else ''}, control rows every {r.every} "
-                              f"bases ({r.layout}), σ = {r.sigma_um:g} µm", fontsize=11)
+        key = ("{n} strips, control rows every {every} bases ({layout}), σ = {sigma:g} µm" if r.n_strips > 1 else
+               "{n} strip, control rows every {every} bases ({layout}), σ = {sigma:g} µm")
+        self.ax_map.set_title(t(key, n=r.n_strips, every=r.every, layout=t(r.layout), sigma=r.sigma_um), fontsize=11)
         x = r.profile_x_m / 1000.0
         self.prof_plan.set_data(x, r.profile_plan_m)
         self.prof_Z.set_data(x, r.profile_Z_m)

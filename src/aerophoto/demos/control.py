@@ -24,6 +24,7 @@ from matplotlib.collections import LineCollection
 from .. import control as c
 from .. import geometry as g
 from .. import plots
+from ..i18n import t as _t  # functions here name a local t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["ControlDesignResult", "control_design_model", "ControlDesignView", "ControlDesignDemo",
@@ -317,7 +318,7 @@ class ResectionView:
         k = exaggeration(r.cloud_rms_m)
         cl = self._xy(r.station + k * (cl - r.station)) if len(cl) else np.zeros((0, 2))
         self.cloud.set_data(cl[:, 0], cl[:, 1])
-        self.ax.set_title(f"Resection: three known points, two angles (scatter ×{k})")
+        self.ax.set_title(_t("Resection: three known points, two angles (scatter ×{k})", k=k))
         allp = np.vstack([K, P[None, :], circ])
         lo, hi = allp.min(axis=0), allp.max(axis=0)
         mid, half = (lo + hi) / 2, 0.55 * float(max(hi - lo))

@@ -24,6 +24,7 @@ from matplotlib.collections import LineCollection
 
 from .. import dem
 from .. import plots
+from ..i18n import t
 from ..widgets import LiveDemo, Param, error_html
 
 __all__ = ["SHEETS", "INTERVALS", "SheetCache", "sheet_cache", "ContourFrame", "contour_frame", "ContourView",
@@ -194,8 +195,8 @@ class ContourView:
             self.valley_lc.set_segments([])
             self.ridge_lc.set_segments([])
         self.nodes.set_offsets(r.dem.nodes_m[:, :2] - (x0, y0))
-        self.title.set_text(f"h = {r.interval_m:g} m: RMS of contour heights {r.accuracy.rms_m:.3f} m "
-                            f"({r.dem.n_nodes} nodes)")
+        self.title.set_text(t("h = {h:g} m: RMS of contour heights {rms:.3f} m ({n} nodes)", h=r.interval_m,
+                              rms=r.accuracy.rms_m, n=r.dem.n_nodes))
 
 
 def legend_html() -> str:

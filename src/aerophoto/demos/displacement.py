@@ -30,6 +30,7 @@ from .. import geometry as g
 from .. import plots
 from .._validate import check_range
 from ..terrain import AnalyticHills
+from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["DisplacementField", "displacement_field", "DisplacementView", "DisplacementDemo", "ReliefDemo",
@@ -346,7 +347,7 @@ class DisplacementView:
             marker.set_data([pt[0]], [pt[1]])
             label.xy = (pt[0], pt[1])
         what = {"both": "relief and tilt", "relief": "relief", "tilt": "tilt"}[show]
-        self.title.set_text(f"Photo, mm — {what} displacement, arrows ×{k}")
+        self.title.set_text(t("Photo, mm — {what} displacement, arrows ×{k}", what=t(what), k=k))
         return k
 
 
@@ -380,6 +381,8 @@ class DisplacementDemo(LiveDemo):
     def build(self):
         self.view = DisplacementView(n_points=81, legend=False)
         self.fig = self.view.fig
+        # a move redraws the lines, dots, arrows, marks and the title (its arrows ×k) over the cached photo frame
+        self.animated = (self.view.pv, self.view.title)
 
     def compute(self, f_mm, m, alpha_deg, lambda_deg, relief_m, show, exaggeration):
         field = displacement_field(f_mm, m, alpha_deg, lambda_deg, relief_m, grid_n=9)

@@ -16,6 +16,7 @@ import pandas as pd
 
 from .. import budget as bu
 from .. import plots
+from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["BAR_KEYS", "BudgetView", "BudgetDemo", "budget_figure", "MAP_SCALES", "DTM_OPTIONS"]
@@ -76,11 +77,12 @@ class BudgetView:
             else:
                 bar.set_color(_C["vermillion"] if i == dom else _C["blue"])
             self.texts[i].set_position((v + 0.01 * top, self.texts[i].get_position()[1]))
-            self.texts[i].set_text(f"{v:.3f}" if (v > 0 or BAR_KEYS[i] != "interior") else "left out")
+            self.texts[i].set_text(f"{v:.3f}" if (v > 0 or BAR_KEYS[i] != "interior") else t("left out"))
         self.ax.set_xlim(0, top)
-        verdict = "≤ 0.4 mm: meets" if B.meets_tolerance else "> 0.4 mm: fails"
+        verdict = t("≤ 0.4 mm: meets") if B.meets_tolerance else t("> 0.4 mm: fails")
         mk, mc = (f"{x:,.0f}".replace(",", " ") for x in (B.M_k, B.M_c))
-        self.title.set_text(f"1:{mk} map, 1:{mc} photos\nv_d = {B.map_mean_mm:.2f} mm {verdict}")
+        self.title.set_text(t("1:{mk} map, 1:{mc} photos\nv_d = {v:.2f} mm {verdict}", mk=mk, mc=mc, v=B.map_mean_mm,
+                              verdict=verdict))
 
 
 def _extra_table(B: bu.Budget, f_mm: float, relief_m: float, frame_mm: float) -> pd.DataFrame:

@@ -20,6 +20,7 @@ from matplotlib.collections import PolyCollection
 
 from .. import flight
 from .. import plots
+from ..i18n import t
 from ..widgets import LiveDemo, Param
 from .own import after, task_label
 
@@ -62,9 +63,9 @@ def plan_table_html(p: flight.FlightPlan, lay: flight.FlightLayout | None = None
     df = p.table()[["quantity", "value", "unit"]].copy()
     df["quantity"] = [SHORT_LABELS[k] for k in flight.TABLE_ATTRS]
     df["value"] = [format_value(v) for v in df["value"]]
-    notes = [f"40·h/H = {p.relief_allowance_percent:.2f} %", f"footprint l·m = {p.footprint_side_km:.2f} km"]
+    notes = [f"40·h/H = {p.relief_allowance_percent:.2f} %", t("footprint l·m = {s:.2f} km", s=p.footprint_side_km)]
     if lay is not None:
-        notes.append(f"drawn route {lay.route_length_km:.0f} km (LS {p.LS_km:.0f} km)")
+        notes.append(t("drawn route {L:.0f} km (LS {LS:.0f} km)", L=lay.route_length_km, LS=p.LS_km))
     return plots.html_table(df, caption=caption or "Survey parameters (guide §2)", notes=notes)
 
 
@@ -272,9 +273,10 @@ class FlightPlanView:
         self.ax_plan.set_xlim(min(xs.min(), lay.photo_x_km[0] - half) - pad, max(xs.max(), Lx) + pad)
         self.ax_plan.set_ylim(min(ys.min(), lay.strip_y_km[0] - half) - pad,
                               max(ys.max(), lay.strip_y_km[-1] + half) + pad)
-        drawn = [f"1 in {st} {what}" for st, what in ((sk, "strips"), (sj, "photos")) if st > 1]
-        shown = f"\n(schematic: {' and '.join(drawn)} drawn)" if drawn else ""
-        self.ax_plan.set_title(f"K = {K} strips × n = {n} = N = {_count_text(p.N)} photos{shown}", fontsize=10)
+        drawn = [t("1 in {st} " + what, st=st) for st, what in ((sk, "strips"), (sj, "photos")) if st > 1]
+        shown = t("\n(schematic: {what} drawn)", what=t(" and ").join(drawn)) if drawn else ""
+        self.ax_plan.set_title(t("K = {K} strips × n = {n} = N = {N} photos{shown}", K=K, n=n, N=_count_text(p.N),
+                                 shown=shown), fontsize=10)
         # detail ---------------------------------------------------------------
         kz, jz = np.arange(min(K, 3)), np.arange(min(n, 4))
         self.z_fp.set_verts(list(lay.footprints_km(kz, jz)))
@@ -390,6 +392,13 @@ class FlightPlanDemo(LiveDemo):
     def build(self):
         self.view = FlightPlanView()
         self.fig = self.view.fig
+        # a move redraws both panels' artists over cached axes; rounded limits (and a title set again to the
+        # same text) keep the axes and their ticks on small moves
+        v = self.view
+        for ax in (v.ax_plan, v.ax_zoom):
+            plots.steady_limits(ax)
+            plots.steady_title(ax)
+        self.animated = (v.footprints, v.z_fp)
 
     def compute(self, h_m, **v):
         p = flight.plan(Zmax_m=self.Zmin_m + h_m, Zmin_m=self.Zmin_m, **v)

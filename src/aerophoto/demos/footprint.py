@@ -222,6 +222,8 @@ class FootprintDemo(LiveDemo):
     def build(self):
         self.view = FootprintView()
         self.fig = self.view.fig
+        # a move redraws the ground plan (its limits follow the footprint) and the photo's grid and points
+        self.animated = (self.view.ax_ground, self.view.grid)
 
     def compute(self, **v):
         return footprint_model(**v)

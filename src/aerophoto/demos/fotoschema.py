@@ -67,6 +67,7 @@ from .. import mosaic as mo
 from .. import plots
 from .. import simulate as sim
 from ..terrain import RescaledRelief
+from ..i18n import t as _t  # functions here name a local t
 from ..widgets import LiveDemo, Param, error_html
 
 __all__ = [
@@ -300,9 +301,10 @@ class FotoschemaView:
                 t.set_visible(True)
             else:
                 t.set_visible(False)
-        res = "preview" if r.preview else "full resolution"
-        self.title.set_text(f"Fotoschema 1:{fs.scale.m:,.0f} · m = {fs.rms_mm:.2f} mm · "
-                            f"{'seams pass' if fs.ok else 'cut-out > 0.5 mm'} · {res}".replace(",", " "))
+        res = _t("preview") if r.preview else _t("full resolution")
+        self.title.set_text(_t("Fotoschema 1:{m} · m = {rms:.2f} mm · {verdict} · {res}",
+                              m=f"{fs.scale.m:,.0f}".replace(",", " "), rms=fs.rms_mm,
+                              verdict=_t("seams pass") if fs.ok else _t("cut-out > 0.5 mm"), res=res))
         # ΔI chart: points grouped by cut
         xs, ticks, labels, seps = [], [], [], []
         x = 0.0
@@ -311,7 +313,7 @@ class FotoschemaView:
             xx = x + np.arange(1, n + 1)
             xs.append(xx)
             ticks.append(x + (n + 1) / 2.0)
-            labels.append(f"cut {s.numbers[0]}/{s.numbers[1]}")
+            labels.append(_t("cut {a}/{b}", a=s.numbers[0], b=s.numbers[1]))
             x += n + 1.5
             if k < len(fs.seams) - 1:
                 seps.append(x - 0.25)
@@ -394,8 +396,8 @@ class FotoschemaDemo(LiveDemo):
         self.view.update(result)
         fs = result.fs
         H_m = g.flying_height_m(fs.camera.f_mm, fs.m_design)
-        notes = [f"H = f·m = {H_m:,.0f} m above the mean ground".replace(",", " "),
-                 "ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip"]
+        notes = [_t("H = f·m = {H} m above the mean ground", H=f"{H_m:,.0f}".replace(",", " ")),
+                 _t("ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip")]
         if result.note:
             notes.insert(0, "⚠ " + result.note)
         self.table.value = (plots.html_table(result.table(), caption="Seams and scale (guide §6)",

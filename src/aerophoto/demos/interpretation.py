@@ -135,6 +135,8 @@ class ConditionsDemo(LiveDemo):
     def build(self):
         self.view = ConditionsView()
         self.fig = self.view.fig
+        # a move sets the two images' data: only they (and what lies over them) are redrawn
+        self.animated = (self.view.im_nat, self.view.im_cir)
 
     def compute(self, **v):
         return conditions_model(**v)
@@ -245,6 +247,7 @@ class KeyDemo(LiveDemo):
     def build(self):
         self.view = KeyView()
         self.fig = self.view.fig
+        self.animated = (self.view.im,)  # a move swaps the image: only it (and the grid over it) is redrawn
         self._seen = {}  # close-ups already rendered (a row revisited is instant)
 
     def compute(self, **v):

@@ -31,6 +31,7 @@ from .. import geometry as g
 from .. import plots
 from .. import projective as pj
 from .. import rectify as rf
+from ..i18n import t as _t  # functions here name a local t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["EXAMPLE", "TransformerResult", "transformer_model", "TransformerView", "TransformerDemo",
@@ -246,7 +247,8 @@ class TransformerView:
         else:
             self.hh.set_data([], [])
             self.hh_pts.set_data([], [])
-        self.ax.set_title(f"Step {r.step}: {s.name} — misses ×{k}, largest {s.max_residual_mm:.2f} mm")
+        self.ax.set_title(_t("Step {step}: {name} — misses ×{k}, largest {largest:.2f} mm", step=r.step, name=_t(s.name),
+                            k=k, largest=s.max_residual_mm))
 
 
 class TransformerDemo(LiveDemo):

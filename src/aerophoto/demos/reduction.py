@@ -45,6 +45,7 @@ from .. import geometry as g
 from .. import plots
 from .. import triangulation as tri
 from .._validate import check_int_range, check_range
+from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = [
@@ -274,6 +275,17 @@ def _place_labels(ax, pool: list, items, **kw) -> None:
 _MAX_ARROWS = 160
 
 
+def _set_limits(ax, xlim, ylim, snap: bool = False) -> None:
+    """Set the limits only where they change (unchanged limits keep a live demo's axes in its cached background);
+    ``snap``: round them outwards (:func:`aerophoto.plots.snapped_limits`), so that small moves keep them."""
+    if snap:
+        xlim, ylim = plots.snapped_limits(*xlim), plots.snapped_limits(*ylim)
+    if ax.get_autoscalex_on() or tuple(map(float, ax.get_xlim())) != tuple(map(float, xlim)):
+        ax.set_xlim(*xlim)
+    if ax.get_autoscaley_on() or tuple(map(float, ax.get_ylim())) != tuple(map(float, ylim)):
+        ax.set_ylim(*ylim)
+
+
 def _nice_factor(x: float) -> float:
     """The largest of 1, 2, 5 × 10^k not above x (at least 1): a readable exaggeration factor."""
     if not np.isfinite(x) or x <= 1.0:
@@ -382,7 +394,7 @@ class StripView:
         for k, line in self.marks.items():
             sel = pts.mask(k) & np.all(np.isfinite(P), axis=1)
             line.set_data(P[sel, 0], P[sel, 1])
-        tri_txt = f"triangles ×{self.enlargement:g}" if self.show_triangles else ""
+        tri_txt = t("triangles ×{k:g}", k=self.enlargement) if self.show_triangles else ""
         if reduction is not None:
             C = P[reduction.centre_index]
             self.centre.set_data([C[0]], [C[1]])
@@ -396,7 +408,8 @@ class StripView:
             _set_arrows(self.arrows, P[ok], UV[ok])
             base = reduction.to_strip_frame(reduction.base_control_mm)
             self.base.set_data(base[:, 0], base[:, 1])
-            self.note.set_text(f"{tri_txt}; arrows ×{self.exaggeration:g}; k = {reduction.k:.4f}")
+            self.note.set_text(t("{triangles}; arrows ×{x:g}; k = {k:.4f}", triangles=tri_txt, x=self.exaggeration,
+                                 k=reduction.k))
         else:
             self.centre.set_data([], [])
             _set_arrows(self.arrows, np.zeros((0, 2)), np.zeros((0, 2)))
@@ -405,8 +418,7 @@ class StripView:
         sel = np.flatnonzero(ok & (pts.mask("centre") | pts.mask("control"))) if self.labels else []
         _place_labels(self.ax, self.texts, [(pts.names[i], P[i]) for i in sel], xytext=(5, -12), fontsize=9)
         pad = 0.12 * max(span)
-        self.ax.set_xlim(lo[0] - pad, hi[0] + pad)
-        self.ax.set_ylim(lo[1] - pad, hi[1] + pad)
+        _set_limits(self.ax, (lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad), getattr(self, "snap", False))
 
 
 class EndsView(StripView):
@@ -579,11 +591,12 @@ class CoefficientView:
         self.mean.set_data([-0.5, n - 0.5], [c.k_mean, c.k_mean])
         self.points.set_offsets(np.column_stack([x, c.k]))
         self.points.set_facecolors([plots.COLORS["green"] if ok else plots.COLORS["vermillion"] for ok in c.ok])
-        self.ax.set_xticks(x)
-        self.ax.set_xticklabels([f"{a}–{b}" for a, b in c.bases], rotation=60, fontsize=8)
+        if getattr(self, "_bases", None) != list(c.bases):  # new tick labels only for new bases (they are costly)
+            self._bases = list(c.bases)
+            self.ax.set_xticks(x)
+            self.ax.set_xticklabels([f"{a}–{b}" for a, b in c.bases], rotation=60, fontsize=8)
         span = max(float(np.max(np.abs(c.dk))), float(np.max(c.tol))) * 1.6
-        self.ax.set_xlim(-0.5, n - 0.5)
-        self.ax.set_ylim(c.k_mean - span, c.k_mean + span)
+        _set_limits(self.ax, (-0.5, n - 0.5), (c.k_mean - span, c.k_mean + span), getattr(self, "snap", False))
 
 
 class ReductionView:
@@ -601,7 +614,8 @@ class ReductionView:
 
     def update(self, r: ReductionResult) -> None:
         self.strip.update(r.free, r.reduction)
-        self.strip.ax.set_title(f"Free strip, {r.params['n_photos']} templates; centre {r.reduction.corrections.centre}")
+        self.strip.ax.set_title(t("Free strip, {n} templates; centre {centre}", n=r.params["n_photos"],
+                                  centre=r.reduction.corrections.centre))
         self.coef.update(r.reduction.coefficients)
 
 
@@ -631,6 +645,12 @@ class ReductionDemo(LiveDemo):
     def build(self):
         self.view = ReductionView()
         self.fig = self.view.fig
+        # a move redraws the strip's and the coefficients' artists over cached axes; rounded limits keep the axes
+        # (and their ticks) unchanged on small moves, a title that stays the same does not count as a change
+        v = self.view
+        v.strip.snap = v.coef.snap = True
+        plots.steady_title(v.strip.ax)
+        self.animated = (v.strip.rays, v.coef.band)
 
     #: the strip of guide §13: four photos numbered 36 … 39 (five would not fit the site beyond 1:19 500)
     n_photos = 4
@@ -643,7 +663,7 @@ class ReductionDemo(LiveDemo):
 
     def render(self, result: ReductionResult):
         self.view.update(result)
-        notes = [f"{k}: {val:.4g} {u}".strip() if isinstance(val, float) else f"{k}: {val}"
+        notes = [f"{t(k)}: {val:.4g} {t(u)}".strip() if isinstance(val, float) else f"{t(k)}: {val}"
                  for k, (u, val) in result.summary().iterrows()]
         if result.note:
             notes.append(result.note)

@@ -23,6 +23,7 @@ import pandas as pd
 from matplotlib.collections import LineCollection
 
 from .. import plots, spectral
+from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["REFERENCE", "ExplorerResult", "explore", "SpectralView", "SpectralExplorerDemo", "plot_soil_facts",
@@ -161,10 +162,11 @@ class SpectralView:
                 segs.append([(b.lo_um, r.bands[k]), (b.hi_um, r.bands[k])])
         self.levels.set_segments(segs)
         self.img.set_data(r.composite)
-        self.img.set_extent(r.extent_km)
+        if tuple(self.img.get_extent()) != tuple(r.extent_km):  # same patch: the axes (and their ticks) stay
+            self.img.set_extent(r.extent_km)
         if r.camera != getattr(self, "_camera", None):  # a new title only with a new camera
             self._camera = r.camera
-            self.ax_img.set_title(f"Patch: {'-'.join(b.upper() for b in shown)} as RGB", fontsize=12)
+            self.ax_img.set_title(t("Patch: {bands} as RGB", bands="-".join(b.upper() for b in shown)), fontsize=12)
 
 
 class SpectralExplorerDemo(LiveDemo):
@@ -195,6 +197,8 @@ class SpectralExplorerDemo(LiveDemo):
     def build(self):
         self.view = SpectralView()
         self.fig = self.view.fig
+        # a move redraws the band spans, the curves and the composite; axes, ticks and titles stay cached
+        self.animated = (*self.view.spans.values(), self.view.img)
 
     def compute(self, **v):
         return explore(**v)

@@ -28,6 +28,7 @@ import pandas as pd
 
 from .. import plots
 from .. import stereo as st
+from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["AREA_SIZE_MM", "areas", "AnaglyphView", "FloatingMarkDemo", "MarkResult", "BaseHeightView",
@@ -265,7 +266,8 @@ class FloatingMarkDemo(LiveDemo):
 
     def render(self, r: MarkResult):
         self.view.update(r.rgb, r.extent_mm)
-        self.view.ax.set_title(f"{r.area}: p = {r.p_mm:.2f} mm" + (" — reverse stereo" if r.reverse else ""))
+        self.view.ax.set_title(t("{area}: p = {p:.2f} mm", area=t(r.area), p=r.p_mm)
+                               + (t(" — reverse stereo") if r.reverse else ""))
         text = f"p {r.p_mm:.2f} mm"
         if not self.measure_only:
             text += f"\nZ {float(r.table.loc[MARK_Z, 'value']):.1f} m"
@@ -349,7 +351,7 @@ class BaseHeightView:
         zs = np.array([0.0, 6.0, 9.0, 6.0, 0.0])
         self.true.set_data(xs, zs)
         self.seen.set_data(xs, np.minimum(zs * r.V, 31.5))
-        self.label.set_text(f"V = {r.V:.2f}" + ("  (flattened)" if r.V < 1 else ""))
+        self.label.set_text(f"V = {r.V:.2f}" + (t("  (flattened)") if r.V < 1 else ""))
 
 
 class BaseHeightDemo(LiveDemo):

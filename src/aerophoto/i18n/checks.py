@@ -1,0 +1,147 @@
+"""The answer checks' messages in Russian (:mod:`aerophoto.checks`): ✓ lines, "no answer yet", the kinds of mistake.
+
+Keys are the English templates with ``str.format`` fields; both languages carry the same fields.
+"""
+
+from __future__ import annotations
+
+__all__ = ["MESSAGES", "UNITS"]
+
+#: the tasks' units (``Answer.unit``), shown in "(in mm)"; kept apart from MESSAGES so a lone "m" in a figure
+#: (a point's name) is never taken for metres
+UNITS = {
+    "m": "м", "mm": "мм", "km": "км", "s": "с", "h": "ч", "µm": "мкм", "%": "%", "°": "°", "″": "″",
+    "(scale denominator)": "(знаменатель масштаба)",
+}
+
+_UNIT_FACTORS = {
+    "a factor of 1000 — metres vs kilometres, or mm vs m?": "в 1000 раз — метры вместо километров или мм вместо м?",
+    "a factor of 1/1000 — kilometres vs metres, or m vs mm?": "в 1/1000 раза — километры вместо метров или м вместо мм?",
+    "a factor of 10 — centimetres vs millimetres?": "в 10 раз — сантиметры вместо миллиметров?",
+    "a factor of 1/10 — millimetres vs centimetres?": "в 1/10 раза — миллиметры вместо сантиметров?",
+    "a factor of 100 — a fraction vs a percentage?": "в 100 раз — доля вместо процентов?",
+    "a factor of 1/100 — a percentage vs a fraction?": "в 1/100 раза — проценты вместо доли?",
+    "a factor of 3600 — seconds vs hours?": "в 3600 раз — секунды вместо часов?",
+    "a factor of 1/3600 — hours vs seconds?": "в 1/3600 раза — часы вместо секунд?",
+    "a factor of 3.6 — km/h vs m/s?": "в 3,6 раза — км/ч вместо м/с?",
+    "a factor of 1/3.6 — m/s vs km/h?": "в 1/3,6 раза — м/с вместо км/ч?",
+    "a factor of 60 — minutes vs hours, or arc-minutes vs degrees?":
+        "в 60 раз — минуты вместо часов или угловые минуты вместо градусов?",
+    "a factor of 1/60 — hours vs minutes?": "в 1/60 раза — часы вместо минут?",
+    "a factor of 57.3 — degrees vs radians?": "в 57,3 раза — градусы вместо радианов?",
+    "a factor of 1/57.3 — radians vs degrees?": "в 1/57,3 раза — радианы вместо градусов?",
+}
+
+_ROUNDING = {
+    "the guide rounds this count up (to the larger whole number)":
+        "пособие округляет это число вверх (до большего целого)",
+    "the guide rounds this count down (whole items only)": "пособие округляет это число вниз (только целые)",
+    "the guide rounds this count to the nearest whole number": "пособие округляет это число до ближайшего целого",
+}
+
+_DIAGNOSES = {
+    "the size is right but the sign is wrong — check the guide's sign convention.":
+        "величина верна, но знак неверен — проверьте правило знаков пособия.",
+    "one too few — the guide rounds this count up (to the larger whole number).":
+        "на одно меньше — пособие округляет это число вверх (до большего целого).",
+    "off by one — did you forget the '+ 1' in the formula, or round the wrong way?":
+        "ошибка на единицу — не забыто ли «+ 1» в формуле, или округлено не в ту сторону?",
+    "your value is off by {hint}": "ваше значение отличается {hint}",
+    "close, but outside the tolerance — keep more digits in the intermediate steps.":
+        "близко, но вне допуска — сохраняйте больше знаков в промежуточных вычислениях.",
+    "not right — go back to the formula and check each input.":
+        "неверно — вернитесь к формуле и проверьте каждую исходную величину.",
+    "this is the answer for variant {other:02d}, not yours ({mine:02d}) — check the record-book number in the first cell and use your own inputs.":
+        "это ответ для варианта {other:02d}, а не вашего ({mine:02d}) — проверьте номер зачётной книжки в первой "
+        "ячейке и используйте свои исходные данные.",
+    "the values are right but in reverse order — keep the order the task gives.":
+        "значения верны, но в обратном порядке — соблюдайте порядок, заданный в задании.",
+    "the sizes are right but every sign is wrong — check the guide's sign convention.":
+        "величины верны, но все знаки неверны — проверьте правило знаков пособия.",
+    "every value is off by {hint}": "каждое значение отличается {hint}",
+    "the values are right but not in the order the task gives.":
+        "значения верны, но не в том порядке, что задан в задании.",
+    " (the sign of {labels} is wrong)": " (неверен знак у {labels})",
+    "{n_wrong} of {n} values are not right: {named}{detail}.": "неверно {n_wrong} из {n} значений: {named}{detail}.",
+    "entry {k}": "элемент {k}",
+    "check your value against the guide's tolerance.": "сравните своё значение с допуском пособия.",
+    "read the task's definitions again.": "перечитайте определения в задании.",
+}
+
+_LINES = {
+    " (in {unit})": " (в {unit})",
+    "✓ {name}: correct": "✓ {name}: верно",
+    "✓ {name}: all {n} values correct": "✓ {name}: все {n} значений верны",
+    "✓ {task} passed": "✓ {task} выполнено",
+    "Task {nn}.{k}": "Задание {nn}.{k}",
+    "{n} check(s)": "проверок: {n}",
+    "No answers checked yet: run the check cell under each task.":
+        "Ответы ещё не проверены: выполните ячейку проверки под каждым заданием.",
+    "{n} of {total} checks passed; {tasks} task(s) passed completely":
+        "пройдено проверок: {n} из {total}; полностью выполнено заданий: {tasks}",
+    "{name}: no answer yet — replace the ... with your value{unit_txt}.":
+        "{name}: ответа ещё нет — замените ... своим значением{unit_txt}.",
+    "{name}: {answer} is a yes/no verdict — this task asks for a number{unit_txt}.":
+        "{name}: {answer} — это вывод «да/нет», а задание требует число{unit_txt}.",
+    "{name}: give a single value{unit_txt}, not a list of values.":
+        "{name}: дайте одно значение{unit_txt}, а не список значений.",
+    "{name}: {answer!r} is not a number — give a single value{unit_txt}.":
+        "{name}: {answer!r} — не число; дайте одно значение{unit_txt}.",
+    "{name}: the answer is nan — an operation went wrong before this line.":
+        "{name}: ответ — nan; какая-то операция до этой строки дала сбой.",
+    "{name}: the answer is infinite — a division by zero before this line?":
+        "{name}: ответ бесконечен — деление на ноль до этой строки?",
+    "{name}: {a:g} is not a whole number — a count of strips or photos must be rounded{unit_txt}.":
+        "{name}: {a:g} — не целое число; число маршрутов или снимков нужно округлить{unit_txt}.",
+    "{name}: {why}": "{name}: {why}",
+    "{name}: no answer yet — replace the ... with your count{unit_txt}.":
+        "{name}: ответа ещё нет — замените ... своим числом{unit_txt}.",
+    "{name}: {a} is a yes/no verdict — this task asks for a count.":
+        "{name}: {a} — это вывод «да/нет», а задание требует количество.",
+    "{name}: {a!r} is not a number — give a whole number{unit_txt}.":
+        "{name}: {a!r} — не число; дайте целое число{unit_txt}.",
+    "{name}: the answer is {x} — an operation went wrong before this line.":
+        "{name}: ответ — {x}; какая-то операция до этой строки дала сбой.",
+    "{name}: {x:g} is not a whole number — {rule}.": "{name}: {x:g} — не целое число; {rule}.",
+    "{name}: one too few — {rule}.": "{name}: на одно меньше — {rule}.",
+    "{name}: one too many — {rule}.": "{name}: на одно больше — {rule}.",
+    "{name}: give a dict {{name: value}} with the entries {entries}.":
+        "{name}: дайте словарь {{имя: значение}} с элементами {entries}.",
+    "{name}: no value for {missing}.": "{name}: нет значения для {missing}.",
+    "{name}: unexpected entries {extra} — use the names the task gives.":
+        "{name}: лишние элементы {extra} — используйте имена из задания.",
+    "{name}: no answer yet — replace the ... with your {n} values{unit_txt}.":
+        "{name}: ответа ещё нет — замените ... своими {n} значениями{unit_txt}.",
+    "{name}: give a list of {n} values{unit_txt}, one per entry.":
+        "{name}: дайте список из {n} значений{unit_txt}, по одному на элемент.",
+    "{name}: {n_given} values given, the task asks for {n}.": "{name}: дано значений: {n_given}, задание требует {n}.",
+    "{name}: no value yet for {lab}{unit_txt}.": "{name}: ещё нет значения для {lab}{unit_txt}.",
+    "{name}: {lab} is a yes/no verdict — give a number{unit_txt}.":
+        "{name}: {lab} — это вывод «да/нет»; дайте число{unit_txt}.",
+    "{name}: {lab} = {x!r} is not a number{unit_txt}.": "{name}: {lab} = {x!r} — не число{unit_txt}.",
+    "{name}: {lab} is nan — an operation went wrong before this line.":
+        "{name}: {lab} — nan; какая-то операция до этой строки дала сбой.",
+    "{name}: no answer yet — replace the ... with True or False.":
+        "{name}: ответа ещё нет — замените ... на True или False.",
+    "{name}: {answer!r} is not a verdict — write True or False (without quotes).":
+        "{name}: {answer!r} — не вывод; напишите True или False (без кавычек).",
+    "{name}: the verdict is wrong — {hint}": "{name}: вывод неверен — {hint}",
+    "{name}: no answer yet — replace the ... with one of {opts}.":
+        "{name}: ответа ещё нет — замените ... одним из вариантов {opts}.",
+    "{name}: {answer!r} is not one of the options {opts}.": "{name}: {answer!r} — не из вариантов {opts}.",
+    "{name}: not this one — {hint}": "{name}: не этот — {hint}",
+}
+
+_SETUP = {  # aerophoto.book.setup's banner
+    "(remembered from an earlier chapter: {saved})": "(запомнен из предыдущей главы: {saved})",
+    "Type your record-book number in the first cell to get your own variant.":
+        "Введите номер зачётной книжки в первой ячейке, чтобы получить свой вариант.",
+    "aerophoto {version} · variant i = {i:02d} · record book: {record_book} {note}":
+        "aerophoto {version} · вариант i = {i:02d} · зачётная книжка: {record_book} {note}",
+    "f = {f:g} mm, 1/m = 1:{m:.0f}, W = {W:g} km/h, α = {alpha:g}°, λ = {lam:g}°. The code behind every figure is in the package: add ?? to a name to read it, e.g. aerophoto.geometry.ground_to_photo??":
+        "f = {f:g} мм, 1/m = 1:{m:.0f}, W = {W:g} км/ч, α = {alpha:g}°, λ = {lam:g}°. Код каждого рисунка — в "
+        "пакете: добавьте ?? к имени, чтобы его прочитать, например aerophoto.geometry.ground_to_photo??",
+}
+
+#: English → Russian
+MESSAGES = {**_UNIT_FACTORS, **_ROUNDING, **_DIAGNOSES, **_LINES, **_SETUP}

@@ -19,10 +19,10 @@ __all__ = ["CHAPTERS", "LECTURE_INDEX", "Chapter", "Demo", "CORE", "core_params"
 #: the chapters with at least one live demo, in the book's order
 CHAPTERS = tuple(c for c in _BOOK if c.demos)
 
-#: the chapters whose whole notebook also runs in Voilà in the README's test command: the simplest (00) and the
-#: heaviest demo (05, the fotoschema). Every chapter's demos run in Voilà on its lecture page (test_lectures.py)
-#: and its whole notebook in JupyterLab (test_lab.py); the other whole-notebook Voilà runs are ``exhaustive``
-#: (a step of .ci/run of their own), so every chapter still runs in Voilà in CI.
+#: the chapters whose whole notebook runs in JupyterLab and in Voilà in the README's test command: the simplest
+#: (00) and the heaviest demo (05, the fotoschema). Every chapter's demos run in Voilà on its lecture page
+#: (test_lectures.py) in that command; the other whole-notebook runs in JupyterLab and Voilà are ``exhaustive``
+#: (a step of .ci/run of their own), so every chapter still runs whole in both in CI.
 CORE = ("00", "05")
 
 

@@ -35,13 +35,15 @@ def measure(fn, n: int, *, warmup: int = 2, args_for=None) -> dict:
     return summarize(samples)
 
 
-def time_demo_moves(demo, changes) -> dict:
+def time_demo_moves(demo, changes, *, by=None) -> dict:
     """Drive a LiveDemo through ``changes`` (dicts for ``demo.set``) and time each move, in ms.
 
     Per move: ``compute_render_only`` (``set``: the model and the artists moved in place),
     ``live_set_plus_agg_draw`` (plus a full Agg draw, what a redraw costs the kernel), ``live_cpu_time`` (the
     process's CPU time of the two, less sensitive to a busy machine) and ``live_plus_png_encode`` (plus the PNG
-    frame ipympl would send).  Returns those summaries and ``figure_px``; the demo stays open.
+    frame ipympl would send).  Returns those summaries and ``figure_px``; the demo stays open.  With ``by`` (a
+    function of a change giving a group name), also ``compute_render_only_by``: the first summary per group.
+    ipympl's ``draw_idle`` only schedules a draw; it is stubbed so that the forced draw is counted once.
     """
     import io
 
@@ -49,6 +51,8 @@ def time_demo_moves(demo, changes) -> dict:
     from PIL import Image
 
     canvas = demo.fig.canvas
+    canvas.draw_idle = lambda *a, **k: None
+    demo.draw(force=True)
     kernel, live, live_png, cpu = [], [], [], []
     for ch in changes:
         c0 = time.process_time()
@@ -64,9 +68,15 @@ def time_demo_moves(demo, changes) -> dict:
         kernel.append(t1 - t0)
         live.append(t2 - t0)
         live_png.append(t3 - t0)
-    return {"figure_px": list(canvas.get_width_height()), "compute_render_only": summarize(kernel),
-            "live_set_plus_agg_draw": summarize(live), "live_cpu_time": summarize(cpu),
-            "live_plus_png_encode": summarize(live_png)}
+    out = {"figure_px": list(canvas.get_width_height()), "compute_render_only": summarize(kernel),
+           "live_set_plus_agg_draw": summarize(live), "live_cpu_time": summarize(cpu),
+           "live_plus_png_encode": summarize(live_png)}
+    if by is not None:
+        groups: dict = {}
+        for ch, k in zip(changes, kernel):
+            groups.setdefault(by(ch), []).append(k)
+        out["compute_render_only_by"] = {g: summarize(ks) for g, ks in groups.items()}
+    return out
 
 
 def machine() -> dict:

@@ -18,28 +18,14 @@ from __future__ import annotations
 
 import time
 
-from _timing import measure, summarize
+from _timing import measure, time_demo_moves
 
 
 def _drive(demo, changes):
-    canvas = demo.fig.canvas
-    canvas.draw_idle = lambda *a, **k: None
-    demo.draw(force=True)
-    kernel, live, names = [], [], []
-    for ch in changes:
-        t0 = time.perf_counter()
-        demo.set(**ch)
-        t1 = time.perf_counter()
-        demo.draw(force=True)
-        t2 = time.perf_counter()
-        kernel.append(t1 - t0)
-        live.append(t2 - t0)
-        names.append(next(iter(ch)))
-    sun = [k for k, n in zip(kernel, names) if n.startswith("sun_")]
-    other = [k for k, n in zip(kernel, names) if not n.startswith("sun_")]
-    return {"slider_changes": len(changes), "compute_render_only": summarize(kernel),
-            "live_set_plus_agg_draw": summarize(live), "sun_sliders_kernel": summarize(sun),
-            "other_sliders_kernel": summarize(other), "target": "p95 ≤ 150 ms (kernel side)"}
+    moves = time_demo_moves(demo, changes, by=lambda ch: "sun" if next(iter(ch)).startswith("sun_") else "other")
+    by = moves.pop("compute_render_only_by")
+    return {"slider_changes": len(changes), **moves, "sun_sliders_kernel": by.get("sun", {"n": 0}),
+            "other_sliders_kernel": by.get("other", {"n": 0}), "target": "p95 ≤ 150 ms (kernel side)"}
 
 
 def run(quick: bool = False) -> dict:

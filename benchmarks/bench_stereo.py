@@ -13,24 +13,12 @@ from __future__ import annotations
 
 import time
 
-from _timing import measure, summarize
+from _timing import measure, time_demo_moves
 
 
 def _drive(demo, changes):
-    canvas = demo.fig.canvas
-    canvas.draw_idle = lambda *a, **k: None  # ipympl: draw_idle only schedules; the forced draw below counts
-    demo.draw(force=True)
-    kernel, live = [], []
-    for ch in changes:
-        t0 = time.perf_counter()
-        demo.set(**ch)
-        t1 = time.perf_counter()
-        demo.draw(force=True)
-        t2 = time.perf_counter()
-        kernel.append(t1 - t0)
-        live.append(t2 - t0)
-    return {"slider_changes": len(changes), "compute_render_only": summarize(kernel),
-            "live_set_plus_agg_draw": summarize(live), "target": "p95 ≤ 100 ms (kernel side)"}
+    moves = time_demo_moves(demo, changes)
+    return {"slider_changes": len(changes), **moves, "target": "p95 ≤ 100 ms (kernel side)"}
 
 
 def run(quick: bool = False) -> dict:

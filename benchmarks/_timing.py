@@ -35,6 +35,17 @@ def measure(fn, n: int, *, warmup: int = 2, args_for=None) -> dict:
     return summarize(samples)
 
 
+def in_book_style(fn, *args):
+    """``fn(*args)`` on matplotlib's Agg backend in the book's plotting style (what a benchmark of a figure needs)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from aerophoto import plots
+
+    with plots.style_context():
+        return fn(*args)
+
+
 def time_demo_moves(demo, changes, *, by=None) -> dict:
     """Drive a LiveDemo through ``changes`` (dicts for ``demo.set``) and time each move, in ms.
 

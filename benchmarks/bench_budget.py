@@ -9,7 +9,7 @@ stage, m_h, the relief and the closing paragraph's errors; ``live_plus_png_encod
 from __future__ import annotations
 
 
-from _timing import time_demo_moves
+from _timing import in_book_style, time_demo_moves
 
 
 def _cycle(n: int) -> list:
@@ -27,13 +27,7 @@ def _cycle(n: int) -> list:
 
 
 def run(quick: bool = False) -> dict:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from aerophoto import plots
-
-    with plots.style_context():
-        return _run(quick)
+    return in_book_style(_run, quick)
 
 
 def _run(quick: bool) -> dict:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import time
 
-from _timing import time_demo_moves
+from _timing import in_book_style, time_demo_moves
 
 
 def _cycle(n: int, cameras) -> list:
@@ -41,13 +41,7 @@ def _cycle(n: int, cameras) -> list:
 
 
 def run(quick: bool = False) -> dict:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from aerophoto import plots
-
-    with plots.style_context():
-        return _run(quick)
+    return in_book_style(_run, quick)
 
 
 def _run(quick: bool) -> dict:

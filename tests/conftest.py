@@ -45,7 +45,7 @@ def _close_figures():
 #: module-scoped set-ups (the hostile class, the grading course, the hub, the Monte Carlo studies, the sites) are
 #: built once, not once per worker.
 SPREAD = {"test_notebooks.py", "test_no_answers_on_screen.py", "test_graded_tasks.py", "test_lab.py",
-          "test_voila.py", "test_lectures.py", "test_own_results.py", "test_displacement_notebooks.py"}
+          "test_voila.py", "test_lectures.py", "test_own_results.py", "test_displacement_notebooks.py", "test_lite.py"}
 
 
 def pytest_xdist_make_scheduler(config, log):

@@ -19,8 +19,10 @@ number anywhere, the book shows the guide's own worked example, variant 00.
 
 from __future__ import annotations
 
+import html
 import json
 import os
+import sys
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
@@ -32,7 +34,8 @@ from .variants import Variant, variant, variant_for_index
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
            "remembered_language", "remember_language", "GLOSSARY_PAGE", "glossary_markdown",
            "Demo", "Chapter", "CHAPTERS", "LECTURE_INDEX", "LECTURES_DIR", "chapter", "chapter_table_markdown",
-           "lecture_table_markdown", "lecture_page", "lecture_notebook", "sync_generated"]
+           "lecture_table_markdown", "lecture_page", "lecture_notebook", "sync_generated", "in_browser",
+           "BROWSER_NOTE"]
 
 # =========================================================================== the chapter registry
 @dataclass(frozen=True)
@@ -588,6 +591,22 @@ def check_installation() -> list[str]:
     return problems
 
 
+def in_browser() -> bool:
+    """True in the browser book (JupyterLite: Python compiled to WebAssembly by Pyodide, ``aerophoto-course lite``)."""
+    return sys.platform == "emscripten"
+
+
+#: what the browser book cannot do, said under the banner of every chapter that runs there (English; the
+#: Russian text is in aerophoto.i18n)
+BROWSER_NOTE = (
+    "You are running in your browser (JupyterLite): nothing is installed and nothing leaves this computer. "
+    "File ▸ Save keeps your answers in this browser's storage (another browser, a private window or clearing "
+    "the site's data starts afresh); to hand in, File ▸ Download gives the .ipynb to upload. Grading "
+    "(nbgrader, aerophoto-course) and the parts that need scikit-image or pyproj run only in the installed book: "
+    "a cell that needs them says so."
+)
+
+
 def _in_ipython():
     try:
         from IPython import get_ipython
@@ -678,7 +697,10 @@ def _banner(v: Variant, note: str, ip) -> None:
     from IPython.display import HTML, display
 
     line1, line2 = text.split("\n")
-    display(HTML(f"<div style='border-left:4px solid #0072B2;padding:4px 8px'><b>{line1}</b><br>{line2}</div>"))
+    extra = ""
+    if in_browser():
+        extra = f"<br><span class='aerophoto-browser-note'>{html.escape(t(BROWSER_NOTE))}</span>"
+    display(HTML(f"<div style='border-left:4px solid #0072B2;padding:4px 8px'><b>{line1}</b><br>{line2}{extra}</div>"))
 
 
 if __name__ == "__main__":  # python -m aerophoto.book: rewrite the generated chapter tables

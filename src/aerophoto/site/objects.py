@@ -249,7 +249,7 @@ class SiteObjects:
         r = np.floor((Y - y0) / _CELL_M).astype(np.int64)
         ok = (c >= 0) & (c < nx) & (r >= 0) & (r < ny)
         cell = np.where(ok, r * nx + c, 0)
-        n = np.where(ok, start[cell + 1] - start[cell], 0)
+        n = np.where(ok, start[cell + 1] - start[cell], 0).astype(np.intp)  # intp: repeat counts on wasm32 too
         pts = np.repeat(np.arange(len(X)), n)
         first = np.repeat(start[cell] - np.cumsum(n) + n, n)
         k = objs[first + np.arange(len(pts))]

@@ -255,7 +255,9 @@ def box_pixel_pairs(boxes, camera, pose, n) -> tuple:
     c1, r1 = np.clip(np.nan_to_num(c1, nan=-1), -1, n - 1), np.clip(np.nan_to_num(r1, nan=-1), -1, n - 1)
     nc = np.where(ok, c1 - c0 + 1, 0).clip(0).astype(np.int64)
     nr = np.where(ok, r1 - r0 + 1, 0).clip(0).astype(np.int64)
-    cnt = nr * nc
+    # repeat counts in the platform's index type: numpy refuses int64 counts where intp is int32 (wasm32, the
+    # browser book)
+    cnt = (nr * nc).astype(np.intp)
     k = np.repeat(np.arange(len(rect)), cnt)
     local = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt)
     ncr = np.repeat(nc, cnt)

@@ -602,8 +602,9 @@ BROWSER_NOTE = (
     "You are running in your browser (JupyterLite): nothing is installed and nothing leaves this computer. "
     "File ▸ Save keeps your answers in this browser's storage (another browser, a private window or clearing "
     "the site's data starts afresh); to hand in, File ▸ Download gives the .ipynb to upload. Grading "
-    "(nbgrader, aerophoto-course) and the parts that need scikit-image or pyproj run only in the installed book: "
-    "a cell that needs them says so."
+    "(nbgrader, aerophoto-course) runs only in the installed book; image matching, resampling and the "
+    "Gauss–Krüger conversions use the package's own numpy/scipy versions of scikit-image and pyproj here "
+    "(the same numbers, slower)."
 )
 
 

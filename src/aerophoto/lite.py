@@ -69,10 +69,12 @@ EXTENSIONS = ("@jupyterlite/pyodide-kernel-extension", "@jupyter-widgets/jupyter
               "jupyterlab_pygments")
 #: requirements of the book that the browser does not get, and what follows
 NOT_IN_BROWSER = {
-    "scikit-image": "not among the verified Pyodide 0.27.7 files: the image matching of the stereo chapter "
-                    "(skimage.feature.match_template) and the image warp of the projective module do not run",
+    "scikit-image": "not among the verified Pyodide 0.27.7 files: the stereo chapter's image matching "
+                    "(stereo.match_points) and the image warp of the projective module (projective.images) use "
+                    "the package's numpy/scipy fallbacks, equal to scikit-image's results "
+                    "(tests/test_browser_fallbacks.py)",
     "pyproj": "not among the verified Pyodide 0.27.7 files: the guide's geodetic conversions (guide §11, "
-              "Pulkovo-1942 zone 5) do not run",
+              "Pulkovo-1942 zone 5) use the package's Krüger-series Gauss–Krüger, within 1e-8 m of PROJ",
     "nbformat": "notebook maintenance (aerophoto.nbtools) and aerophoto-course are not for the browser",
     "widgetsnbextension": "the classic Notebook's widget extension; the kernel's own stub serves",
 }

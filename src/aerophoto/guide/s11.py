@@ -10,7 +10,9 @@ the same points?**
 The leading 5 of Y = 5 3xx xxx names the 6° Gauss–Krüger zone 5 (central
 meridian 27° E) of the Pulkovo 1942 datum (Krassowsky ellipsoid): geographic
 EPSG:4284, zone 5 EPSG:28405 (false easting 5 500 000 m), as pyproj ships
-them.  :func:`coordinate_table` projects the printed φ, λ into that zone
+them (pyproj in the installed book; in the browser, which has no pyproj, the
+same Krüger series in numpy, within a millimetre of it).
+:func:`coordinate_table` projects the printed φ, λ into that zone
 and back, and sets the result beside the printed X, Y as an
 :class:`~aerophoto.guide.audit.Audit`; the printed φ, λ are read to 1″, so
 the computed X, Y are intervals (φ, λ ± 0.5″: about ±15 m in X, ±9 m in Y).
@@ -36,6 +38,7 @@ a resection works in) and not the φ, λ.
 
 from __future__ import annotations
 
+import math
 import re
 from functools import lru_cache
 
@@ -79,13 +82,119 @@ def parse_dms(text: str) -> float:
     return c.from_dms(*nums)
 
 
+class _TransverseMercator:
+    """Gauss–Krüger (transverse Mercator) by Krüger's n-series to n⁶ (Karney 2011, J. Geodesy 85, 475–485).
+
+    The browser book's stand-in for pyproj (Pyodide has none); within a zone it
+    agrees with PROJ's tmerc (Poder/Engsager, the same series) to well under
+    a millimetre.  The defaults are :data:`ZONE_CRS`, EPSG:28405: Krassowsky
+    ellipsoid (a = 6 378 245 m, 1/f = 298.3), central meridian λ₀ = 27° E,
+    scale k₀ = 1, false easting 5 500 000 m, false northing 0.
+
+    ``transform(x, y)`` works like a pyproj ``Transformer`` with
+    ``always_xy=True``: forward (``inverse=False``) λ, φ (degrees) → E, N (m);
+    inverse E, N (m) → λ, φ (degrees).  Arrays of any (broadcastable) shape.
+    """
+
+    def __init__(self, *, inverse: bool = False, a_m: float = 6378245.0, inv_f: float = 298.3,
+                 lon0_deg: float = 27.0, k0: float = 1.0, false_easting_m: float = 5_500_000.0,
+                 false_northing_m: float = 0.0):
+        f = 1.0 / inv_f
+        n = f / (2.0 - f)
+        self.inverse = bool(inverse)
+        self.e = math.sqrt(f * (2.0 - f))
+        self.lon0 = math.radians(lon0_deg)
+        self.fe, self.fn = float(false_easting_m), float(false_northing_m)
+        # k0·A, A = a/(1 + n)·(1 + n²/4 + n⁴/64 + n⁶/256): the rectifying radius
+        self.kA = k0 * a_m / (1.0 + n) * (1.0 + n ** 2 / 4.0 + n ** 4 / 64.0 + n ** 6 / 256.0)
+        # α_j (ξ′, η′ → ξ, η) and β_j (ξ, η → ξ′, η′), j = 1…6, to n⁶
+        self.alpha = (
+            n / 2 - 2 * n**2 / 3 + 5 * n**3 / 16 + 41 * n**4 / 180 - 127 * n**5 / 288 + 7891 * n**6 / 37800,
+            13 * n**2 / 48 - 3 * n**3 / 5 + 557 * n**4 / 1440 + 281 * n**5 / 630 - 1983433 * n**6 / 1935360,
+            61 * n**3 / 240 - 103 * n**4 / 140 + 15061 * n**5 / 26880 + 167603 * n**6 / 181440,
+            49561 * n**4 / 161280 - 179 * n**5 / 168 + 6601661 * n**6 / 7257600,
+            34729 * n**5 / 80640 - 3418889 * n**6 / 1995840,
+            212378941 * n**6 / 319334400,
+        )
+        self.beta = (
+            n / 2 - 2 * n**2 / 3 + 37 * n**3 / 96 - n**4 / 360 - 81 * n**5 / 512 + 96199 * n**6 / 604800,
+            n**2 / 48 + n**3 / 15 - 437 * n**4 / 1440 + 46 * n**5 / 105 - 1118711 * n**6 / 3870720,
+            17 * n**3 / 480 - 37 * n**4 / 840 - 209 * n**5 / 4480 + 5569 * n**6 / 90720,
+            4397 * n**4 / 161280 - 11 * n**5 / 504 - 830251 * n**6 / 7257600,
+            4583 * n**5 / 161280 - 108847 * n**6 / 3991680,
+            20648693 * n**6 / 638668800,
+        )
+
+    def _tau_prime(self, tau):
+        """tan of the conformal latitude χ from τ = tan φ (Karney 2011)."""
+        sigma = np.sinh(self.e * np.arctanh(self.e * tau / np.hypot(1.0, tau)))
+        return tau * np.hypot(1.0, sigma) - sigma * np.hypot(1.0, tau)
+
+    def _forward(self, lon_deg, lat_deg):
+        lam = np.radians(lon_deg) - self.lon0
+        tp = self._tau_prime(np.tan(np.radians(lat_deg)))
+        xi_p = np.arctan2(tp, np.cos(lam))
+        eta_p = np.arcsinh(np.sin(lam) / np.hypot(tp, np.cos(lam)))
+        xi, eta = xi_p.copy(), eta_p.copy()
+        for j, a in enumerate(self.alpha, start=1):
+            xi += a * np.sin(2 * j * xi_p) * np.cosh(2 * j * eta_p)
+            eta += a * np.cos(2 * j * xi_p) * np.sinh(2 * j * eta_p)
+        return self.fe + self.kA * eta, self.fn + self.kA * xi
+
+    def _inverse(self, E_m, N_m):
+        xi = (np.asarray(N_m, float) - self.fn) / self.kA
+        eta = (np.asarray(E_m, float) - self.fe) / self.kA
+        xi_p, eta_p = xi.copy(), eta.copy()
+        for j, b in enumerate(self.beta, start=1):
+            xi_p -= b * np.sin(2 * j * xi) * np.cosh(2 * j * eta)
+            eta_p -= b * np.cos(2 * j * xi) * np.sinh(2 * j * eta)
+        tp = np.sin(xi_p) / np.hypot(np.sinh(eta_p), np.cos(xi_p))  # tan χ
+        lam = np.arctan2(np.sinh(eta_p), np.cos(xi_p))
+        # τ = tan φ from τ′ = tan χ by Newton's method (Karney 2011); converges in 2–3 steps
+        e2 = self.e ** 2
+        tau = tp.copy()
+        for _ in range(6):
+            tpi = self._tau_prime(tau)
+            step = (tp - tpi) / np.hypot(1.0, tpi) * (1.0 + (1.0 - e2) * tau ** 2) / ((1.0 - e2) * np.hypot(1.0, tau))
+            tau = tau + step
+            if np.all(np.abs(step) <= 1e-14 * np.maximum(1.0, np.abs(tau))):
+                break
+        return np.degrees(lam + self.lon0), np.degrees(np.arctan(tau))
+
+    def transform(self, x, y):
+        """(λ, φ) → (E, N), or with ``inverse`` (E, N) → (λ, φ); degrees and metres."""
+        x = np.asarray(x, dtype=float)
+        y = np.asarray(y, dtype=float)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return self._inverse(x, y) if self.inverse else self._forward(x, y)
+
+
 @lru_cache(maxsize=1)
-def _transformers():
+def _pyproj_transformers():
     from pyproj import Transformer
 
     fwd = Transformer.from_crs(GEOGRAPHIC_CRS, ZONE_CRS, always_xy=True)
     inv = Transformer.from_crs(ZONE_CRS, GEOGRAPHIC_CRS, always_xy=True)
     return fwd, inv
+
+
+def _transformers(prefer_library: bool = True):
+    """(forward, inverse) with ``.transform(x, y)`` (always_xy): λ, φ → E, N and E, N → λ, φ, zone 5 of Pulkovo 1942.
+
+    pyproj's when it can be imported and ``prefer_library`` (the installed
+    book); otherwise (the browser book: Pyodide has no pyproj)
+    :class:`_TransverseMercator`, within a millimetre of it.  The import is
+    tried on every call (a dictionary look-up once pyproj is loaded), so the
+    choice follows the environment of the moment.
+    """
+    if prefer_library:
+        try:
+            import pyproj  # noqa: F401
+        except ImportError:
+            pass
+        else:
+            return _pyproj_transformers()
+    return _TransverseMercator(), _TransverseMercator(inverse=True)
 
 
 def projected(lat_deg, lon_deg) -> np.ndarray:

@@ -136,13 +136,15 @@ _SETUP = {  # aerophoto.book.setup's banner
     "You are running in your browser (JupyterLite): nothing is installed and nothing leaves this computer. "
     "File ▸ Save keeps your answers in this browser's storage (another browser, a private window or clearing "
     "the site's data starts afresh); to hand in, File ▸ Download gives the .ipynb to upload. Grading "
-    "(nbgrader, aerophoto-course) and the parts that need scikit-image or pyproj run only in the installed book: "
-    "a cell that needs them says so.":
+    "(nbgrader, aerophoto-course) runs only in the installed book; image matching, resampling and the "
+    "Gauss–Krüger conversions use the package's own numpy/scipy versions of scikit-image and pyproj here "
+    "(the same numbers, slower).":
         "Книга работает в вашем браузере (JupyterLite): ничего не установлено, и ничто не покидает этот компьютер. "
         "File ▸ Save сохраняет ответы в хранилище этого браузера (другой браузер, приватное окно или очистка "
         "данных сайта начинают с нуля); чтобы сдать работу, File ▸ Download скачивает .ipynb для отправки. "
-        "Проверка (nbgrader, aerophoto-course) и части, которым нужны scikit-image или pyproj, работают только "
-        "в установленной книге: ячейка, которой они нужны, скажет об этом.",
+        "Проверка (nbgrader, aerophoto-course) работает только в установленной книге; сопоставление "
+        "изображений, их трансформирование и пересчёт координат Гаусса–Крюгера выполняются здесь собственными "
+        "версиями пакета на numpy/scipy вместо scikit-image и pyproj (те же числа, но медленнее).",
     "(remembered from an earlier chapter: {saved})": "(запомнен из предыдущей главы: {saved})",
     "Type your record-book number in the first cell to get your own variant.":
         "Введите номер зачётной книжки в первой ячейке, чтобы получить свой вариант.",

@@ -17,8 +17,10 @@ follows the same convention: its pixel (r, c) has its centre at
 so ``imshow(out.image, extent=out.extent)`` (origin "upper") shows it in the
 plane's units.  Each output pixel takes the value of the photo at the
 inverse image of its centre (bilinear by default:
-:func:`skimage.transform.warp` with the composed homogeneous matrix); pixels
-whose inverse image falls off the photo get ``cval`` (NaN by default).
+:func:`skimage.transform.warp` with the composed homogeneous matrix; in the
+browser book, which has no scikit-image, the same resampling written with
+scipy, equal to it); pixels whose inverse image falls off the photo get
+``cval`` (NaN by default).
 """
 
 from __future__ import annotations
@@ -115,16 +117,115 @@ def _extent(extent):
     return x0, x1, y0, y1
 
 
+def _warp(image: np.ndarray, inverse: np.ndarray, shape: tuple, *, order: int = 1, cval: float = np.nan,
+          prefer_library: bool = True) -> np.ndarray:
+    """Projective resampling: out[r, c] = image at (col, row) = the projection of ``inverse`` @ (c, r, 1).
+
+    Parameters
+    ----------
+    image : ndarray (rows, cols), float
+        The input image.
+    inverse : ndarray (3, 3)
+        Homogeneous matrix taking an output pixel's (col, row, 1) to the input's (col, row, w).
+    shape : (rows, cols)
+        The output's shape.
+    order : int
+        Interpolation order 0…5.
+    cval : float
+        Value wherever the interpolation reaches outside the input.
+    prefer_library : bool
+        Use :func:`skimage.transform.warp` (``mode="constant"``, ``clip=False``,
+        ``preserve_range=True``) when it can be imported (the installed book);
+        with False, or when it cannot (the browser book: Pyodide has no
+        scikit-image), the same resampling with numpy and scipy, which
+        reproduces it pixel for pixel, NaN mask included: orders 0, 2, 4, 5
+        by :func:`scipy.ndimage.map_coordinates` with mode "grid-constant"
+        (what scikit-image itself passes to scipy for its "constant"; plain
+        "constant" would drop the cval's share near the edge), orders 1 and 3
+        as scikit-image's own Cython code does them (:func:`_convolve`:
+        bilinear, and bicubic by cubic convolution, not scipy's B-spline).
+
+    Returns
+    -------
+    ndarray (rows, cols), float
+    """
+    if prefer_library:
+        try:
+            from skimage.transform import warp
+        except ImportError:
+            pass
+        else:
+            return warp(image, inverse, output_shape=shape, order=order, mode="constant", cval=cval, clip=False,
+                        preserve_range=True)
+    img = np.asarray(image, dtype=float)
+    H = np.asarray(inverse, dtype=float)
+    rows, cols = (int(n) for n in shape)
+    # the source coordinates, computed in scikit-image's own order of operations (a tie of order 0 at x.5
+    # then falls the same way)
+    if order in (1, 3):  # its Cython code: (H₀₀·c + H₀₁·r + H₀₂)/(H₂₀·c + H₂₁·r + H₂₂), and its interpolation
+        r, c = np.mgrid[0:rows, 0:cols].astype(float)
+        w = H[2, 0] * c + H[2, 1] * r + H[2, 2]
+        col = (H[0, 0] * c + H[0, 1] * r + H[0, 2]) / w
+        row = (H[1, 0] * c + H[1, 1] * r + H[1, 2]) / w
+        return _convolve(img, row.ravel(), col.ravel(), order, float(cval)).reshape(rows, cols)
+    from scipy.ndimage import map_coordinates
+
+    # ProjectiveTransform on (col, row, 1) column by column (warp_coords), then scipy
+    cr = np.indices((cols, rows), dtype=float).reshape(2, -1).T
+    h = np.hstack((cr, np.ones((cr.shape[0], 1)))) @ H.T
+    div = np.where(h[:, 2] == 0, np.finfo(float).eps, h[:, 2])
+    xy = h[:, :2] / div[:, None]
+    coords = xy.T.reshape(2, cols, rows).swapaxes(1, 2)[::-1]  # (row, col) grids, each (rows, cols)
+    return map_coordinates(img, coords, order=order, mode="grid-constant", cval=float(cval), prefilter=order > 1)
+
+
+def _convolve(img: np.ndarray, row: np.ndarray, col: np.ndarray, order: int, cval: float,
+              chunk: int = 1 << 18) -> np.ndarray:
+    """scikit-image's bilinear (order 1) or bicubic (order 3) value of ``img`` at (row, col) (N,), off the image cval.
+
+    Order 1: the taps floor and ceil of each coordinate (one pixel when it is
+    whole), weights 1 − t and t.  Order 3: cubic convolution with a = −0.5
+    (Catmull–Rom) over the taps floor − 1 … floor + 2.  A tap off the image
+    counts as ``cval`` whatever its weight, as in scikit-image (so with a NaN
+    cval a bicubic sample within a pixel of the edge is NaN).
+    """
+    n_r, n_c = img.shape
+    out = np.empty(row.shape)
+
+    def taps(x):
+        x0 = np.floor(x)
+        t = x - x0
+        i0 = x0.astype(np.int64)
+        if order == 1:
+            return (i0, i0 + (t > 0)), (1.0 - t, t)
+        return ((i0 - 1, i0, i0 + 1, i0 + 2),
+                (0.5 * t * (-1.0 + t * (2.0 - t)), 1.0 + t * t * (-2.5 + 1.5 * t),
+                 0.5 * t * (1.0 + t * (4.0 - 3.0 * t)), 0.5 * t * t * (t - 1.0)))
+
+    for a in range(0, row.size, chunk):
+        (ri, wr), (cj, wc) = taps(row[a:a + chunk]), taps(col[a:a + chunk])
+        acc = np.zeros(ri[0].shape)
+        for r, w_r in zip(ri, wr):
+            in_r = (r >= 0) & (r < n_r)
+            line = np.zeros(acc.shape)
+            for c, w_c in zip(cj, wc):
+                ok = in_r & (c >= 0) & (c < n_c)
+                line += w_c * np.where(ok, img[np.clip(r, 0, n_r - 1), np.clip(c, 0, n_c - 1)], cval)
+            acc += w_r * line
+        out[a:a + chunk] = acc
+    return out
+
+
 def warp_raster(image, to_plane_of_pixels: np.ndarray, transform, extent, pixel: float, *, order: int = 1,
                 cval: float = np.nan) -> Raster:
     """Resample ``image`` whose (col, row, 1) map to its own plane by ``to_plane_of_pixels`` (3×3).
 
     ``transform`` takes the image's plane to the output plane; the output
     covers ``extent`` (x_min, x_max, y_min, y_max) with pixels of size
-    ``pixel`` (output units).  See :func:`warp_photo` for photos.
+    ``pixel`` (output units).  See :func:`warp_photo` for photos.  Without
+    scikit-image (the browser book) the same resampling is done with scipy
+    (:func:`_warp`).
     """
-    from skimage.transform import warp
-
     img = check_finite_array("image", image, ndim=2)
     A_in = np.asarray(to_plane_of_pixels, dtype=float)
     T = as_matrix(transform)
@@ -139,8 +240,7 @@ def warp_raster(image, to_plane_of_pixels: np.ndarray, transform, extent, pixel:
     ext = (x0, x0 + cols * q, y1 - rows * q, y1)
     A_out = raster_pixel_matrix(ext, q)
     inverse = np.linalg.inv(A_in) @ np.linalg.inv(T) @ A_out  # output (col, row) → input (col, row)
-    out = warp(img, inverse, output_shape=(rows, cols), order=order, mode="constant", cval=float(cval),
-               clip=False, preserve_range=True)
+    out = _warp(img, inverse, (rows, cols), order=order, cval=float(cval))
     return Raster(out, ext, q)
 
 

@@ -27,6 +27,16 @@ DEMOS = {
     "key": ("interpretation", "KeyDemo", "row", (0, 1)),
     "relief": ("displacement", "ReliefDemo", "relief_m", (60, 65)),
     "tilt": ("displacement", "TiltDemo", "alpha_deg", (3, 3.25)),
+    "floating_mark": ("stereo", "FloatingMarkDemo", "p_mm", (72.5, 72.8)),
+    "base_height": ("stereo", "BaseHeightDemo", "B_m", (864, 874)),
+    "plan_correction": ("plan_correction", "PlanCorrectionDemo", "alpha_deg", (3, 3.5)),
+    "control_design": ("control", "ControlDesignDemo", "m_eps_arcmin", (4.5, 5)),
+    "control_scale": ("control", "ControlDesignDemo", "m", (12000, 12500)),
+    "resection": ("control", "ResectionDemo", "north_m", (-150, -140)),
+    "transformer": ("rectification", "TransformerDemo", "step", (1, 2)),
+    "block_error": ("block_accuracy", "BlockErrorDemo", "sigma_um", (7, 8)),
+    "contours": ("dem_contours", "ContourDemo", "mz_m", (0.12, 0.13)),
+    "budget": ("error_budget", "BudgetDemo", "M_c", (10000, 10500)),
 }
 
 

@@ -31,6 +31,27 @@ DEMOS = [
     ("displacement", "TiltDemo", [({"alpha_deg": 4}, None), ({"lambda_deg": -30}, None), ({"f_mm": 200}, None)]),
     ("flight_plan", "FlightPlanDemo", [({"f_mm": 110}, None), ({"f_mm": 120}, None), ({"m": 15000}, None),
                                        ({"f_mm": 130}, None)]),
+    # chapters 07, 09, 10, 11, 14, 16, 17: every slider blits but those that change the picture's frame (another
+    # area, another block shape, the map's quantity and its colour bar)
+    ("stereo", "FloatingMarkDemo", [({"p_mm": 72.8}, True), ({"x_mm": 3}, True), ({"view": "reverse"}, True),
+                                    ({"area": "mast"}, False), ({"p_mm": 73}, True)]),
+    ("stereo", "BaseHeightDemo", [({"B_m": 874}, True), ({"H_m": 1250}, True), ({"f_mm": 150}, True),
+                                  ({"h_m": 30}, True)]),
+    ("plan_correction", "PlanCorrectionDemo", [({"alpha_deg": 3.5}, True), ({"n": 5}, True),
+                                               ({"method": "proportional"}, True), ({"spread_percent": 70}, True)]),
+    ("control", "ControlDesignDemo", [({"m_eps_arcmin": 5}, True), ({"scheme": "dense"}, True), ({"m": 13000}, True),
+                                      ({"n_strips": 4}, False), ({"m_allowed_mm": 0.3}, True)]),
+    ("control", "ResectionDemo", [({"north_m": -140}, True), ({"sigma_arcsec": 10}, True), ({"north_m": 1500}, True),
+                                  ({"east_m": 1500}, True)]),
+    ("rectification", "TransformerDemo", [({"step": 1}, True), ({"step": 5}, True), ({"alpha_deg": 4}, True),
+                                          ({"step": 2}, True)]),
+    ("block_accuracy", "BlockErrorDemo", [({"sigma_um": 8}, True), ({"every": 6}, True),
+                                          ({"layout": "perimeter"}, True), ({"quantity": "height"}, False),
+                                          ({"sigma_um": 12}, True)]),
+    ("dem_contours", "ContourDemo", [({"mz_m": 0.13}, True), ({"spacing_m": 40}, True), ({"structural": "on"}, True),
+                                     ({"interval_m": 1.0}, True), ({"sheet": "plain (6–7 km E, 0.2–1.2 km N)"}, True)]),
+    ("error_budget", "BudgetDemo", [({"M_c": 10500}, True), ({"P_um": 20}, True), ({"M_k": 5000.0}, True),
+                                    ({"dtm": "plane"}, True), ({"extra": "on"}, True)]),
 ]
 
 #: pixels that may differ from a draw without animation, and why
@@ -118,7 +139,11 @@ def test_figure_size_change_falls_back_to_a_full_draw():
     demo.close()
 
 
-@pytest.mark.parametrize(("module", "cls", "moves"), DEMOS[:3], ids=[d[1] for d in DEMOS[:3]])
+#: the first three, and demos that animate an axis of their own (its limits follow the data)
+SAVED = DEMOS[:3] + [d for d in DEMOS if d[1] in ("BaseHeightDemo", "ResectionDemo")]
+
+
+@pytest.mark.parametrize(("module", "cls", "moves"), SAVED, ids=[d[1] for d in SAVED])
 def test_savefig_shows_the_animated_artists(module, cls, moves):
     """A saved or inline figure (savefig) shows the whole picture, animated artists included."""
     import io
@@ -155,3 +180,25 @@ def test_animated_artists_must_belong_to_the_figure():
     (line,) = ax2.plot([0, 1])
     with pytest.raises(ValueError, match="animated"):
         plots.Blitter(fig, [line])
+
+
+def test_transformer_preview_and_full_resolution_both_blit():
+    """A photo slider's preview (a coarser raster, ending up to a pixel further out) and the full render after it
+    keep the screen's limits: both are blits, and the blitted pictures are those of full draws."""
+    demo = _demo("rectification", "TransformerDemo")
+    demo.fig.canvas.draw()
+    n_blit = demo.blitter.n_blit
+    demo._preview = True
+    try:
+        demo.set(alpha_deg=4)
+    finally:
+        demo._preview = False
+    assert demo.result.preview and demo.blitter.n_blit == n_blit + 1
+    blitted = _buffer(demo.fig)
+    assert _ndiff(blitted, _unanimated(demo)) == 0
+    n_blit = demo.blitter.n_blit
+    demo.update()  # the slider rests: full resolution
+    assert demo.blitter.n_blit == n_blit + 1
+    assert _ndiff(_buffer(demo.fig), _unanimated(demo)) == 0
+    demo.close()
+

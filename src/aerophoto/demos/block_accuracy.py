@@ -127,6 +127,10 @@ class BlockErrorView:
                               label="control points (опознаки)", ls="none")
         (self.centres,) = a.plot([], [], ".", color=C["grey"], ms=4, label="photo centres", ls="none")
         self.cbar = fig.colorbar(self.pts, cax=a.inset_axes([1.02, 0.0, 0.035, 1.0]))
+        # the colour bar lies beside the map, clear of its points: drawn before them (not after, as an inset is by
+        # default), it stays in a live demo's cached background while the points are redrawn over it
+        self.cbar.ax.set_zorder(0.5)
+        self.title = a.set_title("", fontsize=11)
         a.legend(loc="upper right", fontsize=9)
         p = ax_prof
         p.set_xlabel("along the strips, km")
@@ -147,7 +151,9 @@ class BlockErrorView:
         self.pts.set_offsets(bp.XYZ_m[tie, :2] / 1000.0)
         self.pts.set_array(val[tie])
         self.pts.set_clim(0.0, vmax)
-        self.cbar.set_label(f"{'plan' if q == 'plan' else 'height'} error, m")
+        label = t("plan error, m") if q == "plan" else t("height error, m")
+        if self.cbar.ax.get_ylabel() != label:  # setting the same label again would still be a change of the axes
+            self.cbar.set_label(label)
         c = bp.XYZ_m[~tie]
         self.ctrl.set_data(c[:, 0] / 1000.0, c[:, 1] / 1000.0)
         self.centres.set_data(bp.centres_m[:, 0] / 1000.0, bp.centres_m[:, 1] / 1000.0)
@@ -157,7 +163,8 @@ class BlockErrorView:
         self.ax_map.set_ylim(lo[1] - pad - 0.3, hi[1] + pad + 0.6)
         key = ("{n} strips, control rows every {every} bases ({layout}), σ = {sigma:g} µm" if r.n_strips > 1 else
                "{n} strip, control rows every {every} bases ({layout}), σ = {sigma:g} µm")
-        self.ax_map.set_title(t(key, n=r.n_strips, every=r.every, layout=t(r.layout), sigma=r.sigma_um), fontsize=11)
+        # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
+        self.title.set_text(t(key, n=r.n_strips, every=r.every, layout=t(r.layout), sigma=r.sigma_um))
         x = r.profile_x_m / 1000.0
         self.prof_plan.set_data(x, r.profile_plan_m)
         self.prof_Z.set_data(x, r.profile_Z_m)
@@ -191,6 +198,13 @@ class BlockErrorDemo(LiveDemo):
                     _unit_map(K, e, lay)
         self.view = BlockErrorView()
         self.fig = self.view.fig
+        v = self.view
+        # a move recolours the map's points (over the cached axes and colour bar) and redraws the profile with its
+        # error axis (σ moves its top on every step: an animated axis' new limits are no change of the rest) and
+        # the map's title
+        self.animated = (v.pts, v.ctrl, v.centres, v.title, v.ax_prof.yaxis, v.prof_plan, v.prof_Z, v.rows)
+        for ax in (v.ax_map, v.ax_prof):
+            plots.steady_limits(ax, snap=False)  # the same limits again are no change
 
     def compute(self, n_strips, every, layout, sigma_um, quantity):
         return block_map(n_strips, every, layout, sigma_um), quantity

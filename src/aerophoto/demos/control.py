@@ -155,13 +155,29 @@ class ControlDesignDemo(LiveDemo):
     def build(self):
         self.view = ControlDesignView()
         self.fig = self.view.fig
+        v = self.view
+        # the accuracy sliders and the scheme move only the rows and points over the cached axes; the photo scale
+        # scales the whole block, so its limits change: the two axes are animated too (an animated axis' new
+        # limits are no change of the rest).  The frame keeps its shape then (every length ∝ m); a block of another
+        # shape (strips, photos) reshapes the equal-aspect box: render marks the axes changed, a full draw
+        self.animated = (v.ax.xaxis, v.ax.yaxis, v.footprints, v.rows, v.centres, v.points)
+        plots.steady_limits(v.ax, snap=False)  # the same limits again are no change
 
     def compute(self, **v):
         return control_design_model(**v)
 
     def render(self, result):
+        ax = self.view.ax
+        before = _data_ratio(ax)
         self.view.update(result)
+        if not math.isclose(_data_ratio(ax), before, rel_tol=1e-9):
+            ax.stale = True  # the equal-aspect box takes another shape: not a move the cached background can take
         self.table.value = plots.html_table(result.table(), caption="The design")
+
+
+def _data_ratio(ax) -> float:
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    return float((y1 - y0) / (x1 - x0))
 
 
 # =========================================================================== the resection
@@ -318,7 +334,8 @@ class ResectionView:
         k = exaggeration(r.cloud_rms_m)
         cl = self._xy(r.station + k * (cl - r.station)) if len(cl) else np.zeros((0, 2))
         self.cloud.set_data(cl[:, 0], cl[:, 1])
-        self.ax.set_title(_t("Resection: three known points, two angles (scatter ×{k})", k=k))
+        # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
+        self.ax.title.set_text(_t("Resection: three known points, two angles (scatter ×{k})", k=k))
         allp = np.vstack([K, P[None, :], circ])
         lo, hi = allp.min(axis=0), allp.max(axis=0)
         mid, half = (lo + hi) / 2, 0.55 * float(max(hi - lo))
@@ -344,6 +361,14 @@ class ResectionDemo(LiveDemo):
     def build(self):
         self.view = ResectionView()
         self.fig = self.view.fig
+        v = self.view
+        # the station, its rays, the cloud and the title (its ×k) move over the cached axes; the frame follows the
+        # station once it leaves the known points' and the danger circle's, so the two axes are animated too (an
+        # animated axis' new limits are no change of the rest; the frame is always square, so the equal-aspect
+        # box keeps its shape)
+        self.animated = (v.ax.xaxis, v.ax.yaxis, v.circle, v.rays, v.check_ray, v.cloud, v.known, v.station,
+                         *v.labels, v.ax.title)
+        plots.steady_limits(v.ax, snap=False)  # the same limits again are no change
 
     def compute(self, **v):
         return resection_model(**v)

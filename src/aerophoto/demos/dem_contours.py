@@ -253,6 +253,9 @@ class ContourDemo(LiveDemo):
         self._preview = False
         self.view = ContourView(colorbar=False)  # the colour scale is in the HTML legend (no redraw)
         self.fig = self.view.fig
+        # a move swaps the error image and the contours over the cached axes (the sheet's limits never change):
+        # the image, everything drawn over it and the title are redrawn
+        self.animated = (self.view.image, self.view.title)
 
     def compute(self, spacing_m, structural, mz_m, interval_m, sheet):
         cell = self.preview_cell_m if self._preview else self.cell_m

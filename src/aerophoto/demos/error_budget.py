@@ -126,6 +126,11 @@ class BudgetDemo(LiveDemo):
     def build(self):
         self.view = BudgetView()
         self.fig = self.view.fig
+        v = self.view
+        # a move resizes and recolours the bars and moves their numbers, the mm axis (its limit follows the longest
+        # bar; an animated axis' new limits are no change of the rest) and the title over the cached stage names
+        self.animated = (*v.bars, v.ax.xaxis, *v.texts, v.title)
+        plots.steady_limits(v.ax, snap=False)  # the same limits again are no change
 
     def compute(self, M_c, P_um, f_mm, M_k, dtm, m_h_m, relief_m, extra):
         return bu.budget(M_c, P_um, M_k, f_mm=f_mm, frame_mm=self.frame_mm, dtm=dtm, m_h_m=m_h_m,

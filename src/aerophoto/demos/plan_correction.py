@@ -241,6 +241,12 @@ class PlanCorrectionDemo(LiveDemo):
     def build(self):
         self.view = PlanCorrectionView()
         self.fig = self.view.fig
+        v = self.view
+        # every slider moves the grids, the changes and the points on both sides (the old plan, too, is redrawn:
+        # it lies under the carried changes); the frames, axes and titles stay in the cached background
+        self.animated = (v.photo_lines, v.photo_grid, v.photo_changes, v.cp_photo, *v.labels[0],
+                         v.plan_lines, v.plan_grid, v.truth, v.carried, v.cp_plan, *v.labels[1])
+        plots.steady_limits(v.ax_plan, snap=False)  # the plan's limits are set again on every move: no change
 
     def compute(self, **v):
         return plan_correction_model(**v)

@@ -198,6 +198,10 @@ class FloatingMarkDemo(LiveDemo):
         self.reading = self.view.ax.annotate("", (0, 0), xytext=(12, 10), textcoords="offset points", fontsize=12,
                                              color="white", fontweight="bold",
                                              bbox=dict(boxstyle="round,pad=0.25", fc="black", ec="none", alpha=0.75))
+        # a move within an area swaps the anaglyph (the marks are burnt into its channels), the reading and the
+        # title: only they are redrawn over the cached axes; another area (new limits) is a full draw
+        self.animated = (self.view.image, self.reading, self.view.ax.title)
+        plots.steady_limits(self.view.ax, snap=False)  # the same limits again are no change
 
     def _crop(self, area):
         L, R = self.images.left, self.images.right
@@ -266,8 +270,9 @@ class FloatingMarkDemo(LiveDemo):
 
     def render(self, r: MarkResult):
         self.view.update(r.rgb, r.extent_mm)
-        self.view.ax.set_title(t("{area}: p = {p:.2f} mm", area=t(r.area), p=r.p_mm)
-                               + (t(" — reverse stereo") if r.reverse else ""))
+        # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
+        self.view.ax.title.set_text(t("{area}: p = {p:.2f} mm", area=t(r.area), p=r.p_mm)
+                                    + (t(" — reverse stereo") if r.reverse else ""))
         text = f"p {r.p_mm:.2f} mm"
         if not self.measure_only:
             text += f"\nZ {float(r.table.loc[MARK_Z, 'value']):.1f} m"
@@ -311,6 +316,11 @@ def base_height_model(f_mm=100.0, H_m=1200.0, B_m=864.0, h_m=20.0, eye_base_mm=s
     return BaseHeightResult(pair, h, hs, np.asarray(dp), np.asarray(small), V, table)
 
 
+#: a gabled house 10 m wide, walls 6 m, ridge 9 m (the model shows it V times taller)
+_HOUSE_X = np.array([-5.0, -5.0, 0.0, 5.0, 5.0])
+_HOUSE_Z = np.array([0.0, 6.0, 9.0, 6.0, 0.0])
+
+
 class BaseHeightView:
     """Left: Δp against the height h (exact and small-Δp form); right: a house as the stereo model shows it (×V)."""
 
@@ -339,6 +349,7 @@ class BaseHeightView:
         a2.set_ylim(0, 32)
         a2.legend(loc="upper right", fontsize=10)
         self.label = a2.text(0.03, 0.95, "", transform=a2.transAxes, va="top", fontsize=12)
+        self.true.set_data(_HOUSE_X, _HOUSE_Z)  # the house itself does not change: drawn once
 
     def update(self, r: BaseHeightResult) -> None:
         self.exact.set_data(r.h_axis, r.dp_exact)
@@ -346,11 +357,7 @@ class BaseHeightView:
         self.point.set_data([r.h_m], [float(st.parallax_difference_mm(r.h_m, r.pair.b_mm, r.pair.H_m))])
         self.ax_dp.set_xlim(0, r.h_axis[-1])
         self.ax_dp.set_ylim(0, max(float(r.dp_exact[-1]) * 1.05, 1e-3))
-        # a gabled house 10 m wide, walls 6 m, ridge 9 m, seen V times taller
-        xs = np.array([-5.0, -5.0, 0.0, 5.0, 5.0])
-        zs = np.array([0.0, 6.0, 9.0, 6.0, 0.0])
-        self.true.set_data(xs, zs)
-        self.seen.set_data(xs, np.minimum(zs * r.V, 31.5))
+        self.seen.set_data(_HOUSE_X, np.minimum(_HOUSE_Z * r.V, 31.5))
         self.label.set_text(f"V = {r.V:.2f}" + (t("  (flattened)") if r.V < 1 else ""))
 
 
@@ -370,6 +377,11 @@ class BaseHeightDemo(LiveDemo):
     def build(self):
         self.view = BaseHeightView()
         self.fig = self.view.fig
+        v = self.view
+        # a move redraws the curves, the object, the house as seen and V over the cached axes; the Δp axis follows
+        # the curve, so it (an animated axis: its new limits are no change of the rest) is redrawn with them
+        self.animated = (v.ax_dp.yaxis, v.exact, v.small, v.point, v.seen, v.label)
+        plots.steady_limits(v.ax_dp, snap=False)  # the same limits again are no change
 
     def compute(self, f_mm, H_m, B_m, h_m):
         return base_height_model(f_mm, H_m, B_m, h_m)

@@ -239,6 +239,7 @@ _FIGURES = {
     "parallax difference Δp, mm": "разность параллаксов Δp, мм",
     "phototriangulation (m_ф)": "фототриангуляция (m_ф)",
     "plan error, m": "ошибка в плане, м",
+    "height error, m": "ошибка по высоте, м",
     "reflectance ρ": "КСЯ ρ",
     "scanning (m_ск)": "сканирование (m_ск)",
     "the site, close up": "участок крупно",

@@ -519,8 +519,16 @@ REQUIRED = {  # distribution: (minimum major.minor, why)
 
 
 def state_dir() -> Path:
-    """Where aerophoto keeps the remembered record-book number."""
-    return Path(os.environ.get("AEROPHOTO_HOME") or Path.home() / ".aerophoto")
+    """Where aerophoto keeps the remembered record-book number (and language).
+
+    ``$AEROPHOTO_HOME``, else ``~/.aerophoto``; in the browser book, ``/drive/.aerophoto`` — the site's file
+    drive, kept in the browser's storage (the home folder there is in memory, gone at the next page load).
+    """
+    if os.environ.get("AEROPHOTO_HOME"):
+        return Path(os.environ["AEROPHOTO_HOME"])
+    if in_browser() and Path("/drive").is_dir():
+        return Path("/drive") / ".aerophoto"
+    return Path.home() / ".aerophoto"
 
 
 def remembered_record_book() -> str | None:

@@ -217,6 +217,35 @@ def open_notebook(page, site: SiteServer, notebook: str) -> float:
     return time.monotonic() - t0
 
 
+def run_each_cell(page) -> list:
+    """Run the code cells one at a time, top to bottom, going on past a failing cell (a student answering as they
+    go, or "run all" without its stop on error); returns ``[(cell id, ename, evalue)]`` of the cells that failed.
+
+    Each cell's execution finishes (the kernel idle) before the next starts, so a failing check cell cancels
+    nothing queued behind it.
+    """
+    page.evaluate("""() => { const k = window.jupyterapp.shell.currentWidget.sessionContext.session.kernel;
+        window.__aeroCellErrors = [];
+        k.anyMessage.connect((_, a) => { const m = a.msg;
+          if (m.header.msg_type === 'execute_reply' && m.content.status !== 'ok')
+            window.__aeroCellErrors.push([String(m.content.ename), String(m.content.evalue || '').slice(0, 300)]); });
+    }""")
+    n = page.evaluate("() => window.jupyterapp.shell.currentWidget.content.widgets.length")
+    failed = []
+    for i in range(n):
+        cell = page.evaluate("""async (i) => { const app = window.jupyterapp; const nb = app.shell.currentWidget.content;
+            const c = nb.widgets[i]; if (c.model.type !== 'code') return null;
+            nb.activeCellIndex = i; const before = window.__aeroCellErrors.length;
+            await app.commands.execute('notebook:run-cell');
+            const e = window.__aeroCellErrors.slice(before); return [c.model.id, e]; }""", i)
+        if cell is None:
+            continue
+        h.lab_kernel_idle(page)
+        cid, errors = cell
+        failed.extend((cid, ename, evalue) for ename, evalue in errors)
+    return failed
+
+
 def save_notebook(page) -> None:
     """File ▸ Save: into the browser's storage (IndexedDB)."""
     page.evaluate("() => window.jupyterapp.commands.execute('docmanager:save')")

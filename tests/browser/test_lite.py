@@ -115,31 +115,23 @@ def test_the_comm_patch_matches_once_or_fails(tmp_path):
 
 
 # --------------------------------------------------------------------------------------------- the chapters
-def _open_and_run(page, server, notebook):
-    L.open_notebook(page, server, notebook)
-    page.evaluate("""() => { const k = window.jupyterapp.shell.currentWidget.sessionContext.session.kernel;
-        window.__aeroErrors = [];
-        k.anyMessage.connect((_, a) => { const m = a.msg;
-          if (m.header.msg_type === 'execute_reply' && m.content.status !== 'ok')
-            window.__aeroErrors.push([String(m.content.ename), String(m.content.evalue || '').slice(0, 300)]); }); }""")
-    h.run_all_cells(page)
-    return page.evaluate("() => window.__aeroErrors")
-
-
 @pytest.mark.parametrize("chapter", ALL_CHAPTERS)
-def test_chapter_runs_in_the_browser(chapter, trapped):
-    """Run all: every cell up to the first unanswered task runs (as on the desktop, "run all" stops there), the
-    browser note is on screen, each live demo answers its sliders (figure and table change), nothing left the
-    machine."""
+def test_chapter_runs_in_the_browser(chapter, trapped, lite_site):
+    """Every code cell, run one by one top to bottom: the only failures are the checks of unanswered tasks (the
+    student's work to do); the browser note is on screen; each live demo answers its sliders (figure and table
+    change); nothing left the machine."""
     server, trap, browser = trapped
     page, log, requests = L.new_lite_page(browser)
     where = f"lite {chapter}"
     try:
-        errors = _open_and_run(page, server, f"{chapter}.ipynb")
-        # the only error "run all" may meet is the first unanswered check (the student's work to do)
-        assert len(errors) <= 1, f"{where}: {errors}"
-        for ename, evalue in errors:
-            assert ename.endswith("WrongAnswer'>") and "no answer yet" in evalue, f"{where}: {ename}: {evalue}"
+        L.open_notebook(page, server, f"{chapter}.ipynb")
+        failed = L.run_each_cell(page)
+        other = [f for f in failed if not (f[1].endswith("WrongAnswer'>") and "no answer yet" in f[2])]
+        assert not other, f"{where}: cells failed: {other}"
+        nb = json.loads((lite_site / "files" / f"{chapter}.ipynb").read_text(encoding="utf-8"))
+        checks = sorted(c["id"] for c in nb["cells"] if c.get("id", "").endswith("-check"))
+        assert checks and sorted(f[0] for f in failed) == checks, (
+            f"{where}: every unanswered check must fail (and nothing else): {failed}, checks {checks}")
         shown = [e for e in h.error_outputs(page) if "WrongAnswer" not in e and "no answer yet" not in e]
         assert not shown, f"{where}: error output on the page: {shown}"
         assert page.locator(".aerophoto-browser-note").count() >= 1, f"{where}: the browser note is not shown"
@@ -192,6 +184,23 @@ def test_answers_persist_and_download_for_hand_in(trapped, tmp_path):
         cell = next(c for c in nb["cells"] if c.get("id") == "task-00-1-answer")
         assert "".join(cell["source"]) == answer
         assert nb["metadata"]["aerophoto"]["release"], "the download lost the chapter's release stamp"
+
+        # the record-book number typed in one chapter is remembered in the next, after a page load too
+        page.evaluate("""() => { const nb = window.jupyterapp.shell.currentWidget.content;
+            const c = nb.model.sharedModel.cells.find((x) => x.id === 'setup');
+            c.setSource(c.getSource().replace('RECORD_BOOK = None', 'RECORD_BOOK = "19-0457"'));
+            nb.activeCellIndex = nb.widgets.findIndex((w) => w.model.id === 'setup'); }""")
+        page.evaluate("() => window.jupyterapp.commands.execute('notebook:run-cell')")
+        h.lab_kernel_idle(page)
+        page.close()
+        page = context.new_page()
+        L.open_notebook(page, server, "01_flight_planning.ipynb")
+        page.evaluate("""() => { const nb = window.jupyterapp.shell.currentWidget.content;
+            nb.activeCellIndex = nb.widgets.findIndex((w) => w.model.id === 'setup'); }""")
+        page.evaluate("() => window.jupyterapp.commands.execute('notebook:run-cell')")
+        h.lab_kernel_idle(page)
+        banner = page.locator('[data-aero-cell-id="setup"] .jp-OutputArea-output').first.inner_text()
+        assert "19-0457" in banner and "i = 57" in banner, banner
         _no_egress(trap, requests, "lite hand-in")
     finally:
         context.close()

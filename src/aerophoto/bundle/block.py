@@ -98,7 +98,7 @@ class Measurements:
             a = check_finite_array(name, getattr(self, name), ndim=1, max_size=MAX_OBS)
             if np.any(a != np.round(a)):
                 raise ValueError(f"{name} must hold whole numbers")
-            ints[name] = a.astype(np.int64)
+            ints[name] = a.astype(np.intp)  # the index type: bincount refuses int64 where intp is int32 (wasm32)
             s(self, name, ints[name])
         n, P, N = len(self.photo_ids), len(self.point_ids), len(self.obs_photo)
         if n > MAX_PHOTOS or P > MAX_POINTS:

@@ -75,7 +75,7 @@ def _scatter(index, values, n: int) -> np.ndarray:
     values = np.asarray(values, dtype=float)
     shape = values.shape[1:]
     size = int(np.prod(shape)) if shape else 1
-    flat = (np.asarray(index, dtype=np.int64)[:, None] * size + np.arange(size)).ravel()
+    flat = (np.asarray(index, dtype=np.intp)[:, None] * size + np.arange(size)).ravel()  # intp: wasm32 too
     return np.bincount(flat, weights=values.reshape(-1), minlength=n * size).reshape((n,) + shape)
 
 

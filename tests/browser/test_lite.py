@@ -129,7 +129,7 @@ def test_chapter_runs_in_the_browser(chapter, trapped, lite_site):
         other = [f for f in failed if not (f[1].endswith("WrongAnswer'>") and "no answer yet" in f[2])]
         assert not other, f"{where}: cells failed: {other}"
         nb = json.loads((lite_site / "files" / f"{chapter}.ipynb").read_text(encoding="utf-8"))
-        checks = sorted(c["id"] for c in nb["cells"] if c.get("id", "").endswith("-check"))
+        checks = sorted(c["id"] for c in nb["cells"] if re.fullmatch(r"task-[\w-]+-check", c.get("id", "")))
         assert checks and sorted(f[0] for f in failed) == checks, (
             f"{where}: every unanswered check must fail (and nothing else): {failed}, checks {checks}")
         shown = [e for e in h.error_outputs(page) if "WrongAnswer" not in e and "no answer yet" not in e]
@@ -199,7 +199,7 @@ def test_answers_persist_and_download_for_hand_in(trapped, tmp_path):
             nb.activeCellIndex = nb.widgets.findIndex((w) => w.model.id === 'setup'); }""")
         page.evaluate("() => window.jupyterapp.commands.execute('notebook:run-cell')")
         h.lab_kernel_idle(page)
-        banner = page.locator('[data-aero-cell-id="setup"] .jp-OutputArea-output').first.inner_text()
+        banner = page.locator('[data-aero-cell-id="setup"] .jp-OutputArea').first.inner_text()
         assert "19-0457" in banner and "i = 57" in banner, banner
         _no_egress(trap, requests, "lite hand-in")
     finally:

@@ -24,7 +24,14 @@ ipywidgets slider does not report "released" separately — and works the same
 for keyboard steps.  Outside a running event loop (a script, a test) there is
 no timer: a slider event is followed at once by the full render.  From code,
 ``demo.set(...)`` renders at full resolution and ``demo.set(..., preview=True)``
-at the preview one; ``demo.result.preview`` says which is shown.
+at the preview one; ``demo.render_full()`` turns a shown preview into the full
+picture at once (what the timer does); ``demo.result.preview`` says which is shown.
+
+Both are blitted (``LiveDemo.animated``, :class:`aerophoto.plots.Blitter`): a
+move redraws the sheet, its marks, the title and the ΔI stems over a cached
+picture of the axes, whose limits are snapped (the sheet's to 20 mm, the ΔI
+chart's to round values) so that most moves leave them alone; the tables
+follow the picture (:func:`aerophoto.demos.quality.table_after_picture`).
 
 Static figures for the notebook: :func:`correction_sheet` (the корректурный
 лист with the ΔI values written along each cut), :func:`sheet_figure` (the
@@ -69,6 +76,7 @@ from .. import simulate as sim
 from ..terrain import RescaledRelief
 from ..i18n import t as _t  # functions here name a local t
 from ..widgets import LiveDemo, Param, error_html
+from .quality import table_after_picture
 
 __all__ = [
     "FotoschemaResult",
@@ -263,6 +271,11 @@ class FotoschemaView:
         self.separators = LineCollection([], colors=C["grey"], linewidths=0.8, linestyles=":", zorder=1)
         d.add_collection(self.separators)
         d.grid(True, axis="y")
+        a.set_autoscale_on(False)
+        d.set_autoscale_on(False)
+        #: what a move changes (for blitting): the sheet and everything over it, the title, the ΔI stems
+        self.moving = (self.image, self.frames, self.cuts, self.points, self.ties, self.o, self.title,
+                       self.separators, self.stems, self.tops)
         if result is not None:
             self.update(result)
 
@@ -270,10 +283,10 @@ class FotoschemaView:
         fs = r.fs
         a = self.ax_sheet
         self.image.set_data(r.image)
-        self.image.set_extent(r.extent_mm)
-        x0, x1, y0, y1 = fs.extent_mm
-        a.set_xlim(x0 - 3, x1 + 3)
-        a.set_ylim(y0 - 3, y1 + 3)
+        if tuple(self.image.get_extent()) != tuple(r.extent_mm):
+            self.image.set_extent(r.extent_mm)
+        x0, x1, y0, y1 = _sheet_limits(fs.extent_mm)
+        _set_limits(a, (x0, x1), (y0, y1))
         self.frames.set_segments(list(fs.frames_mm()))
         self.cuts.set_segments([s.cut_mm for s in fs.seams])
         pts = np.vstack([s.points_mm for s in fs.seams]) if fs.seams else np.zeros((0, 2))
@@ -322,13 +335,37 @@ class FotoschemaView:
         self.stems.set_colors(list(cols))
         self.tops.set_offsets(np.column_stack([xs, dI]) if len(xs) else np.zeros((0, 2)))
         self.tops.set_facecolors(cols)
-        lim = max(0.7, float(np.max(np.abs(dI))) * 1.15 if dI.size else 0.7)
+        lim = _nice_up(max(0.7, float(np.max(np.abs(dI))) * 1.15 if dI.size else 0.7))
         self.separators.set_segments([np.array([[sx, -lim], [sx, lim]]) for sx in seps])
         d = self.ax_dI
-        d.set_xlim(0.0, max(x - 0.5, 1.0))
-        d.set_ylim(-lim, lim)
-        d.set_xticks(ticks)
-        d.set_xticklabels(labels, fontsize=10)
+        _set_limits(d, (0.0, max(x - 0.5, 1.0)), (-lim, lim))
+        if getattr(self, "_dI_ticks", None) != (ticks, labels):  # (reading the axis' ticks would mark it changed)
+            d.set_xticks(ticks)
+            d.set_xticklabels(labels, fontsize=10)
+            self._dI_ticks = (ticks, labels)
+
+
+SHEET_STEP_MM = 20.0  # the sheet's limits are multiples of this, mm: a tilt or relief move keeps them (and ticks)
+_DI_LIMITS = (0.7, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.0, 10.0, 15.0, 20.0, 30.0, 50.0, 70.0, 100.0)
+
+
+def _sheet_limits(extent_mm) -> tuple:
+    """The sheet axes' limits: the mosaic's extent with 3 mm of room, widened to multiples of SHEET_STEP_MM."""
+    st = SHEET_STEP_MM
+    x0, x1, y0, y1 = extent_mm
+    return (math.floor((x0 - 3.0) / st) * st, math.ceil((x1 + 3.0) / st) * st,
+            math.floor((y0 - 3.0) / st) * st, math.ceil((y1 + 3.0) / st) * st)
+
+
+def _nice_up(v: float) -> float:  # the ΔI chart's half-range: the first round value ≥ v
+    return next((c for c in _DI_LIMITS if c >= v), float(math.ceil(v)))
+
+
+def _set_limits(ax, xlim, ylim) -> None:  # only when they change (matplotlib marks even the same as a change)
+    if tuple(map(float, ax.get_xlim())) != tuple(map(float, xlim)):
+        ax.set_xlim(*xlim, auto=False)
+    if tuple(map(float, ax.get_ylim())) != tuple(map(float, ylim)):
+        ax.set_ylim(*ylim, auto=False)
 
 
 # =========================================================================== the live demo
@@ -386,6 +423,9 @@ class FotoschemaDemo(LiveDemo):
     def build(self):
         self.view = FotoschemaView()
         self.fig = self.view.fig
+        # a move redraws the sheet, its marks, the title and the ΔI stems over the cached axes; the limits are
+        # snapped (sheet: 20 mm, ΔI: round values), so most moves keep them and are blitted
+        self.animated = self.view.moving
 
     def compute(self, **v):
         r = self.full_px_per_mm if not self._preview else self.preview_px_per_mm
@@ -394,18 +434,23 @@ class FotoschemaDemo(LiveDemo):
 
     def render(self, result: FotoschemaResult):
         self.view.update(result)
+
+    def show(self, result: FotoschemaResult) -> None:
+        """Move the artists and draw, then the tables (:func:`aerophoto.demos.quality.table_after_picture`)."""
+        super().show(result)
+        table_after_picture(self, self._tables, result)
+
+    def _tables(self, result: FotoschemaResult) -> str:
         fs = result.fs
         H_m = g.flying_height_m(fs.camera.f_mm, fs.m_design)
         notes = [_t("H = f·m = {H} m above the mean ground", H=f"{H_m:,.0f}".replace(",", " ")),
                  _t("ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip")]
         if result.note:
             notes.insert(0, "⚠ " + result.note)
-        self.table.value = (plots.html_table(result.table(), caption="Seams and scale (guide §6)",
-                                             float_format="{:.3g}", notes=notes)
-                            + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm",
-                                               float_format="{:.2f}")
-                            + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000",
-                                               float_format="{:.1f}"))
+        return (plots.html_table(result.table(), caption="Seams and scale (guide §6)", float_format="{:.3g}",
+                                 notes=notes)
+                + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm", float_format="{:.2f}")
+                + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000", float_format="{:.1f}"))
 
     # ---- preview / full resolution
     def update(self, preview: bool = False) -> None:
@@ -441,6 +486,16 @@ class FotoschemaDemo(LiveDemo):
             self._settle()
             return
         self._pending = loop.call_later(self.settle_s, self._settle)
+
+    def render_full(self) -> None:
+        """Glue the shown preview at full resolution now, in one go (what the settle timer does once the slider
+        rests; deterministic, for tests and benchmarks).  Nothing happens if the full picture is shown already."""
+        self._cancel_pending()
+        r = getattr(self, "result", None)
+        if r is None or not r.preview:
+            return
+        steps = mo.sheet_raster_bands(r.fs, r.ground, self.full_px_per_mm, band_px=None)
+        self._glue_step(r, steps, None, time.perf_counter())
 
     def _settle(self) -> None:
         """The slider rests: glue the shown fotoschema again at full resolution, a band per loop turn.

@@ -13,11 +13,25 @@ the forward and side overlaps stand out), every print's outline, its principal
 point and number, the bases between neighbours and the line of each strip —
 with whatever fails a tolerance drawn in vermillion.  :class:`QualityDemo`
 binds sliders for the imperfections to the view and to the verdict table.
+
+Speed (a slider move is painted within 100 ms in the browser): the view lays
+the prints on a fixed *board* (:func:`board_extent_m`) — the plan area of the
+block flown without imperfections, widened to hold the prints at every
+position of the imperfection sliders — so a move leaves the axes, their
+limits and ticks alone and redraws only the mosaic, the outlines, the marks
+and the title over a cached picture of the rest (``LiveDemo.animated``,
+:class:`aerophoto.plots.Blitter`).  The board also lets the eye see a print
+*move* when the flight is broken.  The raster's ground heights and brightness
+on the board are read once per board (:func:`rough_mosaic_raster` with
+``extent_m``), each print is projected only over its own neighbourhood, and
+the site's height bounds are read once (:class:`_BoundedSite`).
 """
 
 from __future__ import annotations
 
+import functools
 import html as _html
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,8 +43,8 @@ from .. import quality as q
 from .. import simulate as sim
 from ..widgets import LiveDemo, Param
 
-__all__ = ["QualityResult", "quality_model", "rough_mosaic_raster", "RoughMosaicView", "QualityDemo",
-           "verdict_html", "crab_limit_plot"]
+__all__ = ["QualityResult", "quality_model", "rough_mosaic_raster", "board_extent_m", "RoughMosaicView",
+           "QualityDemo", "verdict_html", "crab_limit_plot", "table_after_picture"]
 
 #: tints of ground covered by 1, 2, 3, 4+ prints (RGB 0…1) and their weight
 _TINTS = {1: ((1.0, 1.0, 1.0), 0.0), 2: ((0.34, 0.71, 0.91), 0.30), 3: ((0.0, 0.45, 0.70), 0.40),
@@ -45,6 +59,43 @@ def _default_site():
     return site.get_site()
 
 
+class _BoundedSite:
+    """The site with its height bounds read once (everything else is the site's own).
+
+    :attr:`aerophoto.site.Site.z_min_m` and ``z_max_m`` scan the whole DEM
+    (half a million nodes) on every call, and assessing a block asks for them
+    some 160 times (every ray cut with the terrain, every ``as_terrain``
+    check): about 50 ms of a 100 ms slider move.  Values are the site's, exactly.
+    """
+
+    def __init__(self, site):
+        self._site = site
+        self.z_min_m = float(site.z_min_m)
+        self.z_max_m = float(site.z_max_m)
+        self.height = site.height
+
+    def __call__(self, X, Y):
+        return self._site.height(X, Y)
+
+    def __getattr__(self, name):
+        return getattr(self._site, name)
+
+
+_BOUNDED: dict = {}
+
+
+def _bounded(site):
+    """``site`` with cached height bounds (one wrapper per site object, kept while the site is)."""
+    if isinstance(site, _BoundedSite):
+        return site
+    hit = _BOUNDED.get(id(site))
+    if hit is None or hit[0] is not site:
+        if len(_BOUNDED) > 8:
+            _BOUNDED.clear()
+        hit = _BOUNDED[id(site)] = (site, _BoundedSite(site))
+    return hit[1]
+
+
 @dataclass(frozen=True)
 class QualityResult:
     """A simulated flight, its assessment and its rough mosaic on the plan.
@@ -54,7 +105,7 @@ class QualityResult:
     flight : aerophoto.simulate.Block
     report : aerophoto.quality.QualityReport
     image : (ny, nx, 3) float RGB of the rough mosaic, row 0 at the south
-    extent_m : (X_min, X_max, Y_min, Y_max) of the image, metres
+    extent_m : (X_min, X_max, Y_min, Y_max) of the image, metres (the board, when one was given)
     outlines_m : (N, k, 2) each print's outline on the ground (frame edges cut with the terrain), m
     o_ground_m : (N, 2) the principal points' ground positions, m
     """
@@ -78,7 +129,45 @@ def _outline(camera, pose, dem, k=6):
     return g.photo_to_dem(camera, pose, np.array(pts), dem)[:, :2]
 
 
-def rough_mosaic_raster(shots, site, outlines_m, *, pixel_m: float = 20.0, margin_m: float = 150.0):
+def _footprint_box(shot, site, pad_m: float):
+    """A box that surely holds the ground ``shot`` shows: its frame corners cut with the planes at the terrain's
+    lowest and highest heights (every ray meets the terrain between them), widened by ``pad_m``."""
+    c = shot.camera.corners_mm()
+    pts = np.vstack([g.photo_to_dem(shot.camera, shot.pose, c, g.FlatTerrain(z))[:, :2]
+                     for z in (site.z_min_m, site.z_max_m)])
+    return pts.min(axis=0) - pad_m, pts.max(axis=0) + pad_m
+
+
+_GRIDS: dict = {}
+
+
+def _plan_grid(site, extent_m: tuple, pixel_m: float):
+    """Pixel centres, ground heights and ground brightness of the board (what does not change between moves)."""
+    key = (id(site), tuple(float(v) for v in extent_m), float(pixel_m))
+    hit = _GRIDS.get(key)
+    if hit is not None and hit[0] is site:
+        return hit[1]
+    x0, x1, y0, y1 = key[1]
+    nx = max(1, int(round((x1 - x0) / pixel_m)))
+    ny = max(1, int(round((y1 - y0) / pixel_m)))
+    X = x0 + (np.arange(nx) + 0.5) * pixel_m
+    Y = y0 + (np.arange(ny) + 0.5) * pixel_m
+    XX, YY = np.meshgrid(X, Y)
+    P = np.stack([XX, YY, site.height(XX, YY)], axis=-1).reshape(-1, 3)
+    if hasattr(site, "sample"):
+        lev = site.level_for(pixel_m) if hasattr(site, "level_for") else 0
+        grey = np.asarray(site.sample(P[:, 0], P[:, 1], lev, outside=1.0), dtype=np.float32)
+    else:
+        grey = np.full(P.shape[0], 0.6, dtype=np.float32)
+    out = (P, grey, nx, ny, (x0, x0 + nx * pixel_m, y0, y0 + ny * pixel_m))
+    if len(_GRIDS) > 6:
+        _GRIDS.clear()
+    _GRIDS[key] = (site, out)
+    return out
+
+
+def rough_mosaic_raster(shots, site, outlines_m, *, pixel_m: float = 20.0, margin_m: float = 150.0,
+                        extent_m=None):
     """The rough mosaic on the plan: ground brightness where a print covers it, tinted by the number of prints.
 
     Parameters
@@ -87,6 +176,9 @@ def rough_mosaic_raster(shots, site, outlines_m, *, pixel_m: float = 20.0, margi
     site : the virtual site (``height``, ``sample``, ``level_for``)
     outlines_m : (N, k, 2) the prints' ground outlines (for the extent), m
     pixel_m : ground size of a plan pixel, m
+    margin_m : room around the outlines when the extent follows them, m
+    extent_m : (X_min, X_max, Y_min, Y_max) of the plan to draw, m (the demo's fixed board); default the
+        outlines' extent plus ``margin_m``.  The board's heights and brightness are read once per board.
 
     Returns
     -------
@@ -94,44 +186,92 @@ def rough_mosaic_raster(shots, site, outlines_m, *, pixel_m: float = 20.0, margi
     extent : (X_min, X_max, Y_min, Y_max), m
     count : (ny, nx) int, how many prints cover each pixel
     """
-    allp = np.asarray(outlines_m).reshape(-1, 2)
-    x0, y0 = allp.min(axis=0) - margin_m
-    x1, y1 = allp.max(axis=0) + margin_m
-    nx = int(np.ceil((x1 - x0) / pixel_m))
-    ny = int(np.ceil((y1 - y0) / pixel_m))
-    X = x0 + (np.arange(nx) + 0.5) * pixel_m
-    Y = y0 + (np.arange(ny) + 0.5) * pixel_m
-    XX, YY = np.meshgrid(X, Y)
-    ZZ = site.height(XX, YY)
-    P = np.stack([XX, YY, ZZ], axis=-1).reshape(-1, 3)
-    count = np.zeros(P.shape[0], dtype=int)
+    if extent_m is None:
+        allp = np.asarray(outlines_m).reshape(-1, 2)
+        x0, y0 = allp.min(axis=0) - margin_m
+        x1, y1 = allp.max(axis=0) + margin_m
+        nx = int(np.ceil((x1 - x0) / pixel_m))
+        ny = int(np.ceil((y1 - y0) / pixel_m))
+        extent_m = (float(x0), float(x0 + nx * pixel_m), float(y0), float(y0 + ny * pixel_m))
+    P, grey_all, nx, ny, extent = _plan_grid(site, extent_m, pixel_m)
+    P2 = P.reshape(ny, nx, 3)
+    count = np.zeros((ny, nx), dtype=np.int32)
+    x0, y0 = extent[0], extent[2]
     for s in shots:
+        # only the pixels near the print can be on it: a box that surely holds its footprint, as rows and columns
+        lo, hi = _footprint_box(s, site, 2.0 * pixel_m)
+        i0, i1 = max(0, int((lo[0] - x0) // pixel_m)), min(nx, int((hi[0] - x0) // pixel_m) + 1)
+        j0, j1 = max(0, int((lo[1] - y0) // pixel_m)), min(ny, int((hi[1] - y0) // pixel_m) + 1)
+        if i0 >= i1 or j0 >= j1:
+            continue
+        Q = P2[j0:j1, i0:i1].reshape(-1, 3)
         R = g.rotation_matrix(s.pose)
-        front = ((P - s.pose.centre) @ R)[:, 2] < 0
-        idx = np.flatnonzero(front)
-        xy = g.ground_to_photo(s.camera, s.pose, P[idx])
-        count[idx[s.camera.inside(xy)]] += 1
-    grey = np.ones(P.shape[0], dtype=np.float32)
+        front = ((Q - s.pose.centre) @ R)[:, 2] < 0
+        hit = np.zeros(Q.shape[0], dtype=bool)
+        hit[np.flatnonzero(front)[s.camera.inside(g.ground_to_photo(s.camera, s.pose, Q[front]))]] = True
+        count[j0:j1, i0:i1] += hit.reshape(j1 - j0, i1 - i0)
+    count = count.reshape(-1)
     cov = count > 0
-    lev = site.level_for(pixel_m) if hasattr(site, "level_for") else 0
-    if hasattr(site, "sample"):
-        grey[cov] = site.sample(P[cov, 0], P[cov, 1], lev, outside=1.0)
-    else:
-        grey[cov] = 0.6
-    rgb = np.repeat(grey[:, None], 3, axis=1)
-    rgb[~cov] = 0.97
-    for k, (col, w) in _TINTS.items():
-        sel = count >= k if k == 4 else count == k
-        if w > 0 and sel.any():
-            rgb[sel] = (1 - w) * rgb[sel] + w * np.array(col)
-    return rgb.reshape(ny, nx, 3), (float(x0), float(x0 + nx * pixel_m), float(y0), float(y0 + ny * pixel_m)), \
-        count.reshape(ny, nx)
+    grey = np.where(cov, grey_all, np.float32(0.97))
+    # tint by the number of prints: weight w and colour per count (0 and 1 print: none)
+    w = np.zeros(5, dtype=np.float32)
+    col = np.zeros((5, 3), dtype=np.float32)
+    for k, (c, wk) in _TINTS.items():
+        w[k], col[k] = wk, c
+    k = np.minimum(count, 4)
+    wk = w[k][:, None]
+    rgb = (1 - wk) * grey[:, None] + wk * col[k]
+    return rgb.reshape(ny, nx, 3), extent, count.reshape(ny, nx)
+
+
+#: the largest imperfections the sliders reach (QualityDemo): the board holds the prints at all of them
+_SLIDER_MAX = {"max_tilt_deg": 5.0, "crab_deg": 8.0, "crab_jitter_deg": 5.0, "height_percent": 6.0,
+               "curvature_percent": 4.0}
+#: the board's edges are multiples of this, m (a plan slider moved a step rarely moves them)
+BOARD_STEP_M = 100.0
+
+
+def board_extent_m(f_mm: float = 100.0, px_percent: float = 60.0, py_percent: float = 30.0, *,
+                   m: float = 10000.0, n_photos: int = 5, n_strips: int = 2, site=None) -> tuple:
+    """The board the rough mosaic is laid on: (X_min, X_max, Y_min, Y_max), m.
+
+    The plan area of the block flown *without* imperfections (f rounded up to
+    a whole 100 mm, the planned overlaps p_x, p_y), widened on every side by
+    what the imperfection sliders can add at their largest — crab and random
+    crab turning a print (φ = 13°), the flying-height scatter scaling it
+    (6 %), the tilt carrying it (H·tan 5°), the bend of the route (4 % of its
+    length) — and snapped outwards to :data:`BOARD_STEP_M`.  So the board does
+    not change while an imperfection slider moves (nor, mostly, while f moves
+    within its hundred).
+    """
+    site = _bounded(_default_site() if site is None else site)
+    f_band = float(min(1100.0, 100.0 * math.ceil(float(f_mm) / 100.0 - 1e-9)))
+    return _board(site, f_band, float(px_percent), float(py_percent), float(m), int(n_photos), int(n_strips))
+
+
+@functools.lru_cache(maxsize=64)
+def _board(site, f_band, px, py, m, n_photos, n_strips):
+    cam = g.Camera(f_band)
+    flight = sim.block_over_site(site, cam, m, px, py, n_photos, n_strips, alternate=True)
+    pts = np.vstack([_outline(cam, s.pose, site) for s in flight.shots])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    half = cam.frame_mm / 2000.0 * m  # half the side of a print on the ground, m
+    phi = math.radians(_SLIDER_MAX["crab_deg"] + _SLIDER_MAX["crab_jitter_deg"])
+    turned = half * ((1.0 + _SLIDER_MAX["height_percent"] / 100.0) * (math.cos(phi) + math.sin(phi)) - 1.0)
+    H = g.flying_height_m(f_band, m)
+    tilt = H * math.tan(math.radians(_SLIDER_MAX["max_tilt_deg"])) * 1.25  # the shift, and the far edge's stretch
+    route = (n_photos - 1) * sim.photo_base_m(cam, m, px)  # the strips run along X
+    bend = _SLIDER_MAX["curvature_percent"] / 100.0 * route
+    pad = turned + tilt + bend + 50.0
+    st = BOARD_STEP_M
+    return (math.floor((lo[0] - pad) / st) * st, math.ceil((hi[0] + pad) / st) * st,
+            math.floor((lo[1] - pad) / st) * st, math.ceil((hi[1] + pad) / st) * st)
 
 
 def quality_model(f_mm: float = 100.0, max_tilt_deg: float = 1.0, crab_deg: float = 2.0, crab_jitter_deg: float = 1.0,
                   height_percent: float = 1.0, curvature_percent: float = 0.5, px_percent: float = 60.0,
                   py_percent: float = 30.0, seed: int = 3, *, m: float = 10000.0, n_photos: int = 5,
-                  n_strips: int = 2, site=None, pixel_m: float = 20.0) -> QualityResult:
+                  n_strips: int = 2, site=None, pixel_m: float = 20.0, extent_m=None) -> QualityResult:
     """Fly a block with imperfections over the virtual site and assess it (guide §3).
 
     Parameters
@@ -145,8 +285,10 @@ def quality_model(f_mm: float = 100.0, max_tilt_deg: float = 1.0, crab_deg: floa
     m : photo scale denominator; n_photos, n_strips : size of the block
     site : the virtual site (default :func:`aerophoto.site.get_site`)
     pixel_m : ground size of a pixel of the rough-mosaic image, m
+    extent_m : the plan area to draw, (X_min, X_max, Y_min, Y_max) in m (the demo passes its fixed board,
+        :func:`board_extent_m`); default the prints' outlines with a 150 m margin
     """
-    site = _default_site() if site is None else site
+    site = _bounded(_default_site() if site is None else site)
     cam = g.Camera(f_mm)
     imp = sim.Imperfections(max_tilt_deg=max_tilt_deg, crab_deg=crab_deg, max_crab_jitter_deg=crab_jitter_deg,
                             max_height_percent=height_percent, curvature_percent=curvature_percent, seed=int(seed))
@@ -157,7 +299,7 @@ def quality_model(f_mm: float = 100.0, max_tilt_deg: float = 1.0, crab_deg: floa
     shots = flight.shots
     outlines = np.array([_outline(cam, s.pose, site) for s in shots])
     o = np.array([g.photo_to_dem(cam, s.pose, np.zeros(2), site)[:2] for s in shots])
-    image, extent, _ = rough_mosaic_raster(shots, site, outlines, pixel_m=pixel_m)
+    image, extent, _ = rough_mosaic_raster(shots, site, outlines, pixel_m=pixel_m, extent_m=extent_m)
     return QualityResult(flight, report, image, extent, outlines, o)
 
 
@@ -174,11 +316,22 @@ def verdict_html(report: q.QualityReport, *, conclusion: bool = True) -> str:
     return out
 
 
+def _rgba8(rgb) -> np.ndarray:
+    """Float RGB 0…1 as opaque 8-bit RGBA: what matplotlib would convert it to on every draw, done once."""
+    out = np.empty((*rgb.shape[:2], 4), dtype=np.uint8)
+    out[..., :3] = np.clip(np.asarray(rgb) * 255.0 + 0.5, 0, 255)
+    out[..., 3] = 255
+    return out
+
+
 class RoughMosaicView:
     """The prints laid on the plan (накидной монтаж), with failing items in vermillion.
 
     ``view = RoughMosaicView(ax=None)`` builds the artists once;
-    ``view.update(result)`` changes them in place.
+    ``view.update(result)`` changes them in place.  The axes show the result's
+    plan area (``result.extent_m``: in the demo a fixed board) and are left
+    alone while it stays the same.  ``view.moving`` lists the artists a move
+    changes (for blitting): the mosaic and everything drawn over it, and the title.
     """
 
     def __init__(self, result: QualityResult | None = None, ax=None, *, figsize=(8.4, 5.4)):
@@ -193,7 +346,8 @@ class RoughMosaicView:
         a.grid(False)
         a.set_xlabel("X (east), km")
         a.set_ylabel("Y (north), km")
-        self.image = a.imshow(np.ones((2, 2, 3)), origin="lower", extent=(0, 1, 0, 1), interpolation="antialiased",
+        # nearest: the plan pixels (20 m) upsampled about 2×, each a crisp block (half the cost of smoothing)
+        self.image = a.imshow(np.ones((2, 2, 3)), origin="lower", extent=(0, 1, 0, 1), interpolation="nearest",
                               zorder=0)
         self.frames = LineCollection([], linewidths=1.2, zorder=3)
         a.add_collection(self.frames)
@@ -221,17 +375,22 @@ class RoughMosaicView:
         else:
             a.legend(handles=handles, loc="upper left", fontsize=8, framealpha=0.85)
         self.title = a.set_title("")
+        self.moving = (self.image, self.frames, self.bases, self.strips, self.o, self.title)
         if result is not None:
             self.update(result)
 
     def update(self, r: QualityResult) -> None:
         rep = r.report
         km = 1000.0
-        self.image.set_data(r.image)
-        self.image.set_extent(tuple(v / km for v in r.extent_m))
-        x0, x1, y0, y1 = (v / km for v in r.extent_m)
-        self.ax.set_xlim(x0, x1)
-        self.ax.set_ylim(y0, y1)
+        self.image.set_data(_rgba8(r.image))
+        x0, x1, y0, y1 = ext = tuple(v / km for v in r.extent_m)
+        if tuple(self.image.get_extent()) != ext or tuple(self.ax.get_xlim()) != (x0, x1) \
+                or tuple(self.ax.get_ylim()) != (y0, y1):
+            # only when the plan area changes (a live demo's board stays put while the imperfections move):
+            # new limits mean new ticks, a full draw
+            self.image.set_extent(ext)
+            self.ax.set_xlim(x0, x1, auto=False)
+            self.ax.set_ylim(y0, y1, auto=False)
         shots = r.flight.shots
         bad_photo = {p.number: not p.ok for p in rep.photos}
         cols, widths = [], []
@@ -290,6 +449,7 @@ class QualityDemo(LiveDemo):
     It opens on the guide's camera (f = 100 mm, variant 00), never on the student's own: the crab limit in its
     table is task 02.2's answer.  f reaches 1100 mm, every variant of the guide's scheme (f = 100 + 10i mm);
     at 1:10 000 even f = 1100 mm with the sliders' worst imperfections keeps every print on the site.
+    The prints lie on a fixed board (:func:`board_extent_m`), so a move of an imperfection slider is blitted.
     """
 
     title = "Is the survey fit for use? The rough mosaic and the checks of guide §3"
@@ -312,13 +472,50 @@ class QualityDemo(LiveDemo):
     def build(self):
         self.view = RoughMosaicView()
         self.fig = self.view.fig
+        # a move redraws the mosaic, the outlines, marks and numbers and the title over the cached axes: the
+        # board (the axes' limits) changes only with the plan sliders (f by whole 100 mm, p_x, p_y)
+        self.animated = self.view.moving
 
     def compute(self, **v):
-        return quality_model(**v)
+        return quality_model(**v, extent_m=board_extent_m(v["f_mm"], v["px_percent"], v["py_percent"]))
 
     def render(self, result: QualityResult):
         self.view.update(result)
-        self.table.value = verdict_html(result.report)
+
+    def show(self, result: QualityResult) -> None:
+        """Move the artists and draw, *then* refresh the table (:func:`table_after_picture`)."""
+        super().show(result)
+        table_after_picture(self, verdict_html, result.report)
+
+
+#: seconds a demo's table waits after its picture in a running kernel (:func:`table_after_picture`)
+TABLE_DELAY_S = 0.06
+
+
+def table_after_picture(demo, html, *args) -> None:
+    """Set ``demo.table.value = html(*args)`` once the page has had time to paint the new picture.
+
+    A table laid out by the page before the picture's frame arrives delays the picture by tens of ms, so in a
+    running kernel the table follows :data:`TABLE_DELAY_S` later (a newer move replaces a pending table); without
+    an event loop (a script, a test) it is set at once.
+    """
+    import asyncio
+
+    pending = getattr(demo, "_table_pending", None)
+    if pending is not None:
+        pending.cancel()
+    demo._table_pending = None
+
+    def fill():
+        demo._table_pending = None
+        demo.table.value = html(*args)
+
+    try:
+        loop = asyncio.get_running_loop()
+    except RuntimeError:
+        fill()
+        return
+    demo._table_pending = loop.call_later(TABLE_DELAY_S, fill)
 
 
 def crab_limit_plot(ax=None, f_mm: float | None = None, *, f_max_mm: float = 1100.0):

@@ -24,7 +24,7 @@ and the title over a cached picture of the rest (``LiveDemo.animated``,
 *move* when the flight is broken.  The raster's ground heights and brightness
 on the board are read once per board (:func:`rough_mosaic_raster` with
 ``extent_m``), each print is projected only over its own neighbourhood, and
-the site's height bounds are read once (:class:`_BoundedSite`).
+the site's height bounds are read once (:attr:`aerophoto.site.Site.z_min_m` is cached).
 """
 
 from __future__ import annotations
@@ -57,43 +57,6 @@ def _default_site():
     from .. import site
 
     return site.get_site()
-
-
-class _BoundedSite:
-    """The site with its height bounds read once (everything else is the site's own).
-
-    :attr:`aerophoto.site.Site.z_min_m` and ``z_max_m`` scan the whole DEM
-    (half a million nodes) on every call, and assessing a block asks for them
-    some 160 times (every ray cut with the terrain, every ``as_terrain``
-    check): about 50 ms of a 100 ms slider move.  Values are the site's, exactly.
-    """
-
-    def __init__(self, site):
-        self._site = site
-        self.z_min_m = float(site.z_min_m)
-        self.z_max_m = float(site.z_max_m)
-        self.height = site.height
-
-    def __call__(self, X, Y):
-        return self._site.height(X, Y)
-
-    def __getattr__(self, name):
-        return getattr(self._site, name)
-
-
-_BOUNDED: dict = {}
-
-
-def _bounded(site):
-    """``site`` with cached height bounds (one wrapper per site object, kept while the site is)."""
-    if isinstance(site, _BoundedSite):
-        return site
-    hit = _BOUNDED.get(id(site))
-    if hit is None or hit[0] is not site:
-        if len(_BOUNDED) > 8:
-            _BOUNDED.clear()
-        hit = _BOUNDED[id(site)] = (site, _BoundedSite(site))
-    return hit[1]
 
 
 @dataclass(frozen=True)
@@ -244,7 +207,7 @@ def board_extent_m(f_mm: float = 100.0, px_percent: float = 60.0, py_percent: fl
     not change while an imperfection slider moves (nor, mostly, while f moves
     within its hundred).
     """
-    site = _bounded(_default_site() if site is None else site)
+    site = _default_site() if site is None else site
     f_band = float(min(1100.0, 100.0 * math.ceil(float(f_mm) / 100.0 - 1e-9)))
     return _board(site, f_band, float(px_percent), float(py_percent), float(m), int(n_photos), int(n_strips))
 
@@ -288,7 +251,7 @@ def quality_model(f_mm: float = 100.0, max_tilt_deg: float = 1.0, crab_deg: floa
     extent_m : the plan area to draw, (X_min, X_max, Y_min, Y_max) in m (the demo passes its fixed board,
         :func:`board_extent_m`); default the prints' outlines with a 150 m margin
     """
-    site = _bounded(_default_site() if site is None else site)
+    site = _default_site() if site is None else site
     cam = g.Camera(f_mm)
     imp = sim.Imperfections(max_tilt_deg=max_tilt_deg, crab_deg=crab_deg, max_crab_jitter_deg=crab_jitter_deg,
                             max_height_percent=height_percent, curvature_percent=curvature_percent, seed=int(seed))

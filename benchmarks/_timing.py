@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import importlib.util
 import platform
 import statistics
+import sys
 import time
 
 
@@ -94,3 +96,15 @@ def machine() -> dict:
     import os
 
     return {"python": platform.python_version(), "cpus": os.cpu_count(), "platform": platform.platform()}
+
+
+def load_module(name: str, path):
+    """The module in the file ``path`` (the browser test harness, another benchmark), loaded once under ``name``
+    (benchmarks load their helpers by path: no sys.path edits)."""
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod
+    spec.loader.exec_module(mod)
+    return mod

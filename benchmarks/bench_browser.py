@@ -39,13 +39,13 @@ move never lands in the next move's window).
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import shutil
 import sys
 import tempfile
 from pathlib import Path
 
+from _timing import load_module as _load
 from _timing import summarize
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -79,14 +79,6 @@ display(ui)
 '''
 
 
-def _load(name: str, path: Path):
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _write_naive(folder: Path, demo) -> str:

@@ -37,7 +37,6 @@ the extension into the servers' private data folder, so neither the .venv nor en
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import os
 import shutil
@@ -45,6 +44,7 @@ import sys
 import time
 from pathlib import Path
 
+from _timing import load_module as _load
 from _timing import summarize
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -249,14 +249,6 @@ ui
 '''.lstrip()
 
 
-def _load(name: str, path: Path):
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _anywidget_ready() -> None:

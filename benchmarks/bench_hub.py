@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import asyncio
 import copy
-import importlib.util
 import json
 import os
 import statistics
@@ -42,6 +41,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from _timing import load_module as _load
 from _timing import summarize
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -63,14 +63,6 @@ _kernel_ms = (_t.perf_counter() - _t0) * 1000
 """
 
 
-def _load(name: str, path: Path):
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _hubclient():

@@ -24,25 +24,18 @@ Every request that would leave 127.0.0.1 goes to a trap and is counted (``reques
 
 from __future__ import annotations
 
-import importlib.util
 import os
-import sys
 import tempfile
 import time
 from pathlib import Path
 
+from _timing import load_module as _load
 from _timing import summarize
 
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULT = ("00_start_here", "03_relief_displacement", "05_fotoschema", "06_strip_triangulation", "13_soil_mapping")
 
 
-def _load(name: str, path: Path):
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _served_bytes(site: Path, requests) -> int:

@@ -68,3 +68,16 @@ def pytest_xdist_make_scheduler(config, log):
             return nodeid if Path(path).name in SPREAD else path
 
     return FileGroups(config, log)
+
+
+@pytest.fixture(params=["book style", "matplotlib defaults"])
+def plot_style(request):
+    """Run a figure test under the book's style (as in every notebook: a grid over the data) and under matplotlib's
+    defaults (the blitting tests: tests/test_blit.py, tests/test_blit_mosaic.py)."""
+    from aerophoto import plots
+
+    if request.param == "book style":
+        with plots.style_context():
+            yield request.param
+    else:
+        yield request.param

@@ -15,6 +15,8 @@ import pytest
 
 from aerophoto import plots
 
+pytestmark = pytest.mark.usefixtures("plot_style")
+
 #: (module, class, moves): each move a dict for demo.set and whether it must be blitted (False: something static
 #: changes — limits beyond the rounding, ticks — so it is a full draw; the picture must be right either way)
 DEMOS = [
@@ -60,16 +62,6 @@ ALLOWED = {
     # strip's right spine differ by ≤ 12 levels of 255 — cause not pinned down; the blitted moves match exactly
     "ReductionDemo": 20,
 }
-
-
-@pytest.fixture(autouse=True, params=["book style", "matplotlib defaults"])
-def _style(request):
-    """Under the book's style (as in every notebook: a grid over the data) and under matplotlib's defaults."""
-    if request.param == "book style":
-        with plots.style_context():
-            yield
-    else:
-        yield
 
 
 def _demo(module, cls, **values):

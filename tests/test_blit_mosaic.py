@@ -13,6 +13,9 @@ import numpy as np
 import pytest
 
 from aerophoto import plots
+from test_blit import _buffer, _demo, _ndiff, _unanimated  # the same comparisons as the other demos
+
+pytestmark = pytest.mark.usefixtures("plot_style")
 
 #: (module, class, moves): each move a dict for demo.set and whether it must be blitted (True), must be a full
 #: draw (False), or may be either (None: a plan change that may or may not move the axes' limits)
@@ -31,41 +34,6 @@ DEMOS = [
         ({"relief_m": 150, "preview": True}, None), ({"cut_shape": "zigzag", "preview": True}, None),
     ]),
 ]
-
-
-@pytest.fixture(autouse=True, params=["book style", "matplotlib defaults"])
-def _style(request):
-    if request.param == "book style":
-        with plots.style_context():
-            yield
-    else:
-        yield
-
-
-def _demo(module, cls, **values):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    mod = importlib.import_module(f"aerophoto.demos.{module}")
-    return getattr(mod, cls)(**values)
-
-
-def _buffer(fig):
-    return np.asarray(fig.canvas.buffer_rgba()).copy()
-
-
-def _unanimated(demo):
-    """The canvas after a full draw with no artist animated (blitting switched off), then blitting back on."""
-    demo.blitter.disconnect()
-    demo.fig.canvas.draw()
-    ref = _buffer(demo.fig)
-    demo.blitter = plots.Blitter(demo.fig, demo.animated)
-    demo.fig.canvas.draw()
-    return ref
-
-
-def _ndiff(a, b) -> int:
-    return int((np.abs(a.astype(int) - b.astype(int)).max(axis=2) > 0).sum())
 
 
 def _check_picture(demo, what):

@@ -39,8 +39,11 @@ DEFAULT = ("00_start_here", "03_relief_displacement", "05_fotoschema", "06_strip
 
 
 def _served_bytes(site: Path, requests) -> int:
+    """Bytes of the files sent in full (status 200; a 304 "not modified" answer sends none)."""
     total = 0
-    for _method, path, _t in requests:
+    for _method, path, _t, status in requests:
+        if status != 200:
+            continue
         p = site / path.split("?", 1)[0].lstrip("/")
         if p.is_dir():
             p = p / "index.html"

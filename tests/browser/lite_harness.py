@@ -64,7 +64,9 @@ class _Handler(http.server.SimpleHTTPRequestHandler):
                       ".zip": "application/zip", ".ipynb": "application/json"}
 
     def log_message(self, fmt, *args):  # quiet; the server counts instead
-        self.server.requests.append((self.command, self.path, time.monotonic()))
+        # log_request's arguments are (request line, status, size); an error's are others: status 0 then
+        status = int(args[1]) if len(args) >= 2 and str(args[1]).isdigit() else 0
+        self.server.requests.append((self.command, self.path, time.monotonic(), status))
 
     def end_headers(self):
         # like a plain static host: no caching instructions; the browser's own cache decides

@@ -274,3 +274,27 @@ def test_quality_takes_the_terrain_through_geometry():
     a = q.assess_flight(st)
     b = q.assess_flight(st, g.FlatTerrain(st.ground_Z_m))
     assert a.pairs_table().equals(b.pairs_table())
+
+
+def test_a_large_block_pushed_off_centre_is_flown_again_centred():
+    """f = 1100 mm with the worst bend and tilt pushed the block's footprints over the site's south edge (the
+    rough-mosaic demo showed an error for these slider values); the block is now flown again with its
+    footprints centred on the site — the same flight moved, nothing else changed."""
+    from aerophoto import site as site_mod
+    from aerophoto import simulate as sim
+    from aerophoto.demos import quality as qd
+
+    values = dict(f_mm=1100, px_percent=50, py_percent=10, max_tilt_deg=5.0, crab_deg=0.0, crab_jitter_deg=5.0,
+                  height_percent=2.0, curvature_percent=-4.0, seed=18)
+    res = qd.quality_model(**values)
+    site = site_mod.get_site()
+    fp = res.flight.footprints(site.mean_height_m)
+    x0, x1, y0, y1 = site.extent_m
+    assert fp[..., 0].min() >= x0 and fp[..., 0].max() <= x1 and fp[..., 1].min() >= y0 and fp[..., 1].max() <= y1
+    mid = np.array([fp[..., 0].min() + fp[..., 0].max(), fp[..., 1].min() + fp[..., 1].max()]) / 2.0
+    assert np.allclose(mid, site.centre_m, atol=1e-6)
+    # too large even when centred: the error stands, naming the site's size
+    from aerophoto.geometry import Camera
+
+    with pytest.raises(ValueError, match="do not fit the site"):
+        sim.block_over_site(site, Camera(f_mm=1100), 10000, 50, 10, 40, 2)

@@ -684,18 +684,35 @@ def block_over_site(
     alternate: bool = False,
     first_number: int = 1,
 ) -> Block:
-    """A block centred on the virtual site, H = f·m above its mean height (see :func:`strip_over_site`)."""
+    """A block centred on the virtual site, H = f·m above its mean height (see :func:`strip_over_site`).
+
+    If imperfections push the flown footprints over an edge, the block is flown again with its footprints
+    centred on the site; ValueError only if they do not fit even then.
+    """
     n = check_int_range("n_photos", n_photos, 1, MAX_PHOTOS)
     K = check_int_range("n_strips", n_strips, 1, MAX_STRIPS)
     B = photo_base_m(camera, m, px_percent)
     By = strip_spacing_m(camera, m, py_percent)
     if side not in ("left", "right"):
         raise ValueError(f"side = {side!r} is not valid; expected 'left' or 'right'")
-    start = _centred_start(site, n, B, K, By, azimuth_deg, side)
-    bl = fly_block(camera, m, px_percent, py_percent, n, K, start_m=start, azimuth_deg=azimuth_deg,
-                   ground_Z_m=site.mean_height_m, imperfections=imperfections, side=side,
-                   alternate=alternate, first_number=first_number)
-    _check_fits(site, bl)
+    start = np.asarray(_centred_start(site, n, B, K, By, azimuth_deg, side), float)
+
+    def fly(at):
+        return fly_block(camera, m, px_percent, py_percent, n, K, start_m=tuple(at), azimuth_deg=azimuth_deg,
+                         ground_Z_m=site.mean_height_m, imperfections=imperfections, side=side,
+                         alternate=alternate, first_number=first_number)
+
+    bl = fly(start)
+    try:
+        _check_fits(site, bl)
+    except ValueError:
+        # a large block whose imperfections (bend, tilt, crab) push its footprints off-centre: fly it again with
+        # its footprints centred on the site (on the mean-height plane they move with the start, exactly); if it
+        # still does not fit, it is too large for the site and the error stands
+        fp = bl.footprints(site.mean_height_m)
+        mid = np.array([fp[..., 0].min() + fp[..., 0].max(), fp[..., 1].min() + fp[..., 1].max()]) / 2.0
+        bl = fly(start + np.asarray(site.centre_m, float) - mid)
+        _check_fits(site, bl)
     return bl
 
 

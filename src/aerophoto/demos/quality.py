@@ -411,7 +411,9 @@ class QualityDemo(LiveDemo):
 
     It opens on the guide's camera (f = 100 mm, variant 00), never on the student's own: the crab limit in its
     table is task 02.2's answer.  f reaches 1100 mm, every variant of the guide's scheme (f = 100 + 10i mm);
-    at 1:10 000 even f = 1100 mm with the sliders' worst imperfections keeps every print on the site.
+    at 1:10 000 a block that its imperfections push over the site's edge is flown again centred
+    (:func:`aerophoto.simulate.block_over_site`); only the very largest (f = 1100 mm, p_y ≈ 10 %, the worst bend,
+    tilt and crab together — about 1 in 200 random extreme settings) stays too large, and the demo says so.
     The prints lie on a fixed board (:func:`board_extent_m`), so a move of an imperfection slider is blitted.
     """
 

@@ -435,6 +435,27 @@ def test_demo_says_when_it_flies_a_smaller_tilt_than_asked():
     d.close()
 
 
+def test_demo_flies_a_smaller_tilt_when_neighbours_would_share_no_tie_strip():
+    """f = 1100 mm at 1:8 000 and p_x = 80 %: the base is 288 m and a 5° tilt carries a photo ~770 m, so two
+    neighbours can share no strip for tie points (the assembly refused it and the demo showed an error); the
+    demo now flies a smaller tilt, a quarter degree at a time, and says so."""
+    from aerophoto.demos.fotoschema import fotoschema_model
+    from aerophoto import mosaic as mo
+
+    values = dict(f_mm=1100, m=8000, px_percent=80, seed=13, relief_m=45, cut_shape="straight")
+    r = fotoschema_model(alpha_max_deg=5.0, **values)
+    assert r.alpha_max_deg == 4.5 and "reduced from 5° to 4.50°" in r.note and "tie points" in r.note
+    assert r.fs.dI_mm.size > 0
+    # the tilt asked for really leaves no common strip (the reduction is needed), the reduced one does
+    from aerophoto import simulate as sim
+    from aerophoto import geometry as g
+
+    strip = sim.strip_over_site(r.ground, g.Camera(1100), 8000, 80, len(r.strip.shots),
+                                imperfections=sim.Imperfections(max_tilt_deg=4.75, seed=13))
+    with pytest.raises(ValueError, match="do not overlap enough"):
+        mo.assemble(strip, r.ground, cut_shape="straight", points_m=mo.catalogue_points(r.ground))
+
+
 def test_correction_sheet_writes_every_mismatch():
     from aerophoto.demos.fotoschema import correction_sheet
 

@@ -194,10 +194,24 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
         H = g.flying_height_m(f_mm, m)
         note = (f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at H = {H:,.0f} m a larger tilt would carry "
                 "the photos off the 10 × 5 km site").replace(",", " ")
-    imp = sim.Imperfections(max_tilt_deg=alpha, seed=int(seed))
-    strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos, imperfections=imp)
-    t1 = time.perf_counter()
-    fs = mo.assemble(strip, gr, cut_shape=cut_shape, points_m=mo.catalogue_points(gr))
+    asked = alpha
+    while True:
+        imp = sim.Imperfections(max_tilt_deg=alpha, seed=int(seed))
+        strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos, imperfections=imp)
+        t1 = time.perf_counter()
+        try:
+            fs = mo.assemble(strip, gr, cut_shape=cut_shape, points_m=mo.catalogue_points(gr))
+            break
+        except ValueError as exc:
+            # a large tilt at a small base (long f, large scale, high p_x) can leave two neighbours no common strip
+            # for tie points: fly a smaller tilt, a quarter degree at a time (at α = 0 the overlap is p_x itself)
+            if "do not overlap enough" not in str(exc) or alpha <= 0.0:
+                raise
+            alpha = max(0.0, math.floor(alpha * 4.0 - 1e-9) / 4.0 if alpha * 4.0 % 1.0 > 1e-9 else alpha - 0.25)
+    if alpha < asked - 1e-9:
+        note = (note + " " if note else "") + (
+            f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at p_x = {px_percent:g} % a larger tilt leaves two "
+            "neighbouring photos no common strip for their tie points")
     t2 = time.perf_counter()
     photos = None
     if prints == "render":

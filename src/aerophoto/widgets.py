@@ -42,7 +42,18 @@ from dataclasses import dataclass
 
 from ._validate import check_range
 
-__all__ = ["Param", "LiveDemo", "error_html"]
+__all__ = ["Param", "LiveDemo", "error_html", "running_loop"]
+
+
+def running_loop():
+    """The kernel's running asyncio event loop, or None (a plain script or a test): a demo that paints a quick
+    preview schedules its full picture, or its table, there; without a loop it does it at once."""
+    import asyncio
+
+    try:
+        return asyncio.get_running_loop()
+    except RuntimeError:
+        return None
 
 
 def error_html(exc: BaseException) -> str:

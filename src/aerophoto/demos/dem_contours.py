@@ -25,7 +25,7 @@ from matplotlib.collections import LineCollection
 from .. import dem
 from .. import plots
 from ..i18n import t
-from ..widgets import LiveDemo, Param, error_html
+from ..widgets import LiveDemo, Param, error_html, running_loop
 
 __all__ = ["SHEETS", "INTERVALS", "SheetCache", "sheet_cache", "ContourFrame", "contour_frame", "ContourView",
            "ContourDemo", "spacing_study_figure"]
@@ -211,16 +211,6 @@ def legend_html() -> str:
             "<div>● DEM nodes</div></div>")
 
 
-def _running_loop():
-    """The kernel's running asyncio event loop, or None (a plain script or test)."""
-    import asyncio
-
-    try:
-        return asyncio.get_running_loop()
-    except RuntimeError:
-        return None
-
-
 class ContourDemo(LiveDemo):
     """Live contours of a DEM of the site: grid step, structural lines, measurement error, interval, sheet.
 
@@ -266,7 +256,7 @@ class ContourDemo(LiveDemo):
         if self._pending is not None:
             self._pending.cancel()
             self._pending = None
-        loop = _running_loop()
+        loop = running_loop()
         if loop is None:  # a script or a test: full resolution at once
             self.update()
             return ""

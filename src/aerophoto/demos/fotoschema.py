@@ -75,7 +75,7 @@ from .. import plots
 from .. import simulate as sim
 from ..terrain import RescaledRelief
 from ..i18n import t as _t  # functions here name a local t
-from ..widgets import LiveDemo, Param, error_html
+from ..widgets import LiveDemo, Param, error_html, running_loop
 from .quality import table_after_picture
 
 __all__ = [
@@ -195,23 +195,20 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
         note = (f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at H = {H:,.0f} m a larger tilt would carry "
                 "the photos off the 10 × 5 km site").replace(",", " ")
     asked = alpha
-    while True:
-        imp = sim.Imperfections(max_tilt_deg=alpha, seed=int(seed))
-        strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos, imperfections=imp)
+    while True:  # a large tilt at a small base can leave two neighbours no common strip for their tie points:
+        strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos,  # then fly a smaller one, 0.25° at a time
+                                    imperfections=sim.Imperfections(max_tilt_deg=alpha, seed=int(seed)))
         t1 = time.perf_counter()
         try:
             fs = mo.assemble(strip, gr, cut_shape=cut_shape, points_m=mo.catalogue_points(gr))
             break
         except ValueError as exc:
-            # a large tilt at a small base (long f, large scale, high p_x) can leave two neighbours no common strip
-            # for tie points: fly a smaller tilt, a quarter degree at a time (at α = 0 the overlap is p_x itself)
             if "do not overlap enough" not in str(exc) or alpha <= 0.0:
                 raise
-            alpha = max(0.0, math.floor(alpha * 4.0 - 1e-9) / 4.0 if alpha * 4.0 % 1.0 > 1e-9 else alpha - 0.25)
+            alpha = max(0.0, math.ceil(alpha * 4.0 - 1.0 - 1e-9) / 4.0)
     if alpha < asked - 1e-9:
-        note = (note + " " if note else "") + (
-            f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at p_x = {px_percent:g} % a larger tilt leaves two "
-            "neighbouring photos no common strip for their tie points")
+        note = (note + " " if note else "") + (f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at p_x = "
+                f"{px_percent:g} % a larger tilt leaves two neighbouring photos no common strip for their tie points")
     t2 = time.perf_counter()
     photos = None
     if prints == "render":
@@ -383,16 +380,6 @@ def _set_limits(ax, xlim, ylim) -> None:  # only when they change (matplotlib ma
 
 
 # =========================================================================== the live demo
-def _running_loop():
-    """The kernel's running asyncio event loop, or None (a plain script or test)."""
-    import asyncio
-
-    try:
-        return asyncio.get_running_loop()
-    except RuntimeError:
-        return None
-
-
 class FotoschemaDemo(LiveDemo):
     """Live single-strip fotoschema: f, scale, tilt, relief and overlap → sheet, seams, m and mean scale.
 
@@ -495,7 +482,7 @@ class FotoschemaDemo(LiveDemo):
 
     def _schedule_full(self) -> None:
         self._cancel_pending()
-        loop = _running_loop()
+        loop = running_loop()
         if loop is None:  # no event loop (a script or a test): render in full at once
             self._settle()
             return
@@ -525,7 +512,7 @@ class FotoschemaDemo(LiveDemo):
         r = getattr(self, "result", None)
         if r is None or not r.preview:
             return
-        loop = _running_loop()
+        loop = running_loop()
         steps = mo.sheet_raster_bands(r.fs, r.ground, self.full_px_per_mm,
                                       band_px=self.band_px if loop is not None else None)
         self._glue_step(r, steps, loop, time.perf_counter())

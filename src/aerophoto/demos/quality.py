@@ -41,7 +41,7 @@ from .. import geometry as g
 from .. import plots
 from .. import quality as q
 from .. import simulate as sim
-from ..widgets import LiveDemo, Param
+from ..widgets import LiveDemo, Param, running_loop
 
 __all__ = ["QualityResult", "quality_model", "rough_mosaic_raster", "board_extent_m", "RoughMosaicView",
            "QualityDemo", "verdict_html", "crab_limit_plot", "table_after_picture"]
@@ -464,7 +464,6 @@ def table_after_picture(demo, html, *args) -> None:
     running kernel the table follows :data:`TABLE_DELAY_S` later (a newer move replaces a pending table); without
     an event loop (a script, a test) it is set at once.
     """
-    import asyncio
 
     pending = getattr(demo, "_table_pending", None)
     if pending is not None:
@@ -475,9 +474,8 @@ def table_after_picture(demo, html, *args) -> None:
         demo._table_pending = None
         demo.table.value = html(*args)
 
-    try:
-        loop = asyncio.get_running_loop()
-    except RuntimeError:
+    loop = running_loop()
+    if loop is None:
         fill()
         return
     demo._table_pending = loop.call_later(TABLE_DELAY_S, fill)

@@ -32,7 +32,7 @@ from .. import plots
 from .. import projective as pj
 from .. import rectify as rf
 from ..i18n import t as _t  # functions here name a local t
-from ..widgets import LiveDemo, Param
+from ..widgets import LiveDemo, Param, running_loop
 
 __all__ = ["EXAMPLE", "TransformerResult", "transformer_model", "TransformerView", "TransformerDemo",
            "rectified_figure", "residual_field"]
@@ -298,7 +298,7 @@ class TransformerDemo(LiveDemo):
             self.update()
         finally:
             self._preview = False
-        loop = _running_loop()
+        loop = running_loop()
         if loop is None:
             self.update()
             return ""
@@ -310,15 +310,6 @@ class TransformerDemo(LiveDemo):
     def _settle(self):
         self._pending = None
         self.update()
-
-
-def _running_loop():
-    import asyncio
-
-    try:
-        return asyncio.get_running_loop()
-    except RuntimeError:
-        return None
 
 
 # =========================================================================== rectified photo against the truth

@@ -22,7 +22,7 @@ import contextlib
 import io
 import time
 
-from _timing import summarize
+from _timing import summarize, time_demo_moves
 
 
 def _cycle(n: int):
@@ -143,35 +143,15 @@ def _lab(quick: bool) -> dict:
 
 
 def _run(quick: bool) -> dict:
-    import numpy as np
-    from PIL import Image
-
     from aerophoto.demos.displacement import DisplacementDemo
 
     n = 20 if quick else 60
     changes = _cycle(n)
     demo = DisplacementDemo()
-    canvas = demo.fig.canvas
-    canvas.draw_idle = lambda *a, **k: None  # ipympl: draw_idle only schedules; the forced draw below counts
-    demo.draw(force=True)
     for ch in changes[:3]:  # warm-up
         demo.set(**ch)
-        demo.draw(force=True)
     demo.reset()
-
-    live, live_png, kernel = [], [], []
-    for ch in changes:
-        t0 = time.perf_counter()
-        demo.set(**ch)
-        t1 = time.perf_counter()
-        demo.draw(force=True)
-        t2 = time.perf_counter()
-        buf = io.BytesIO()
-        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(buf, format="png")
-        t3 = time.perf_counter()
-        kernel.append(t1 - t0)
-        live.append(t2 - t0)
-        live_png.append(t3 - t0)
+    moves = time_demo_moves(demo, changes)  # set + forced Agg draw + PNG frame per change (benchmarks/_timing.py)
     n_updates = demo.n_updates
 
     values = dict(demo.values)
@@ -184,13 +164,12 @@ def _run(quick: bool) -> dict:
         naive.append(time.perf_counter() - t0)
     demo.close()
 
-    s_live, s_png, s_naive = summarize(live), summarize(live_png), summarize(naive)
-    w, h = canvas.get_width_height()
+    s_live, s_png, s_naive = moves["live_set_plus_agg_draw"], moves["live_plus_png_encode"], summarize(naive)
     return {
         "slider_changes": n,
-        "figure_px": [w, h],
+        "figure_px": moves["figure_px"],
         "n_updates": n_updates,
-        "compute_render_only": summarize(kernel),
+        "compute_render_only": moves["compute_render_only"],
         "live_set_plus_agg_draw": s_live,
         "live_plus_png_encode": s_png,
         "naive_new_figure_png": s_naive,

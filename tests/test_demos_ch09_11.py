@@ -156,6 +156,25 @@ def test_transformer_demo_preview_on_slider_then_full():
     d.close()
 
 
+def test_transformer_demo_in_a_kernel_previews_then_settles_and_says_so():
+    import asyncio
+
+    async def drive():
+        d = dr.TransformerDemo()
+        d.values["alpha_deg"] = 4.0
+        d.status.value = d.on_slider()  # as a slider move does, in a running kernel
+        seen = [d.result.preview, "aerophoto-pending" in d.status.value]
+        t0 = asyncio.get_running_loop().time()
+        while d._later is not None:  # until the settle timer has fired (a loaded machine may take a while)
+            assert asyncio.get_running_loop().time() - t0 < 30, "the full render never came"
+            await asyncio.sleep(0.02)
+        seen += [d.result.preview, d.status.value, d.result.screen.pixel == dr.SCREEN_PIXEL_MM]
+        d.close()
+        return seen
+
+    assert asyncio.run(drive()) == [True, True, False, "", True]
+
+
 @pytest.mark.parametrize("values", _extremes(dr.TransformerDemo))
 def test_transformer_model_never_fails_in_range(values):
     r = dr.transformer_model(**{**{p.name: p.default for p in dr.TransformerDemo.params}, **values}, preview=True)

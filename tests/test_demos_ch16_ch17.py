@@ -125,6 +125,16 @@ def test_contour_demo_previews_while_dragging_and_settles_in_full():
         await asyncio.sleep(demo.settle_s + 0.4)
         assert demo.result.cache.cell_m == 5.0 and demo.status.value == ""
         assert demo.result.result.dem.n_nodes == 16 * 16
+        # Reset while a full render is pending: the start values in full, the note gone, nothing left to run
+        demo.values["spacing_m"] = 90
+        demo.status.value = demo.on_slider()  # as a slider move does
+        assert "aerophoto-pending" in demo.status.value and demo._later is not None
+        n = demo.n_updates
+        demo._on_reset()  # what the Reset button does
+        assert demo._later is None and demo.status.value == "" and demo.values["spacing_m"] == 30
+        assert demo.result.cache.cell_m == 5.0 and demo.n_updates == n + 1
+        await asyncio.sleep(demo.settle_s + 0.2)
+        assert demo.n_updates == n + 1  # the dropped full render never ran
         demo.close()
 
     asyncio.run(drive())

@@ -344,7 +344,7 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
 
     async def until_full(timeout_s=20.0):
         t0 = asyncio.get_running_loop().time()
-        while d.result.preview or d._pending is not None:
+        while d.result.preview or d._later is not None:
             assert asyncio.get_running_loop().time() - t0 < timeout_s, "the full render never came"
             await asyncio.sleep(0.01)
 
@@ -353,14 +353,16 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
         seen.append(d.result.preview)
         ctl["relief_m"].value = 65.0  # a second event restarts the settle timer
         seen.append(d.result.preview)
-        seen.append(d._pending is not None)
+        seen.append(d._later is not None)
+        seen.append("aerophoto-pending" in d.status.value)  # the status line says a full picture is coming
         await until_full()
         seen.append(d.result.preview)
-        seen.append(d._pending is None)
+        seen.append(d._later is None)
+        seen.append(d.status.value)  # and clears when it came
 
     n0 = d.n_updates
     asyncio.run(drive())
-    assert seen == [True, True, True, False, True]
+    assert seen == [True, True, True, True, False, True, ""]
     assert d.n_updates - n0 == 3  # two previews, one full render
     assert d.values["relief_m"] == 65.0
     # the banded full render is the full-resolution model, pixel for pixel (to the ray tolerance)
@@ -374,10 +376,10 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
 
     async def interrupt():
         ctl["relief_m"].value = 70.0
-        while d._pending is None or isinstance(d._pending, asyncio.TimerHandle):
+        while d._later is None or isinstance(d._later, asyncio.TimerHandle):
             await asyncio.sleep(0.001)  # until the settle timer has fired and the glueing has begun
         await asyncio.sleep(0)  # a band or two more
-        assert d.result.preview and d._pending is not None  # still glueing
+        assert d.result.preview and d._later is not None  # still glueing
         n = d.n_updates
         ctl["relief_m"].value = 75.0
         seen2.append((d.n_updates - n, d.result.preview, d.values["relief_m"]))
@@ -387,6 +389,19 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
     seen2 = []
     asyncio.run(interrupt())
     assert seen2 == [(1, True, 75.0), (2, False)]  # one preview for 75, then one full render (70's was dropped)
+
+    # Reset while the full render is pending: the reset values at full resolution, final, nothing left to run
+    async def reset_while_pending():
+        ctl["relief_m"].value = 80.0
+        assert d._later is not None and d.result.preview
+        d._on_reset()  # what the Reset button does
+        after = (d._later, d.result.preview, d.values["relief_m"], d.status.value, d.n_updates)
+        await asyncio.sleep(3 * d.settle_s)
+        return after, d.n_updates
+
+    (later, preview, relief, status, n), n_end = asyncio.run(reset_while_pending())
+    assert (later, preview, relief, status) == (None, False, 30.0, "")
+    assert n_end == n  # the dropped full render did not run after the reset
     # without an event loop (a plain script) a slider event renders in full at once
     ctl["px_percent"].value = 65
     assert not d.result.preview and d.values["px_percent"] == 65

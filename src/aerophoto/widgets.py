@@ -42,7 +42,7 @@ from dataclasses import dataclass
 
 from ._validate import check_range
 
-__all__ = ["Param", "LiveDemo", "error_html", "running_loop"]
+__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE"]
 
 
 def running_loop():
@@ -54,6 +54,21 @@ def running_loop():
         return asyncio.get_running_loop()
     except RuntimeError:
         return None
+
+
+#: the status line while a demo's full-resolution picture waits for the slider to rest
+PREVIEW_NOTE = "preview — full resolution when the slider rests"
+
+
+def pending_html(message: str = PREVIEW_NOTE) -> str:
+    """A demo's status line while work is scheduled (:meth:`LiveDemo.later`), in the reader's language.
+
+    The span's class ``aerophoto-pending`` marks it: the status clears itself when the work is done, and the
+    browser tests wait for it to go before they read a demo's table.
+    """
+    from .i18n import t
+
+    return f"<span class='aerophoto-pending' style='color:#777777'>{t(message)}</span>"
 
 
 def error_html(exc: BaseException) -> str:
@@ -190,6 +205,8 @@ class LiveDemo:
     #: the artists a move changes (lines, markers, whole Axes whose limits move), set in :meth:`build`;
     #: when given, a move redraws only these over a cached picture of the rest (:class:`plots.Blitter`)
     animated: tuple = ()
+    #: the handle of the work scheduled by :meth:`later` (None: nothing scheduled)
+    _later = None
 
     def __init__(self, **values):
         import ipywidgets as w
@@ -250,16 +267,60 @@ class LiveDemo:
         return out
 
     def set(self, **values):
-        """Change parameters from code, as if the sliders were moved; returns self."""
+        """Change parameters from code, as if the sliders were moved; returns self.
+
+        Always at full resolution and final: work a slider move scheduled (:meth:`later`) is dropped.
+        """
         checked = self._checked(values)
         self.values.update(checked)
         self._sync_controls(checked)
+        self.cancel_later()
         self.update()
         return self
 
     def reset(self):
         """Back to where the demo started (the values it was built with, else the defaults)."""
         return self.set(**self.start_values)
+
+    def later(self, delay_s: float, fn) -> bool:
+        """Run ``fn()`` once, ``delay_s`` seconds from now, on the kernel's event loop; returns True if scheduled.
+
+        Whatever was scheduled before is dropped (a newer slider move supersedes
+        an older one's full picture); :meth:`set`, Reset and :meth:`close` drop it
+        too.  ``fn`` may schedule the next piece of work itself.  When the work
+        is done the status line's :func:`pending_html` note is cleared; a failure
+        is shown there instead.  Without a running loop (a script, a test)
+        ``fn`` runs at once and False is returned.
+        """
+        self._drop_later()
+        loop = running_loop()
+        if loop is None:
+            fn()
+            return False
+
+        def run():
+            self._later = None
+            try:
+                fn()
+            except Exception as exc:  # never let a callback die silently
+                self.status.value = error_html(exc)
+                return
+            if self._later is None and "aerophoto-pending" in self.status.value:
+                self.status.value = ""
+
+        self._later = loop.call_soon(run) if delay_s <= 0 else loop.call_later(delay_s, run)
+        return True
+
+    def _drop_later(self) -> None:
+        if self._later is not None:
+            self._later.cancel()
+            self._later = None
+
+    def cancel_later(self) -> None:
+        """Drop the work scheduled by :meth:`later`, if any, and its note on the status line."""
+        self._drop_later()
+        if "aerophoto-pending" in self.status.value:
+            self.status.value = ""
 
     def update(self) -> None:
         """Recompute with the current values, move the artists, draw once."""
@@ -322,6 +383,12 @@ class LiveDemo:
         except Exception as exc:  # never let a callback die silently
             self.status.value = error_html(exc)
 
+    def _on_reset(self) -> None:
+        try:
+            self.reset()
+        except Exception as exc:  # never let a callback die silently
+            self.status.value = error_html(exc)
+
     def controls(self) -> dict:
         """The slider widgets, name → widget (created on first call)."""
         if not self._controls:
@@ -360,7 +427,7 @@ class LiveDemo:
             column.append(w.VBox(head + items, layout=w.Layout(margin="0 0 6px 0")))
         reset = w.Button(description=t("Reset"), icon="undo", tooltip=t("Back to the starting values"),
                          layout=w.Layout(width="110px"))
-        reset.on_click(lambda _b: self.reset())
+        reset.on_click(lambda _b: self._on_reset())
         self.reset_button = reset
         column += [reset, self.status, self.table]
         left = w.VBox(column, layout=w.Layout(width="350px", min_width="350px", margin="0 12px 0 0"))
@@ -384,6 +451,7 @@ class LiveDemo:
         """Close the figure and widgets (frees the kernel side)."""
         import matplotlib.pyplot as plt
 
+        self.cancel_later()
         with contextlib.suppress(Exception):
             plt.close(self.fig)
         if self._layout is not None:

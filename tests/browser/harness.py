@@ -644,13 +644,22 @@ class DemoProbe:
                                    return !!t && t.innerText !== t0 && window.__aero.draws > d0; }""",
             arg=[self.root.element_handle(), table0, draws0], timeout=T_MOVE, polling=50,
         )
-        self.settle()
+        self.wait_idle()
         return {"value_before": value0, "value_after": self.readout(label), "table_before": table0,
                 "table_after": self.table_text(), "png_before": png0, "png_after": self.canvas_png()}
 
     def settle(self, quiet_ms: int = 300) -> None:
         """Wait until the figure has not been redrawn for ``quiet_ms`` (the update has finished)."""
         settle(self.page, quiet_ms)
+
+    def wait_idle(self) -> None:
+        """Wait until the demo has no work scheduled (its status line's ``aerophoto-pending`` note, shown while a
+        full-resolution picture waits for the slider to rest, is gone), then until the figure is quiet."""
+        self.page.wait_for_function(
+            "(el) => !el.querySelector('.aerophoto-pending')",
+            arg=self.root.element_handle(), timeout=T_MOVE, polling=50,
+        )
+        self.settle()
 
 
 def settle(page, quiet_ms: int = 300) -> None:

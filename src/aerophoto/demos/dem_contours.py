@@ -25,7 +25,7 @@ from matplotlib.collections import LineCollection
 from .. import dem
 from .. import plots
 from ..i18n import t
-from ..widgets import LiveDemo, Param, error_html, running_loop
+from ..widgets import LiveDemo, Param, pending_html, running_loop
 
 __all__ = ["SHEETS", "INTERVALS", "SheetCache", "sheet_cache", "ContourFrame", "contour_frame", "ContourView",
            "ContourDemo", "spacing_study_figure"]
@@ -239,7 +239,6 @@ class ContourDemo(LiveDemo):
     settle_s = 0.35
 
     def build(self):
-        self._pending = None
         self._preview = False
         self.view = ContourView(colorbar=False)  # the colour scale is in the HTML legend (no redraw)
         self.fig = self.view.fig
@@ -253,11 +252,8 @@ class ContourDemo(LiveDemo):
 
     def on_slider(self) -> str:
         """A slider moved: the coarse raster now, the full one when the slider rests."""
-        if self._pending is not None:
-            self._pending.cancel()
-            self._pending = None
-        loop = running_loop()
-        if loop is None:  # a script or a test: full resolution at once
+        self.cancel_later()
+        if running_loop() is None:  # a script or a test: full resolution at once
             self.update()
             return ""
         self._preview = True
@@ -265,22 +261,8 @@ class ContourDemo(LiveDemo):
             self.update()
         finally:
             self._preview = False
-        self._pending = loop.call_later(self.settle_s, self._settle)
-        return "<span style='color:#777777'>preview (10 m raster) — full resolution when the slider rests</span>"
-
-    def _settle(self) -> None:
-        self._pending = None
-        try:
-            self.update()
-            self.status.value = ""
-        except Exception as exc:  # never let a callback die silently
-            self.status.value = error_html(exc)
-
-    def close(self) -> None:
-        if self._pending is not None:
-            self._pending.cancel()
-            self._pending = None
-        super().close()
+        self.later(self.settle_s, self.update)
+        return pending_html("preview (10 m raster) — full resolution when the slider rests")
 
     def render(self, frame: ContourFrame):
         self.view.update(frame)

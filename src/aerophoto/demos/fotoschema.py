@@ -75,7 +75,7 @@ from .. import plots
 from .. import simulate as sim
 from ..terrain import RescaledRelief
 from ..i18n import t as _t  # functions here name a local t
-from ..widgets import LiveDemo, Param, error_html, running_loop
+from ..widgets import LiveDemo, Param, pending_html, running_loop
 from .quality import table_after_picture
 
 __all__ = [
@@ -415,10 +415,7 @@ class FotoschemaDemo(LiveDemo):
     #: pixels glued per event-loop turn in the full-resolution render (see :meth:`_settle`)
     band_px = 60_000
 
-    def __init__(self, **values):
-        self._preview = False
-        self._pending = None
-        super().__init__(**values)
+    _preview = False
 
     # ---- LiveDemo hooks
     def build(self):
@@ -464,39 +461,28 @@ class FotoschemaDemo(LiveDemo):
         checked = self._checked(values)
         self.values.update(checked)
         self._sync_controls(checked)
-        self._cancel_pending()
+        self.cancel_later()
         self.update(preview=preview)
         return self
 
-    def _cancel_pending(self):
-        if self._pending is not None:
-            self._pending.cancel()
-            self._pending = None
-
     def on_slider(self) -> str:
         """A slider moved: preview now, full resolution once the slider rests."""
+        self.cancel_later()
         self.update(preview=True)
-        self.status.value = "<span style='color:#777777'>preview — full resolution when the slider rests</span>"
-        self._schedule_full()  # without an event loop this renders in full at once and clears the status
-        return self.status.value
-
-    def _schedule_full(self) -> None:
-        self._cancel_pending()
-        loop = running_loop()
-        if loop is None:  # no event loop (a script or a test): render in full at once
-            self._settle()
-            return
-        self._pending = loop.call_later(self.settle_s, self._settle)
+        # without an event loop (a script or a test) the full picture is glued at once
+        if self.later(self.settle_s, self._settle):
+            return pending_html()
+        return ""
 
     def render_full(self) -> None:
         """Glue the shown preview at full resolution now, in one go (what the settle timer does once the slider
         rests; deterministic, for tests and benchmarks).  Nothing happens if the full picture is shown already."""
-        self._cancel_pending()
+        self.cancel_later()
         r = getattr(self, "result", None)
         if r is None or not r.preview:
             return
         steps = mo.sheet_raster_bands(r.fs, r.ground, self.full_px_per_mm, band_px=None)
-        self._glue_step(r, steps, None, time.perf_counter())
+        self._glue_step(r, steps, False, time.perf_counter())
 
     def _settle(self) -> None:
         """The slider rests: glue the shown fotoschema again at full resolution, a band per loop turn.
@@ -504,40 +490,31 @@ class FotoschemaDemo(LiveDemo):
         The strip and its assembly are the preview's (same values, same
         result); only the sheet raster is redone, by
         :func:`aerophoto.mosaic.sheet_raster_bands`.  With a running event
-        loop each band (about ``band_px`` pixels, some 20 ms) is one callback,
-        so a slider moved meanwhile is served after at most one band and
-        cancels the rest; without a loop all bands run at once.
+        loop each band (about ``band_px`` pixels, some 20 ms) is one callback
+        (:meth:`later`), so a slider moved meanwhile is served after at most
+        one band and cancels the rest; without a loop all bands run at once.
         """
-        self._pending = None
         r = getattr(self, "result", None)
         if r is None or not r.preview:
             return
-        loop = running_loop()
+        stepwise = running_loop() is not None
         steps = mo.sheet_raster_bands(r.fs, r.ground, self.full_px_per_mm,
-                                      band_px=self.band_px if loop is not None else None)
-        self._glue_step(r, steps, loop, time.perf_counter())
+                                      band_px=self.band_px if stepwise else None)
+        self._glue_step(r, steps, stepwise, time.perf_counter())
 
-    def _glue_step(self, r: FotoschemaResult, steps, loop, t0: float) -> None:
-        self._pending = None
-        try:
-            image, extent, rows_done = next(steps)
-            if rows_done < image.shape[0]:
-                if loop is None:
-                    for image, extent, rows_done in steps:
-                        pass
-                else:
-                    self._pending = loop.call_soon(self._glue_step, r, steps, loop, t0)
-                    return
-            full = dataclasses.replace(r, image=image, extent_mm=extent, px_per_mm=float(self.full_px_per_mm),
-                                       preview=False, timings_s={**r.timings_s, "glue": time.perf_counter() - t0})
-            self.show(full)
+    def _glue_step(self, r: FotoschemaResult, steps, stepwise: bool, t0: float) -> None:
+        image, extent, rows_done = next(steps)
+        if rows_done < image.shape[0]:
+            if stepwise:
+                self.later(0.0, lambda: self._glue_step(r, steps, stepwise, t0))
+                return
+            for image, extent, rows_done in steps:
+                pass
+        full = dataclasses.replace(r, image=image, extent_mm=extent, px_per_mm=float(self.full_px_per_mm),
+                                   preview=False, timings_s={**r.timings_s, "glue": time.perf_counter() - t0})
+        self.show(full)
+        if "aerophoto-pending" in self.status.value:
             self.status.value = ""
-        except Exception as exc:
-            self.status.value = error_html(exc)
-
-    def close(self) -> None:
-        self._cancel_pending()
-        super().close()
 
 
 # =========================================================================== static sheets

@@ -32,7 +32,7 @@ from .. import plots
 from .. import projective as pj
 from .. import rectify as rf
 from ..i18n import t as _t  # functions here name a local t
-from ..widgets import LiveDemo, Param, running_loop
+from ..widgets import LiveDemo, Param, pending_html, running_loop
 
 __all__ = ["EXAMPLE", "TransformerResult", "transformer_model", "TransformerView", "TransformerDemo",
            "rectified_figure", "residual_field"]
@@ -293,23 +293,17 @@ class TransformerDemo(LiveDemo):
 
     def on_slider(self) -> str:
         """Photo sliders: a preview render at once, the full resolution when the slider rests (the step slider is cheap)."""
+        self.cancel_later()
+        if running_loop() is None:  # a script or a test: full resolution at once
+            self.update()
+            return ""
         self._preview = True
         try:
             self.update()
         finally:
             self._preview = False
-        loop = running_loop()
-        if loop is None:
-            self.update()
-            return ""
-        if getattr(self, "_pending", None) is not None:
-            self._pending.cancel()
-        self._pending = loop.call_later(0.25, self._settle)
-        return ""
-
-    def _settle(self):
-        self._pending = None
-        self.update()
+        self.later(0.25, self.update)
+        return pending_html()
 
 
 # =========================================================================== rectified photo against the truth

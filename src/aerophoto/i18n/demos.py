@@ -383,8 +383,10 @@ _WIDGETS = {
     # aerophoto.widgets.LiveDemo
     "Reset": "Сброс",
     "Back to the starting values": "Вернуть начальные значения",
-    "<span style='color:#777777'>preview — full resolution when the slider rests</span>":
-        "<span style='color:#777777'>предпросмотр — полное разрешение, когда ползунок остановится</span>",
+    # aerophoto.widgets.pending_html: the status line while the full picture waits for the slider to rest
+    "preview — full resolution when the slider rests": "предпросмотр — полное разрешение, когда ползунок остановится",
+    "preview (10 m raster) — full resolution when the slider rests":
+        "предпросмотр (растр 10 м) — полное разрешение, когда ползунок остановится",
 }
 
 #: English → Russian

@@ -37,6 +37,7 @@ the extension into the servers' private data folder, so neither the .venv nor en
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -287,7 +288,8 @@ def _bytes_counter(page) -> list:
     return sizes
 
 
-def _measure(h, browser, server, notebook, root_of, n, rest_ms, shot: Path, *, lab: bool) -> dict:
+def _measure(h, browser, server, notebook, root_of, n, rest_ms, shot: Path, *, lab: bool, label: str = LABEL) -> dict:
+    """Time ``n`` moves of the slider ``label`` inside ``root_of(page)``; bytes received per move, a screenshot."""
     page, log = h.new_page(browser)
     try:
         sizes = _bytes_counter(page)
@@ -300,7 +302,7 @@ def _measure(h, browser, server, notebook, root_of, n, rest_ms, shot: Path, *, l
         root.wait_for(state="visible", timeout=h.T_RUN)
         root.scroll_into_view_if_needed()
         h.settle(page, 1000)
-        slider = h.slider_in(page, root, LABEL)
+        slider = h.slider_in(page, root, label)
 
         def after_move():
             h.settle(page, rest_ms)
@@ -326,6 +328,28 @@ def _measure(h, browser, server, notebook, root_of, n, rest_ms, shot: Path, *, l
             server.shutdown_kernels()
 
 
+@contextlib.contextmanager
+def _kernels_see_anywidget():
+    """While servers are started inside: their kernels find anywidget (PYTHONPATH), the project's .venv untouched."""
+    old_pp = os.environ.get("PYTHONPATH")
+    os.environ["PYTHONPATH"] = os.pathsep.join([str(ANYWIDGET_DIR)] + ([old_pp] if old_pp else []))
+    try:
+        yield
+    finally:
+        if old_pp is None:
+            os.environ.pop("PYTHONPATH", None)
+        else:
+            os.environ["PYTHONPATH"] = old_pp
+
+
+def _voila_root(page, demo):
+    """A chapter demo's root on a Voilà page (no cell ids there): the ``demo.nth`` demo with its sliders."""
+    loc = page.locator(".aerophoto-demo")
+    for label, _k in demo.sliders:
+        loc = loc.filter(has=page.locator(f'.widget-label:text-is("{label}")'))
+    return loc.nth(demo.nth)
+
+
 def run(quick: bool = False) -> dict:
     _anywidget_ready()
     h = _load("aerophoto_browser_harness", ROOT / "tests" / "browser" / "harness.py")
@@ -344,16 +368,15 @@ def run(quick: bool = False) -> dict:
                                   "installed_to": str(ANYWIDGET_DIR),
                                   "project_environment_changed": False},
            "jupyterlab": {}, "voila": {}}
-    old_pp = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = os.pathsep.join([str(ANYWIDGET_DIR)] + ([old_pp] if old_pp else []))
     servers = []
     try:
         lab = _with_anywidget(h.LabServer())
         _write_alt(lab.root_dir)
         voila = _with_anywidget(h.VoilaServer(lab.root_dir))
-        for s in (lab, voila):
-            s.start()
-            servers.append(s)
+        with _kernels_see_anywidget():
+            for s in (lab, voila):
+                s.start()
+                servers.append(s)
         with sync_playwright() as pw:
             browser = h.launch_chromium(pw)
             try:
@@ -361,10 +384,7 @@ def run(quick: bool = False) -> dict:
                     return page.locator(".aerophoto-alt").first
 
                 def voila_root(page):
-                    loc = page.locator(".aerophoto-demo")
-                    for label, _k in demo.sliders:
-                        loc = loc.filter(has=page.locator(f'.widget-label:text-is("{label}")'))
-                    return loc.nth(demo.nth)
+                    return _voila_root(page, demo)
 
                 for where, server, is_lab in (("jupyterlab", lab, True), ("voila", voila, False)):
                     mpl_root = (lambda page: h.lab_demo_root(page, demo.cell)) if is_lab else voila_root
@@ -382,10 +402,6 @@ def run(quick: bool = False) -> dict:
             print(f"--- {s.kind} server log ({s.root_dir}):\n{s.log_tail(40)}", file=sys.stderr)
         raise
     finally:
-        if old_pp is None:
-            os.environ.pop("PYTHONPATH", None)
-        else:
-            os.environ["PYTHONPATH"] = old_pp
         for s in servers:
             s.stop()
             shutil.rmtree(s.tmp, ignore_errors=True)

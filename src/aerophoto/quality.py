@@ -249,7 +249,28 @@ def height_deviation_percent(H_m, H_design_m: float):
 
 
 # =========================================================================== measuring on the photos
-def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, samples: int = 41) -> float:
+def _o_ground(camera: g.Camera, pose: g.Pose, dem, cache: dict | None) -> np.ndarray:
+    """The ground point of a photo's principal point o (its ray cut with the terrain), metres, shape (3,).
+
+    ``cache`` (a dict, or None) is shared by the measurements of one assessment on one terrain, so that each
+    photo's o is intersected once, not once per measurement that needs it; the values are the same.
+    """
+    if cache is None:
+        return g.photo_to_dem(camera, pose, np.zeros(2), g.as_terrain(dem))
+    G = cache.get(pose)
+    if G is None:
+        G = cache[pose] = g.photo_to_dem(camera, pose, np.zeros(2), g.as_terrain(dem))
+    return G
+
+
+def _o_in(camera: g.Camera, pose_from: g.Pose, pose_to: g.Pose, dem, cache: dict | None) -> np.ndarray:
+    """``pose_from``'s principal point transferred onto the photo taken from ``pose_to``, mm (as
+    :func:`aerophoto.geometry.transfer_points` of (0, 0))."""
+    return g.ground_to_photo(camera, pose_to, _o_ground(camera, pose_from, dem, cache))
+
+
+def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, samples: int = 41,
+                    nadirs: dict | None = None) -> float:
     """Width of the overlap of photo A with its neighbour B, measured on A as on a rough mosaic, mm.
 
     On the rough mosaic the technician measures, along the line of the
@@ -261,13 +282,15 @@ def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, sa
     line through A's principal point.  Works for the forward overlap (a) and
     for the side overlap between strips (c) alike.
 
+    ``nadirs`` (optional dict) keeps the photos' principal ground points between calls on the same terrain.
+
     Returns
     -------
     float : a (or c) in mm; negative if the photos leave a gap.
     """
     h = camera.half_mm
-    ob_in_a = g.transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
-    oa_in_b = g.transfer_points(camera, pose_a, pose_b, np.zeros(2), dem)
+    ob_in_a = _o_in(camera, pose_b, pose_a, dem, nadirs)
+    oa_in_b = _o_in(camera, pose_a, pose_b, dem, nadirs)
     k, s = g.photo_axis_towards(ob_in_a)
     kb, sb = g.photo_axis_towards(oa_in_b)
     t = np.linspace(-h, h, check_int_range("samples", samples, 2, 10_001))
@@ -286,16 +309,17 @@ def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, sa
     return h - s * pos
 
 
-def measure_base(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem) -> tuple[float, float]:
+def measure_base(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *,
+                 nadirs: dict | None = None) -> tuple[float, float]:
     """The photo bases b1 (on A) and b2 (on B) of a pair, mm (guide §3, item 4, figure 5).
 
     Each photo's principal point is transferred onto the neighbour through
     its ground point (the guide transfers it by linear intersection,
     линейная засечка); b1 is the distance on A from o_A to the transferred
-    o_B, b2 the distance on B from o_B to the transferred o_A.
+    o_B, b2 the distance on B from o_B to the transferred o_A.  ``nadirs``: as in :func:`measure_overlap`.
     """
-    ob_in_a = g.transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
-    oa_in_b = g.transfer_points(camera, pose_a, pose_b, np.zeros(2), dem)
+    ob_in_a = _o_in(camera, pose_b, pose_a, dem, nadirs)
+    oa_in_b = _o_in(camera, pose_a, pose_b, dem, nadirs)
     return float(np.hypot(*ob_in_a)), float(np.hypot(*oa_in_b))
 
 
@@ -303,15 +327,15 @@ def _wrap180(a):
     return (np.asarray(a, dtype=float) + 180.0) % 360.0 - 180.0
 
 
-def measure_crab_deg(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem) -> float:
+def measure_crab_deg(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, nadirs: dict | None = None) -> float:
     """Crab angle φ of photo A: the angle between A's long side and the base to B, degrees (guide §3, item 3.3).
 
     The base is the line from A's principal point to B's principal point
     transferred onto A; the "long side" is the frame side most nearly along
     it.  Sign: positive when the photo's side is turned counter-clockwise
-    from the base (the sign of :attr:`aerophoto.simulate.Shot.crab_deg`).
+    from the base (the sign of :attr:`aerophoto.simulate.Shot.crab_deg`).  ``nadirs``: as in :func:`measure_overlap`.
     """
-    u = g.transfer_points(camera, pose_b, pose_a, np.zeros(2), dem)
+    u = _o_in(camera, pose_b, pose_a, dem, nadirs)
     k, s = g.photo_axis_towards(u)
     # the base's direction in A's photo frame, measured from the side's direction (axis k, sign s)
     side_angle = math.degrees(math.atan2(s if k == 1 else 0.0, s if k == 0 else 0.0))
@@ -766,6 +790,7 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
     H0 = st0.H_m
     m = st0.m
     lim_crab = crab_limit_deg(cam.f_mm)
+    nadirs: dict = {}  # each photo's principal ground point, intersected once for every measurement below
     photos, pairs, strip_checks = [], [], []
     for st in strips:
         shots = st.shots
@@ -773,7 +798,7 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
         for i, s in enumerate(shots):
             j = i + 1 if i + 1 < n else i - 1
             if j >= 0 and j != i:
-                crab = measure_crab_deg(cam, s.pose, shots[j].pose, dem)
+                crab = measure_crab_deg(cam, s.pose, shots[j].pose, dem, nadirs=nadirs)
                 if j < i:  # the last photo: the base runs back to the previous one
                     crab = float(_wrap180(crab + 180.0)) if abs(crab) > 90 else crab
                 dS = shots[j].pose.centre[:2] - s.pose.centre[:2]
@@ -789,14 +814,14 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
                 crab_limit_deg=lim_crab, H_radio_m=fh["H_radio_m"], H_est_m=H_est,
                 dH_percent=height_deviation_percent(H_est, H0), dH_true_percent=s.height_error_percent))
         for a, b in zip(shots[:-1], shots[1:]):
-            a_mm = measure_overlap(cam, a.pose, b.pose, dem)
+            a_mm = measure_overlap(cam, a.pose, b.pose, dem, nadirs=nadirs)
             B = float(np.hypot(*(b.pose.centre[:2] - a.pose.centre[:2])))
             P_true = (1.0 - B / (cam.frame_mm / 1000.0 * a.m)) * 100.0
-            b1, b2 = measure_base(cam, a.pose, b.pose, dem)
+            b1, b2 = measure_base(cam, a.pose, b.pose, dem, nadirs=nadirs)
             pairs.append(PairCheck("forward", (a.number, b.number), a_mm, a_mm / cam.frame_mm * 100.0, P_true,
                                    b1, b2, scale_difference_percent(b1, b2), (b.H_m - a.H_m) / b.H_m * 100.0))
         if n >= 2:
-            O = np.array([g.photo_to_dem(cam, s.pose, np.zeros(2), dem)[:2] for s in shots])
+            O = np.array([_o_ground(cam, s.pose, dem, nadirs)[:2] for s in shots])
             meas = _straightness_of_points(O, m)
             true = _straightness_of_points(st.centres_m[:, :2], m)
             k = int(np.argmax(meas["n_percent"]))
@@ -807,7 +832,7 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
     py_design = getattr(flight, "py_percent", None)
     for sa, sb in zip(strips[:-1], strips[1:]):
         for a, b in _nearest_neighbour_pairs(sa, sb):
-            c_mm = measure_overlap(cam, a.pose, b.pose, dem)
+            c_mm = measure_overlap(cam, a.pose, b.pose, dem, nadirs=nadirs)
             side = cam.frame_mm / 1000.0 * a.m
             d = b.pose.centre[:2] - a.pose.centre[:2]
             across = abs(float(d @ np.array([-sa.direction[1], sa.direction[0]])))

@@ -430,6 +430,7 @@ class Blitter:
         self._refresh()
         self.background = None
         self._key = None
+        self._fresh_for = None  # the layout key the animated set was last computed for by update()
         self.n_full = 0  # full draws that took a background
         self.n_blit = 0  # moves drawn by blitting
         self._cid = fig.canvas.mpl_connect("draw_event", self._on_draw)
@@ -515,9 +516,11 @@ class Blitter:
             self.n_full += 1
         for a in self.artists:
             a.draw(renderer)
-        if take:
+        fresh, self._fresh_for = self._fresh_for, None
+        if take and fresh != self._key:
             # this draw laid the figure out (its first, or a new size): if that changed which labels overlap
-            # the animated artists, the set is recomputed and the next move draws in full once more
+            # the animated artists, the set is recomputed and the next move draws in full once more.  (Not
+            # after a move's full draw at the same size: update() has just computed the set for it.)
             if [id(a) for a in self._closure(self.fig, self.declared, self._grids)] != [id(a) for a in self.artists]:
                 self._refresh()
                 self.background = None
@@ -530,6 +533,9 @@ class Blitter:
         fig, canvas = self.fig, self.fig.canvas
         if self.background is None or fig.stale or self._key != self._layout_key():
             self._refresh()  # the full draw that follows takes the background without the animated set
+            # the set is current for this layout: the full draw need not compute it again (_after_full_draw)
+            same_size = self.background is not None and self._key == self._layout_key()
+            self._fresh_for = self._key if same_size else None
             return False
         with self._quiet():
             canvas.restore_region(self.background)

@@ -288,8 +288,10 @@ def _bytes_counter(page) -> list:
     return sizes
 
 
-def _measure(h, browser, server, notebook, root_of, n, rest_ms, shot: Path, *, lab: bool, label: str = LABEL) -> dict:
-    """Time ``n`` moves of the slider ``label`` inside ``root_of(page)``; bytes received per move, a screenshot."""
+def _measure(h, browser, server, notebook, root_of, n, rest_ms, shot: Path, *, lab: bool, label: str = LABEL,
+             canvas_to: Path | None = None) -> dict:
+    """Time ``n`` moves of the slider ``label`` inside ``root_of(page)``; bytes received per move, a screenshot
+    (and, with ``canvas_to``, the picture's own canvas pixels as a PNG there)."""
     page, log = h.new_page(browser)
     try:
         sizes = _bytes_counter(page)
@@ -315,6 +317,11 @@ def _measure(h, browser, server, notebook, root_of, n, rest_ms, shot: Path, *, l
         pic = root.locator("canvas.aerophoto-alt-canvas, .jupyter-matplotlib-canvas-div").first
         shot.parent.mkdir(exist_ok=True)
         pic.screenshot(path=str(shot))
+        if canvas_to is not None:
+            import base64
+
+            url = pic.evaluate("(el) => (el.tagName === 'CANVAS' ? el : el.querySelector('canvas')).toDataURL('image/png')")
+            canvas_to.write_bytes(base64.b64decode(url.split(",", 1)[1]))
         s = summarize(out["samples_s"])
         s["distinct_values"] = sorted(set(out["values"]))
         s["kB_received_per_move"] = round(received / n / 1000.0, 1)  # preview and full picture, all messages

@@ -135,6 +135,24 @@ def test_figure_size_change_falls_back_to_a_full_draw():
 SAVED = DEMOS[:3] + [d for d in DEMOS if d[1] in ("BaseHeightDemo", "ResectionDemo")]
 
 
+def _registry_demos():
+    from aerophoto import book
+
+    return [(c.number, d.cell, d.cls) for c in book.CHAPTERS for d in c.demos]
+
+
+@pytest.mark.parametrize(("chapter", "cell", "path"), _registry_demos(), ids=lambda v: str(v).rsplit(".", 1)[-1])
+def test_every_live_figure_fits_its_column(chapter, cell, path):
+    """A figure wider than the demo layout's right-hand column is cut off on the right on a lecturer's screen."""
+    from aerophoto.widgets import FIGURE_MAX_PX
+
+    module, cls = path.removeprefix("aerophoto.demos.").rsplit(".", 1)
+    demo = _demo(module, cls)
+    width_px = float(demo.fig.get_figwidth() * demo.fig.dpi)
+    demo.close()
+    assert width_px <= FIGURE_MAX_PX, f"chapter {chapter} {cell}: the figure is {width_px:.0f} px wide, the column {FIGURE_MAX_PX}"
+
+
 @pytest.mark.parametrize(("module", "cls", "moves"), SAVED, ids=[d[1] for d in SAVED])
 def test_savefig_shows_the_animated_artists(module, cls, moves):
     """A saved or inline figure (savefig) shows the whole picture, animated artists included."""

@@ -42,7 +42,7 @@ from dataclasses import dataclass
 
 from ._validate import check_range
 
-__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE"]
+__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE", "FIGURE_MAX_PX"]
 
 
 def running_loop():
@@ -55,6 +55,10 @@ def running_loop():
     except RuntimeError:
         return None
 
+
+#: the widest figure a demo's layout shows whole, px (the right-hand column of :meth:`LiveDemo.widget`; a wider
+#: canvas is cut off on the right, in JupyterLab and in Voilà alike)
+FIGURE_MAX_PX = 900
 
 #: the status line while a demo's full-resolution picture waits for the slider to rest
 PREVIEW_NOTE = "preview — full resolution when the slider rests"
@@ -436,7 +440,7 @@ class LiveDemo:
             parts.append(w.HTML(f"<h3 style='margin:4px 0'>{t(self.title)}</h3>"))
         if self.hint:
             parts.append(w.HTML(f"<div class='aerophoto-hint'>{t(self.hint)}</div>"))
-        right = w.VBox([self.figure_widget(), self.legend], layout=w.Layout(max_width="900px"))
+        right = w.VBox([self.figure_widget(), self.legend], layout=w.Layout(max_width=f"{FIGURE_MAX_PX}px"))
         parts.append(w.HBox([left, right], layout=w.Layout(align_items="flex-start")))
         self._layout = w.VBox(parts, layout=w.Layout(max_width="1260px"))
         self._layout.add_class("aerophoto-demo")

@@ -110,8 +110,11 @@ class BlockErrorView:
 
     def __init__(self, result: BlockMap | None = None, ax=None, *, quantity: str = "plan"):
         if ax is None:
-            fig = plots.figure(figsize=(9.6, 4.4))
-            ax_map, ax_prof = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1.0], "wspace": 0.55})
+            # placed by hand, not by a layout engine: the engine, run once at the first draw (plots.freeze_layout),
+            # squeezed the map, cut its title and pushed the profile off the right edge
+            fig = plots.figure(figsize=(8.8, 4.0), layout="none")
+            ax_map = fig.add_axes([0.075, 0.13, 0.50, 0.76])
+            ax_prof = fig.add_axes([0.775, 0.13, 0.205, 0.76])
         else:
             ax_map, ax_prof = ax
             fig = ax_map.figure

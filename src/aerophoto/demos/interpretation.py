@@ -85,7 +85,7 @@ class ConditionsView:
 
     def __init__(self, result: ConditionsResult | None = None, ax=None):
         if ax is None:
-            fig = plots.figure(figsize=(9.6, 4.9))
+            fig = plots.figure(figsize=(8.8, 4.5))
             ax_nat, ax_cir = fig.subplots(1, 2)
         else:
             ax_nat, ax_cir = ax

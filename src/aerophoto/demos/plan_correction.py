@@ -158,7 +158,7 @@ class PlanCorrectionView:
 
     def __init__(self, ax=None):
         if ax is None:
-            fig = plots.figure(figsize=(9.4, 4.9))
+            fig = plots.figure(figsize=(8.8, 4.6))
             ax_photo, ax_plan = fig.subplots(1, 2)
         else:
             ax_photo, ax_plan = ax

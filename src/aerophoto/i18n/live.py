@@ -11,9 +11,9 @@ __all__ = ["MESSAGES"]
 
 _TEMPLATES = {
     "{n} strips, control rows every {every} bases ({layout}), σ = {sigma:g} µm":
-        "маршрутов: {n}, ряды опоры через {every} базисов ({layout}), σ = {sigma:g} мкм",
+        "маршрутов: {n}, шаг рядов опоры (в базисах): {every} ({layout}), σ = {sigma:g} мкм",
     "{n} strip, control rows every {every} bases ({layout}), σ = {sigma:g} µm":
-        "маршрутов: {n}, ряды опоры через {every} базисов ({layout}), σ = {sigma:g} мкм",
+        "маршрутов: {n}, шаг рядов опоры (в базисах): {every} ({layout}), σ = {sigma:g} мкм",
     "Resection: three known points, two angles (scatter ×{k})":
         "Обратная засечка: три известные точки, два угла (разброс ×{k})",
     "h = {h:g} m: RMS of contour heights {rms:.3f} m ({n} nodes)":

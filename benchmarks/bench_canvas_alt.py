@@ -38,7 +38,6 @@ the extension into the servers' private data folder, so neither the .venv nor en
 from __future__ import annotations
 
 import contextlib
-import json
 import os
 import shutil
 import sys
@@ -357,6 +356,43 @@ def _voila_root(page, demo):
     return loc.nth(demo.nth)
 
 
+def _verdicts(entry: dict, target_ms: float, **tag) -> list:
+    """One row per host and way of a measured ``entry`` ({host: {way: stats}}): median, p95, whether the p95 is
+    within ``target_ms``, kB per move; ``tag`` (e.g. the demo) is added to every row."""
+    return [{**tag, "where": where, "way": way, "median_ms": st["median_ms"], "p95_ms": st["p95_ms"],
+             "meets_target": st["p95_ms"] <= target_ms, "kB_received_per_move": st["kB_received_per_move"]}
+            for where in ("jupyterlab", "voila") for way, st in entry[where].items()
+            if isinstance(st, dict) and "median_ms" in st]
+
+
+@contextlib.contextmanager
+def _alt_servers(h, write):
+    """A JupyterLab and a Voilà server on one scratch folder, both with anywidget's front end and kernels that see
+    it; ``write(root_dir)`` puts the scratch notebooks there first.  Yields ``(lab, voila, what write returned)``;
+    on a failure prints the servers' logs; always stops the servers and removes their folders."""
+    servers, made = [], []
+    try:
+        lab = _with_anywidget(h.LabServer())
+        made.append(lab)
+        written = write(lab.root_dir)
+        voila = _with_anywidget(h.VoilaServer(lab.root_dir))
+        made.append(voila)
+        with _kernels_see_anywidget():
+            for s in (lab, voila):
+                s.start()
+                servers.append(s)
+        yield lab, voila, written
+    except Exception:
+        for s in servers:
+            print(f"--- {s.kind} server log ({s.root_dir}):\n{s.log_tail(40)}", file=sys.stderr)
+        raise
+    finally:
+        for s in servers:
+            s.stop()
+        for s in made:
+            shutil.rmtree(s.tmp, ignore_errors=True)
+
+
 def run(quick: bool = False) -> dict:
     _anywidget_ready()
     h = _load("aerophoto_browser_harness", ROOT / "tests" / "browser" / "harness.py")
@@ -375,46 +411,26 @@ def run(quick: bool = False) -> dict:
                                   "installed_to": str(ANYWIDGET_DIR),
                                   "project_environment_changed": False},
            "jupyterlab": {}, "voila": {}}
-    servers = []
-    try:
-        lab = _with_anywidget(h.LabServer())
-        _write_alt(lab.root_dir)
-        voila = _with_anywidget(h.VoilaServer(lab.root_dir))
-        with _kernels_see_anywidget():
-            for s in (lab, voila):
-                s.start()
-                servers.append(s)
-        with sync_playwright() as pw:
-            browser = h.launch_chromium(pw)
-            try:
-                def alt_root(page):
-                    return page.locator(".aerophoto-alt").first
+    with _alt_servers(h, _write_alt) as (lab, voila, _written), sync_playwright() as pw:
+        browser = h.launch_chromium(pw)
+        try:
+            def alt_root(page):
+                return page.locator(".aerophoto-alt").first
 
-                def voila_root(page):
-                    return _voila_root(page, demo)
+            def voila_root(page):
+                return _voila_root(page, demo)
 
-                for where, server, is_lab in (("jupyterlab", lab, True), ("voila", voila, False)):
-                    mpl_root = (lambda page: h.lab_demo_root(page, demo.cell)) if is_lab else voila_root
-                    out[where]["matplotlib_ipympl"] = _measure(
-                        h, browser, server, ch.notebook, mpl_root, n, rest,
-                        results / f"canvas_alt_matplotlib_{where}.png", lab=is_lab)
-                    out[where]["canvas_anywidget"] = _measure(
-                        h, browser, server, ALT_NOTEBOOK, alt_root, n, rest,
-                        results / f"canvas_alt_canvas_{where}.png", lab=is_lab)
-                    out[where]["load_average"] = os.getloadavg()
-            finally:
-                browser.close()
-    except Exception:
-        for s in servers:
-            print(f"--- {s.kind} server log ({s.root_dir}):\n{s.log_tail(40)}", file=sys.stderr)
-        raise
-    finally:
-        for s in servers:
-            s.stop()
-            shutil.rmtree(s.tmp, ignore_errors=True)
-    out["verdicts"] = [
-        {"where": where, "way": way, "median_ms": st["median_ms"], "p95_ms": st["p95_ms"],
-         "meets_target": st["p95_ms"] <= out["target_p95_ms"], "kB_received_per_move": st["kB_received_per_move"]}
-        for where in ("jupyterlab", "voila") for way, st in out[where].items() if isinstance(st, dict)]
+            for where, server, is_lab in (("jupyterlab", lab, True), ("voila", voila, False)):
+                mpl_root = (lambda page: h.lab_demo_root(page, demo.cell)) if is_lab else voila_root
+                out[where]["matplotlib_ipympl"] = _measure(
+                    h, browser, server, ch.notebook, mpl_root, n, rest,
+                    results / f"canvas_alt_matplotlib_{where}.png", lab=is_lab)
+                out[where]["canvas_anywidget"] = _measure(
+                    h, browser, server, ALT_NOTEBOOK, alt_root, n, rest,
+                    results / f"canvas_alt_canvas_{where}.png", lab=is_lab)
+                out[where]["load_average"] = os.getloadavg()
+        finally:
+            browser.close()
+    out["verdicts"] = _verdicts(out, out["target_p95_ms"])
     out["finished"] = time.strftime("%Y-%m-%dT%H:%M:%S")
     return out

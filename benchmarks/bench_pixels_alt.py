@@ -286,19 +286,13 @@ def run(quick: bool = False) -> dict:
         out["demos"][f"{ch.name}/{demo.cell}"] = {
             "chapter": ch.name, "cell": demo.cell, "class": demo.cls, "slider": demo.timed_slider,
             "target_p95_ms": bb.target_p95_ms(ch.name), "kernel": breakdown[demo.cls], "jupyterlab": {}, "voila": {}}
-    servers, made = [], []
     scratch = Path(tempfile.mkdtemp(prefix="aerophoto-pixels-alt-"))
+
+    def write(root_dir):
+        return {demo.cell: _write_pixels(root_dir, demo) for _c, demo in todo}
+
     try:
-        lab = ca._with_anywidget(h.LabServer())
-        made.append(lab)
-        alt_nb = {demo.cell: _write_pixels(lab.root_dir, demo) for _c, demo in todo}
-        voila = ca._with_anywidget(h.VoilaServer(lab.root_dir))
-        made.append(voila)
-        with ca._kernels_see_anywidget():
-            for s in (lab, voila):
-                s.start()
-                servers.append(s)
-        with sync_playwright() as pw:
+        with ca._alt_servers(h, write) as (lab, voila, alt_nb), sync_playwright() as pw:
             browser = h.launch_chromium(pw)
             try:
                 def alt_root(page):
@@ -330,21 +324,9 @@ def run(quick: bool = False) -> dict:
                             for way, st in entry[where].items() if "median_ms" in st), file=sys.stderr)
             finally:
                 browser.close()
-    except Exception:
-        for s in servers:
-            print(f"--- {s.kind} server log ({s.root_dir}):\n{s.log_tail(40)}", file=sys.stderr)
-        raise
     finally:
-        for s in servers:
-            s.stop()
-        for s in made:
-            shutil.rmtree(s.tmp, ignore_errors=True)
         shutil.rmtree(scratch, ignore_errors=True)
-    out["verdicts"] = [
-        {"demo": key, "where": where, "way": way, "median_ms": st["median_ms"], "p95_ms": st["p95_ms"],
-         "meets_target": st["p95_ms"] <= e["target_p95_ms"], "kB_received_per_move": st["kB_received_per_move"]}
-        for key, e in out["demos"].items() for where in ("jupyterlab", "voila")
-        for way, st in e[where].items() if "median_ms" in st]
+    out["verdicts"] = [v for key, e in out["demos"].items() for v in ca._verdicts(e, e["target_p95_ms"], demo=key)]
     out["load_average_end"] = os.getloadavg()
     out["finished"] = time.strftime("%Y-%m-%dT%H:%M:%S")
     return out

@@ -144,6 +144,33 @@ def test_table_and_widget():
     demo.close()
 
 
+def test_a_slider_move_sends_its_table_after_the_picture_and_reset_wins():
+    """In a kernel (a running event loop) a slider's table follows the picture TABLE_DELAY_S later; Reset's table
+    is set at once and a table still pending from the move does not overwrite it."""
+    import asyncio
+
+    from aerophoto.widgets import TABLE_DELAY_S
+
+    async def drive():
+        demo = DisplacementDemo()
+        start = demo.table.value
+        draws = demo.n_updates
+        demo.controls()["alpha_deg"].value = 5.0
+        seen = [demo.n_updates == draws + 1, demo.table.value == start]  # the picture moved, the table not yet
+        await asyncio.sleep(TABLE_DELAY_S + 0.1)
+        moved = demo.table.value
+        seen.append(moved != start and "max |δα| exact" in moved)
+        demo.controls()["alpha_deg"].value = 7.0  # a move, then Reset before its table was sent
+        demo._on_reset()
+        seen.append(demo.table.value == start)
+        await asyncio.sleep(TABLE_DELAY_S + 0.1)
+        seen.append(demo.table.value == start)
+        demo.close()
+        return seen
+
+    assert asyncio.run(drive()) == [True, True, True, True, True]
+
+
 def test_nice_factor():
     assert nice_factor(0.0) == 1
     assert nice_factor(6.5) == 2

@@ -42,7 +42,8 @@ from dataclasses import dataclass
 
 from ._validate import check_range
 
-__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE", "FIGURE_MAX_PX"]
+__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE", "FIGURE_MAX_PX",
+           "table_after_picture", "TABLE_DELAY_S"]
 
 
 def running_loop():
@@ -73,6 +74,40 @@ def pending_html(message: str = PREVIEW_NOTE) -> str:
     from .i18n import t
 
     return f"<span class='aerophoto-pending' style='color:#777777'>{t(message)}</span>"
+
+
+#: seconds a demo's table waits after its picture in a running kernel (:func:`table_after_picture`)
+TABLE_DELAY_S = 0.06
+
+
+def table_after_picture(demo, html, *args) -> None:
+    """Set ``demo.table.value = html(*args)`` once the page has had time to paint the new picture.
+
+    A table laid out by the page before the picture's frame arrives delays the picture by tens of ms (more in
+    JupyterLab, whose notebook is a long page), so in a running kernel the table follows :data:`TABLE_DELAY_S`
+    later (a newer move replaces a pending table); without an event loop (a script, a test) it is set at once.
+    """
+    pending = getattr(demo, "_table_pending", None)
+    if pending is not None:
+        pending.cancel()
+    demo._table_pending = None
+
+    def fill():
+        demo._table_pending = None
+        demo.table.value = html(*args)
+
+    loop = running_loop()
+    if loop is None:
+        fill()
+        return
+    demo._table_pending = loop.call_later(TABLE_DELAY_S, fill)
+
+
+class _HeldTable:
+    """Stands in for a demo's table widget while a slider move renders: keeps the value instead of sending it."""
+
+    def __init__(self, value: str):
+        self.value = value
 
 
 def error_html(exc: BaseException) -> str:
@@ -211,6 +246,8 @@ class LiveDemo:
     animated: tuple = ()
     #: the handle of the work scheduled by :meth:`later` (None: nothing scheduled)
     _later = None
+    #: True while a slider move is served (its table then follows the picture, :meth:`show`)
+    _from_slider = False
 
     def __init__(self, **values):
         import ipywidgets as w
@@ -320,6 +357,12 @@ class LiveDemo:
             self._later.cancel()
             self._later = None
 
+    def _drop_table_later(self) -> None:
+        pending = getattr(self, "_table_pending", None)
+        if pending is not None:
+            pending.cancel()
+            self._table_pending = None
+
     def cancel_later(self) -> None:
         """Drop the work scheduled by :meth:`later`, if any, and its note on the status line."""
         self._drop_later()
@@ -331,11 +374,28 @@ class LiveDemo:
         self.show(self.compute(**self.values))
 
     def show(self, result) -> None:
-        """Show a computed ``result``: keep it as ``self.result``, move the artists, draw once."""
+        """Show a computed ``result``: keep it as ``self.result``, move the artists, draw once.
+
+        On a slider move the table that :meth:`render` sets is sent after the picture
+        (:func:`table_after_picture`), so the page paints the figure first.
+        """
         self.result = result
-        self.render(result)
+        if not self._from_slider:
+            self._drop_table_later()  # a table a slider move left pending is older than this one
+            self.render(result)
+            self.n_updates += 1
+            self.draw()
+            return
+        table = self.table
+        held = self.table = _HeldTable(table.value)
+        try:
+            self.render(result)
+        finally:
+            self.table = table
         self.n_updates += 1
         self.draw()
+        if held.value != table.value:
+            table_after_picture(self, str, held.value)
 
     def draw(self, force: bool = False) -> None:
         """Redraw the figure (``force=True`` renders the whole figure now, e.g. in tests and benchmarks).
@@ -381,11 +441,14 @@ class LiveDemo:
         from .i18n import t
 
         name = change["owner"]._aerophoto_name
+        self._from_slider = True
         try:
             self.values[name] = self._params[name].validate(change["new"])
             self.status.value = t(self.on_slider())
         except Exception as exc:  # never let a callback die silently
             self.status.value = error_html(exc)
+        finally:
+            self._from_slider = False
 
     def _on_reset(self) -> None:
         try:
@@ -456,6 +519,7 @@ class LiveDemo:
         import matplotlib.pyplot as plt
 
         self.cancel_later()
+        self._drop_table_later()
         with contextlib.suppress(Exception):
             plt.close(self.fig)
         if self._layout is not None:

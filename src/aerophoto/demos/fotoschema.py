@@ -31,7 +31,7 @@ Both are blitted (``LiveDemo.animated``, :class:`aerophoto.plots.Blitter`): a
 move redraws the sheet, its marks, the title and the ΔI stems over a cached
 picture of the axes, whose limits are snapped (the sheet's to 20 mm, the ΔI
 chart's to round values) so that most moves leave them alone; the tables
-follow the picture (:func:`aerophoto.demos.quality.table_after_picture`).
+follow the picture (:func:`aerophoto.widgets.table_after_picture`).
 
 Static figures for the notebook: :func:`correction_sheet` (the корректурный
 лист with the ΔI values written along each cut), :func:`sheet_figure` (the
@@ -75,8 +75,7 @@ from .. import plots
 from .. import simulate as sim
 from ..terrain import RescaledRelief
 from ..i18n import t as _t  # functions here name a local t
-from ..widgets import LiveDemo, Param, pending_html, running_loop
-from .quality import table_after_picture
+from ..widgets import LiveDemo, Param, pending_html, running_loop, table_after_picture
 
 __all__ = [
     "FotoschemaResult",
@@ -434,7 +433,7 @@ class FotoschemaDemo(LiveDemo):
         self.view.update(result)
 
     def show(self, result: FotoschemaResult) -> None:
-        """Move the artists and draw, then the tables (:func:`aerophoto.demos.quality.table_after_picture`)."""
+        """Move the artists and draw, then the tables (:func:`aerophoto.widgets.table_after_picture`)."""
         super().show(result)
         table_after_picture(self, self._tables, result)
 

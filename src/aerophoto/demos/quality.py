@@ -41,7 +41,7 @@ from .. import geometry as g
 from .. import plots
 from .. import quality as q
 from .. import simulate as sim
-from ..widgets import LiveDemo, Param, running_loop
+from ..widgets import TABLE_DELAY_S, LiveDemo, Param, table_after_picture  # noqa: F401 (TABLE_DELAY_S: importable from here, as before)
 
 __all__ = ["QualityResult", "quality_model", "rough_mosaic_raster", "board_extent_m", "RoughMosaicView",
            "QualityDemo", "verdict_html", "crab_limit_plot", "table_after_picture"]
@@ -448,37 +448,9 @@ class QualityDemo(LiveDemo):
         self.view.update(result)
 
     def show(self, result: QualityResult) -> None:
-        """Move the artists and draw, *then* refresh the table (:func:`table_after_picture`)."""
+        """Move the artists and draw, *then* refresh the table (:func:`aerophoto.widgets.table_after_picture`)."""
         super().show(result)
         table_after_picture(self, verdict_html, result.report)
-
-
-#: seconds a demo's table waits after its picture in a running kernel (:func:`table_after_picture`)
-TABLE_DELAY_S = 0.06
-
-
-def table_after_picture(demo, html, *args) -> None:
-    """Set ``demo.table.value = html(*args)`` once the page has had time to paint the new picture.
-
-    A table laid out by the page before the picture's frame arrives delays the picture by tens of ms, so in a
-    running kernel the table follows :data:`TABLE_DELAY_S` later (a newer move replaces a pending table); without
-    an event loop (a script, a test) it is set at once.
-    """
-
-    pending = getattr(demo, "_table_pending", None)
-    if pending is not None:
-        pending.cancel()
-    demo._table_pending = None
-
-    def fill():
-        demo._table_pending = None
-        demo.table.value = html(*args)
-
-    loop = running_loop()
-    if loop is None:
-        fill()
-        return
-    demo._table_pending = loop.call_later(TABLE_DELAY_S, fill)
 
 
 def crab_limit_plot(ax=None, f_mm: float | None = None, *, f_max_mm: float = 1100.0):

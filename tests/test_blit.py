@@ -20,8 +20,9 @@ pytestmark = pytest.mark.usefixtures("plot_style")
 #: (module, class, moves): each move a dict for demo.set and whether it must be blitted (False: something static
 #: changes — limits beyond the rounding, ticks — so it is a full draw; the picture must be right either way)
 DEMOS = [
-    ("footprint", "FootprintDemo", [({"f_mm": 150}, True), ({"alpha_deg": 8}, True), ({"m": 15000}, True),
-                                    ({"lambda_deg": 30}, True)]),
+    # the plan's half-width is a round value (2, 2.5, 3.2 km …) around N: a move that outgrows it is a full draw
+    ("footprint", "FootprintDemo", [({"f_mm": 150}, True), ({"alpha_deg": 8}, False), ({"m": 15000}, False),
+                                    ({"lambda_deg": 30}, True), ({"kappa_deg": 45}, True), ({"alpha_deg": 8.5}, True)]),
     ("interpretation", "ConditionsDemo", [({"visibility_km": 5}, True), ({"sun_elevation_deg": 20}, True),
                                           ({"moisture_pct": 20}, True), ({"season": "winter"}, True)]),
     ("spectral_explorer", "SpectralExplorerDemo", [({"moisture_pct": 25}, True), ({"humus_pct": 6}, True)]),
@@ -212,3 +213,11 @@ def test_transformer_preview_and_full_resolution_both_blit():
     assert _ndiff(_buffer(demo.fig), _unanimated(demo)) == 0
     demo.close()
 
+
+
+@pytest.mark.parametrize(("reach", "half"), [(1.0, 1.0), (1.01, 1.25), (1.9, 2.0), (2.2, 2.5), (3.3, 4.0),
+                                             (8.5, 10.0), (0.031, 0.032), (0.0, 1e-6)])
+def test_footprint_plan_half_width_is_the_next_round_value(reach, half):
+    from aerophoto.demos.footprint import ground_half_width_km
+
+    assert ground_half_width_km(reach) == pytest.approx(half)

@@ -8,6 +8,7 @@ side); :class:`FootprintDemo` binds sliders for f, 1:m, α, λ and κ to both.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,7 +19,7 @@ from .. import geometry as g
 from .. import plots
 from ..widgets import LiveDemo, Param
 
-__all__ = ["FootprintResult", "footprint_model", "FootprintView", "FootprintDemo", "own_footprint"]
+__all__ = ["FootprintResult", "footprint_model", "FootprintView", "FootprintDemo", "own_footprint", "ground_half_width_km"]
 
 
 @dataclass(frozen=True)
@@ -180,12 +181,16 @@ class FootprintView:
         self.vpoly.set_data(*close(r.vertical_polygon_m).T)
         for art, P in ((self.N, r.n_ground_m), (self.O, r.o_ground_m), (self.C, r.c_ground_m)):
             art.set_data([P[0] / 1000.0], [P[1] / 1000.0])
+        # the plan is centred on the plumb point N (it stays put while the photo tilts and turns around it) and
+        # its half-width is a round value just above the farthest corner: most moves keep the limits, so the
+        # axes and their labels stay in the demo's cached background (only a new round value redraws them)
         allp = np.vstack([r.ground_polygon_m, r.vertical_polygon_m]) / 1000.0
-        lo, hi = allp.min(axis=0), allp.max(axis=0)
-        span = float(max(hi - lo)) * 0.55 + 1e-9
-        mid = (lo + hi) / 2
-        self.ax_ground.set_xlim(mid[0] - span, mid[0] + span)
-        self.ax_ground.set_ylim(mid[1] - span, mid[1] + span)
+        n = np.asarray(r.n_ground_m[:2], dtype=float) / 1000.0
+        half = ground_half_width_km(float(np.max(np.hypot(*(allp - n).T))) * 1.03)  # any κ, λ: the same frame
+        lim_x, lim_y = (n[0] - half, n[0] + half), (n[1] - half, n[1] + half)
+        if self.ax_ground.get_xlim() != lim_x or self.ax_ground.get_ylim() != lim_y:
+            self.ax_ground.set_xlim(*lim_x)
+            self.ax_ground.set_ylim(*lim_y)
         self.grid.set_segments(list(r.grid_photo_mm))
         u = g.principal_vertical(r.pose)
         v = np.array([-u[1], u[0]])
@@ -196,6 +201,23 @@ class FootprintView:
             marker, label = self.marks[name]
             marker.set_data([pt[0]], [pt[1]])
             label.xy = (pt[0], pt[1])
+
+
+#: half-widths of the ground plan, km (× 10^k): a coarse ladder, so the plan's frame changes seldom
+_HALF_WIDTHS = (1.0, 1.25, 1.6, 2.0, 2.5, 3.2, 4.0, 5.0, 6.4, 8.0)
+
+
+def ground_half_width_km(reach_km: float) -> float:
+    """The plan's half-width for a footprint reaching ``reach_km`` from N: the first of 1, 1.25, 1.6, 2, 2.5, 3.2, 4,
+    5, 6.4, 8 (× 10^k km) at least as large."""
+    reach = max(float(reach_km), 1e-6)
+    k = math.floor(math.log10(reach))
+    for _ in range(2):
+        for h in _HALF_WIDTHS:
+            if h * 10.0**k >= reach * (1 - 1e-12):
+                return h * 10.0**k
+        k += 1
+    return 10.0 ** (k + 1)
 
 
 class FootprintDemo(LiveDemo):
@@ -222,8 +244,10 @@ class FootprintDemo(LiveDemo):
     def build(self):
         self.view = FootprintView()
         self.fig = self.view.fig
-        # a move redraws the ground plan (its limits follow the footprint) and the photo's grid and points
-        self.animated = (self.view.ax_ground, self.view.grid)
+        # a move redraws the footprints and points over the cached plan (whose frame changes only when the
+        # footprint outgrows a round half-width: then the move is a full draw) and the photo's grid and points
+        v = self.view
+        self.animated = (v.vpoly, v.poly, v.N, v.O, v.C, v.grid)
 
     def compute(self, **v):
         return footprint_model(**v)

@@ -56,7 +56,9 @@ def exercise_demo(tab, root, demo, where: str, *, after_move=None) -> dict:
             "([el, t0]) => { const t = el.querySelector('.aerophoto-table'); return !!t && t.innerText !== t0; }",
             arg=[root.element_handle(), table_before], timeout=h.T_MOVE, polling=50,
         )
-        probe.settle()
+        # the Reset's picture, and a full-resolution one the page may still be owed (a demo's settle delay is
+        # 0.25–0.35 s): wait for no scheduled work and a figure quiet for longer than that delay
+        probe.wait_idle(quiet_ms=800)
         if after_move:
             after_move()
         return probe.table_text(), {label: probe.readout(label) for label in labels_only}

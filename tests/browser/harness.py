@@ -652,14 +652,16 @@ class DemoProbe:
         """Wait until the figure has not been redrawn for ``quiet_ms`` (the update has finished)."""
         settle(self.page, quiet_ms)
 
-    def wait_idle(self) -> None:
+    def wait_idle(self, quiet_ms: int = 300) -> None:
         """Wait until the demo has no work scheduled (its status line's ``aerophoto-pending`` note, shown while a
-        full-resolution picture waits for the slider to rest, is gone), then until the figure is quiet."""
-        self.page.wait_for_function(
-            "(el) => !el.querySelector('.aerophoto-pending')",
-            arg=self.root.element_handle(), timeout=T_MOVE, polling=50,
-        )
-        self.settle()
+        full-resolution picture waits for the slider to rest, is gone), then until the figure has been quiet for
+        ``quiet_ms``, then once more for no work scheduled (a note that arrived while the figure settled)."""
+        for _ in range(2):
+            self.page.wait_for_function(
+                "(el) => !el.querySelector('.aerophoto-pending')",
+                arg=self.root.element_handle(), timeout=T_MOVE, polling=50,
+            )
+            self.settle(quiet_ms)
 
 
 def settle(page, quiet_ms: int = 300) -> None:

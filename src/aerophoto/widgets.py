@@ -352,6 +352,25 @@ class LiveDemo:
         self._later = loop.call_soon(run) if delay_s <= 0 else loop.call_later(delay_s, run)
         return True
 
+    #: True while :meth:`preview_then_full` computes the quick preview (``compute`` reads it)
+    _preview = False
+
+    def preview_then_full(self, delay_s: float, note: str = PREVIEW_NOTE) -> str:
+        """What a heavy demo's slider move does: a preview now (``compute`` sees ``self._preview`` True), the full
+        resolution once the slider has rested ``delay_s`` seconds (:meth:`later`); without an event loop (a script,
+        a test) the full resolution at once.  Returns the status line (:func:`pending_html` of ``note``, or "")."""
+        self.cancel_later()
+        if running_loop() is None:
+            self.update()
+            return ""
+        self._preview = True
+        try:
+            self.update()
+        finally:
+            self._preview = False
+        self.later(delay_s, self.update)
+        return pending_html(note)
+
     def _drop_later(self) -> None:
         if self._later is not None:
             self._later.cancel()

@@ -25,7 +25,7 @@ from matplotlib.collections import LineCollection
 from .. import dem
 from .. import plots
 from ..i18n import t
-from ..widgets import LiveDemo, Param, pending_html, running_loop
+from ..widgets import LiveDemo, Param
 
 __all__ = ["SHEETS", "INTERVALS", "SheetCache", "sheet_cache", "ContourFrame", "contour_frame", "ContourView",
            "ContourDemo", "spacing_study_figure"]
@@ -239,7 +239,6 @@ class ContourDemo(LiveDemo):
     settle_s = 0.35
 
     def build(self):
-        self._preview = False
         self.view = ContourView(colorbar=False)  # the colour scale is in the HTML legend (no redraw)
         self.fig = self.view.fig
         # a move swaps the error image and the contours over the cached axes (the sheet's limits never change):
@@ -252,17 +251,7 @@ class ContourDemo(LiveDemo):
 
     def on_slider(self) -> str:
         """A slider moved: the coarse raster now, the full one when the slider rests."""
-        self.cancel_later()
-        if running_loop() is None:  # a script or a test: full resolution at once
-            self.update()
-            return ""
-        self._preview = True
-        try:
-            self.update()
-        finally:
-            self._preview = False
-        self.later(self.settle_s, self.update)
-        return pending_html("preview (10 m raster) — full resolution when the slider rests")
+        return self.preview_then_full(self.settle_s, "preview (10 m raster) — full resolution when the slider rests")
 
     def render(self, frame: ContourFrame):
         self.view.update(frame)

@@ -212,12 +212,7 @@ def ground_half_width_km(reach_km: float) -> float:
     5, 6.4, 8 (× 10^k km) at least as large."""
     reach = max(float(reach_km), 1e-6)
     k = math.floor(math.log10(reach))
-    for _ in range(2):
-        for h in _HALF_WIDTHS:
-            if h * 10.0**k >= reach * (1 - 1e-12):
-                return h * 10.0**k
-        k += 1
-    return 10.0 ** (k + 1)
+    return next(h * 10.0**e for e in (k, k + 1) for h in _HALF_WIDTHS if h * 10.0**e >= reach * (1 - 1e-12))
 
 
 class FootprintDemo(LiveDemo):

@@ -414,8 +414,6 @@ class FotoschemaDemo(LiveDemo):
     #: pixels glued per event-loop turn in the full-resolution render (see :meth:`_settle`)
     band_px = 60_000
 
-    _preview = False
-
     # ---- LiveDemo hooks
     def build(self):
         self.view = FotoschemaView()

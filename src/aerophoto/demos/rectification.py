@@ -32,7 +32,7 @@ from .. import plots
 from .. import projective as pj
 from .. import rectify as rf
 from ..i18n import t as _t  # functions here name a local t
-from ..widgets import LiveDemo, Param, pending_html, running_loop
+from ..widgets import LiveDemo, Param
 
 __all__ = ["EXAMPLE", "TransformerResult", "transformer_model", "TransformerView", "TransformerDemo",
            "rectified_figure", "residual_field"]
@@ -272,8 +272,6 @@ class TransformerDemo(LiveDemo):
               help="RMS error of the pricked points on the photo"),
     )
 
-    _preview = False
-
     def build(self):
         self.view = TransformerView()
         self.fig = self.view.fig
@@ -293,17 +291,7 @@ class TransformerDemo(LiveDemo):
 
     def on_slider(self) -> str:
         """Photo sliders: a preview render at once, the full resolution when the slider rests (the step slider is cheap)."""
-        self.cancel_later()
-        if running_loop() is None:  # a script or a test: full resolution at once
-            self.update()
-            return ""
-        self._preview = True
-        try:
-            self.update()
-        finally:
-            self._preview = False
-        self.later(0.25, self.update)
-        return pending_html()
+        return self.preview_then_full(0.25)
 
 
 # =========================================================================== rectified photo against the truth

@@ -44,8 +44,10 @@ DEMOS = [
                                                ({"method": "proportional"}, True), ({"spread_percent": 70}, True)]),
     ("control", "ControlDesignDemo", [({"m_eps_arcmin": 5}, True), ({"scheme": "dense"}, True), ({"m": 13000}, True),
                                       ({"n_strips": 4}, False), ({"m_allowed_mm": 0.3}, True)]),
-    ("control", "ResectionDemo", [({"north_m": -140}, True), ({"sigma_arcsec": 10}, True), ({"north_m": 1500}, True),
-                                  ({"east_m": 1500}, True)]),
+    # the resection's frame is a round square around the known points (1, 1.25, 1.6, 2.5 km …): a station that
+    # walks out of it is a full draw; the budget's mm axis ends at a round value beyond the longest bar
+    ("control", "ResectionDemo", [({"north_m": -140}, True), ({"sigma_arcsec": 10}, True), ({"north_m": 1500}, False),
+                                  ({"north_m": 1490}, True), ({"east_m": 1500}, True)]),
     ("rectification", "TransformerDemo", [({"step": 1}, True), ({"step": 5}, True), ({"alpha_deg": 4}, True),
                                           ({"step": 2}, True)]),
     ("block_accuracy", "BlockErrorDemo", [({"sigma_um": 8}, True), ({"every": 6}, True),
@@ -54,7 +56,9 @@ DEMOS = [
     ("dem_contours", "ContourDemo", [({"mz_m": 0.13}, True), ({"spacing_m": 40}, True), ({"structural": "on"}, True),
                                      ({"interval_m": 1.0}, True), ({"sheet": "plain (6–7 km E, 0.2–1.2 km N)"}, True)]),
     ("error_budget", "BudgetDemo", [({"M_c": 10500}, True), ({"P_um": 20}, True), ({"M_k": 5000.0}, True),
-                                    ({"dtm": "plane"}, True), ({"extra": "on"}, True)]),
+                                    ({"dtm": "plane"}, True), ({"extra": "on"}, True), ({"dtm": "instruction"}, True),
+                                    ({"M_k": 500.0}, True), ({"M_c": 40000}, False), ({"dtm": "plane"}, False),
+                                    ({"relief_m": 200}, False), ({"relief_m": 190}, True)]),
 ]
 
 #: pixels that may differ from a draw without animation, and why
@@ -217,7 +221,5 @@ def test_transformer_preview_and_full_resolution_both_blit():
 
 @pytest.mark.parametrize(("reach", "half"), [(1.0, 1.0), (1.01, 1.25), (1.9, 2.0), (2.2, 2.5), (3.3, 4.0),
                                              (8.5, 10.0), (0.031, 0.032), (0.0, 1e-6)])
-def test_footprint_plan_half_width_is_the_next_round_value(reach, half):
-    from aerophoto.demos.footprint import ground_half_width_km
-
-    assert ground_half_width_km(reach) == pytest.approx(half)
+def test_coarse_ceil_is_the_next_round_value(reach, half):
+    assert plots.coarse_ceil(reach) == pytest.approx(half)

@@ -33,6 +33,7 @@ __all__ = [
     "fast_frames",
     "Blitter",
     "snapped_limits",
+    "coarse_ceil",
     "steady_title",
     "steady_limits",
     "html_table",
@@ -235,6 +236,25 @@ def snapped_limits(lo: float, hi: float, *, steps: int = 40) -> tuple[float, flo
     e = math.floor(math.log10(raw))
     step = next(m * 10.0**e for m in (1.0, 2.0, 5.0, 10.0) if m * 10.0**e >= raw)
     return math.floor(lo / step) * step, math.ceil(hi / step) * step
+
+
+#: a coarse ladder of round values (× 10^k): limits and frames that follow the data only in these steps
+COARSE_STEPS = (1.0, 1.25, 1.6, 2.0, 2.5, 3.2, 4.0, 5.0, 6.4, 8.0)
+
+
+def coarse_ceil(x: float) -> float:
+    """The first of 1, 1.25, 1.6, 2, 2.5, 3.2, 4, 5, 6.4, 8 (× 10^k) at least as large as ``x`` (x ≤ 0 → 1e-6).
+
+    A live demo whose frame or axis limit is this of what it must hold keeps
+    the same frame — and so its cached axes, ticks and labels — over most
+    slider moves: the value changes only when the data crosses a step of
+    about 25 %, and the frame is never more than 1.28 × what the data needs.
+    """
+    import math
+
+    v = max(float(x), 1e-6)
+    k = math.floor(math.log10(v))
+    return next(h * 10.0**e for e in (k, k + 1) for h in COARSE_STEPS if h * 10.0**e >= v * (1 - 1e-12))
 
 
 def _overlapping_axes_labels(fig, top: list, ids: set) -> set:

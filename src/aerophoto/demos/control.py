@@ -313,6 +313,7 @@ class ResectionView:
                                   fontweight="bold") for n in ("I", "II", "III", "IV")]
         a.grid(True, alpha=0.3)
         self.origin = np.array([6_060_000.0, 5_310_000.0])
+        self._fixed = None  # (known points, circle) in plot coordinates, as last set
 
     def _xy(self, P):
         """Geodetic (X north, Y east) → plot (east, north) relative to the origin."""
@@ -321,11 +322,15 @@ class ResectionView:
 
     def update(self, r: ResectionResult) -> None:
         K = self._xy(r.known)
-        self.known.set_data(K[:, 0], K[:, 1])
-        for t, p in zip(self.labels, K):
-            t.xy = (p[0], p[1])
         circ = self._xy(r.danger_centre + r.danger_radius_m * self._circle_t)
-        self.circle.set_data(circ[:, 0], circ[:, 1])
+        if self._fixed is None or not (np.array_equal(self._fixed[0], K) and np.array_equal(self._fixed[1], circ)):
+            # the known points and their circle: set only when they change, so that a move of the station
+            # leaves them (and the frame around them) in a live demo's cached background
+            self._fixed = (K, circ)
+            self.known.set_data(K[:, 0], K[:, 1])
+            for t, p in zip(self.labels, K):
+                t.xy = (p[0], p[1])
+            self.circle.set_data(circ[:, 0], circ[:, 1])
         P = self._xy(r.station)
         self.station.set_data([P[0]], [P[1]])
         self.rays.set_segments([np.array([P, k]) for k in K[:3]])
@@ -336,9 +341,12 @@ class ResectionView:
         self.cloud.set_data(cl[:, 0], cl[:, 1])
         # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
         self.ax.title.set_text(_t("Resection: three known points, two angles (scatter ×{k})", k=k))
-        allp = np.vstack([K, P[None, :], circ])
-        lo, hi = allp.min(axis=0), allp.max(axis=0)
-        mid, half = (lo + hi) / 2, 0.55 * float(max(hi - lo))
+        # a square frame centred on the known points and their circle, its half-width a round value
+        # (plots.coarse_ceil) just beyond them and the station: it changes only when the station walks out of it
+        lo, hi = np.vstack([K, circ]).min(axis=0), np.vstack([K, circ]).max(axis=0)
+        mid = (lo + hi) / 2
+        reach = max(0.55 * float(max(hi - lo)), 1.08 * float(np.max(np.abs(P - mid))) + 60.0)
+        half = plots.coarse_ceil(reach)
         self.ax.set_xlim(mid[0] - half, mid[0] + half)
         self.ax.set_ylim(mid[1] - half, mid[1] + half)
 
@@ -362,12 +370,10 @@ class ResectionDemo(LiveDemo):
         self.view = ResectionView()
         self.fig = self.view.fig
         v = self.view
-        # the station, its rays, the cloud and the title (its ×k) move over the cached axes; the frame follows the
-        # station once it leaves the known points' and the danger circle's, so the two axes are animated too (an
-        # animated axis' new limits are no change of the rest; the frame is always square, so the equal-aspect
-        # box keeps its shape)
-        self.animated = (v.ax.xaxis, v.ax.yaxis, v.circle, v.rays, v.check_ray, v.cloud, v.known, v.station,
-                         *v.labels, v.ax.title)
+        # the station, its rays, the cloud and the title (its ×k) move over the cached axes, known points and
+        # danger circle; the frame is a round square (ResectionView.update), so a move that keeps it keeps the
+        # axes' ticks and labels; one that changes it (the station walked out) is a full draw
+        self.animated = (v.rays, v.check_ray, v.cloud, v.station, v.ax.title)
         plots.steady_limits(v.ax, snap=False)  # the same limits again are no change
 
     def compute(self, **v):

@@ -69,7 +69,7 @@ class BudgetView:
     def update(self, B: bu.Budget) -> None:
         vals = _map_values(B)
         dom = BAR_KEYS.index(B.dominant.key)
-        top = max(1.0, 1.25 * float(vals.max()))
+        top = plots.coarse_ceil(max(1.0, 1.15 * float(vals.max())))  # a round limit: the axis seldom changes
         for i, (bar, v) in enumerate(zip(self.bars, vals)):
             bar.set_width(v)
             if BAR_KEYS[i] == "total":
@@ -127,9 +127,10 @@ class BudgetDemo(LiveDemo):
         self.view = BudgetView()
         self.fig = self.view.fig
         v = self.view
-        # a move resizes and recolours the bars and moves their numbers, the mm axis (its limit follows the longest
-        # bar; an animated axis' new limits are no change of the rest) and the title over the cached stage names
-        self.animated = (*v.bars, v.ax.xaxis, *v.texts, v.title)
+        # a move resizes and recolours the bars and moves their numbers and the title over the cached stage names
+        # and mm axis; the axis' limit is a round value (1, 1.25, 1.6, 2 … mm) beyond the longest bar, so only a move
+        # that outgrows it or leaves it far behind is a full draw
+        self.animated = (*v.bars, *v.texts, v.title)
         plots.steady_limits(v.ax, snap=False)  # the same limits again are no change
 
     def compute(self, M_c, P_um, f_mm, M_k, dtm, m_h_m, relief_m, extra):

@@ -8,7 +8,6 @@ side); :class:`FootprintDemo` binds sliders for f, 1:m, α, λ and κ to both.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,7 +18,7 @@ from .. import geometry as g
 from .. import plots
 from ..widgets import LiveDemo, Param
 
-__all__ = ["FootprintResult", "footprint_model", "FootprintView", "FootprintDemo", "own_footprint", "ground_half_width_km"]
+__all__ = ["FootprintResult", "footprint_model", "FootprintView", "FootprintDemo", "own_footprint"]
 
 
 @dataclass(frozen=True)
@@ -186,7 +185,7 @@ class FootprintView:
         # axes and their labels stay in the demo's cached background (only a new round value redraws them)
         allp = np.vstack([r.ground_polygon_m, r.vertical_polygon_m]) / 1000.0
         n = np.asarray(r.n_ground_m[:2], dtype=float) / 1000.0
-        half = ground_half_width_km(float(np.max(np.hypot(*(allp - n).T))) * 1.03)  # any κ, λ: the same frame
+        half = plots.coarse_ceil(float(np.max(np.hypot(*(allp - n).T))) * 1.03)  # any κ, λ: the same frame
         lim_x, lim_y = (n[0] - half, n[0] + half), (n[1] - half, n[1] + half)
         if self.ax_ground.get_xlim() != lim_x or self.ax_ground.get_ylim() != lim_y:
             self.ax_ground.set_xlim(*lim_x)
@@ -201,18 +200,6 @@ class FootprintView:
             marker, label = self.marks[name]
             marker.set_data([pt[0]], [pt[1]])
             label.xy = (pt[0], pt[1])
-
-
-#: half-widths of the ground plan, km (× 10^k): a coarse ladder, so the plan's frame changes seldom
-_HALF_WIDTHS = (1.0, 1.25, 1.6, 2.0, 2.5, 3.2, 4.0, 5.0, 6.4, 8.0)
-
-
-def ground_half_width_km(reach_km: float) -> float:
-    """The plan's half-width for a footprint reaching ``reach_km`` from N: the first of 1, 1.25, 1.6, 2, 2.5, 3.2, 4,
-    5, 6.4, 8 (× 10^k km) at least as large."""
-    reach = max(float(reach_km), 1e-6)
-    k = math.floor(math.log10(reach))
-    return next(h * 10.0**e for e in (k, k + 1) for h in _HALF_WIDTHS if h * 10.0**e >= reach * (1 - 1e-12))
 
 
 class FootprintDemo(LiveDemo):

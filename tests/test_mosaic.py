@@ -300,6 +300,34 @@ def test_sheet_raster_in_bands_fills_the_same_image_a_band_at_a_time():
         next(mo.sheet_raster_bands(fs, gr, 1.0, band_px=0))
 
 
+
+def test_sheet_raster_gives_each_pixel_to_its_working_area_and_photo():
+    """The raster finds a row's cut positions once (not once a pixel): the same photo for every pixel as
+    Fotoschema.photo_index at the pixel's centre, and background outside that photo's frame."""
+    from aerophoto.demos.fotoschema import fotoschema_model
+
+    class Flat:  # a "print" that reads its own index everywhere
+        def __init__(self, i):
+            self.i = i
+
+        def value_at(self, xy):
+            return np.full(len(xy), float(self.i))
+
+    for shape in ("straight", "zigzag"):
+        fs = fotoschema_model(alpha_max_deg=3.0, relief_m=120.0, cut_shape=shape, px_per_mm=0.1).fs
+        img, (x0, x1, y0, y1) = mo.sheet_raster(fs, None, 0.7, photos=[Flat(i) for i in range(len(fs.poses))],
+                                                background=-1.0)
+        ny, nx = img.shape
+        X, Y = np.meshgrid(x0 + (np.arange(nx) + 0.5) / 0.7, y0 + (np.arange(ny) + 0.5) / 0.7)
+        P = np.stack([X, Y], axis=-1)
+        want = fs.photo_index(P).astype(float)
+        on_photo = np.stack([T.inverse().apply(P) for T in fs.to_sheet])  # (photo, ny, nx, 2), photo mm
+        own = np.take_along_axis(on_photo, want.astype(int)[None, ..., None], 0)[0]
+        want[np.any(np.abs(own) > fs.camera.half_mm, axis=-1)] = -1.0
+        assert np.array_equal(img, want.astype(np.float32)), shape
+        assert set(np.unique(img)) == {-1.0, *map(float, range(len(fs.poses)))}
+
+
 # --------------------------------------------------------------------------- the live demo and the sheet
 def test_demo_renders_full_resolution_from_code_and_preview_on_request():
     from aerophoto.demos.fotoschema import FotoschemaDemo

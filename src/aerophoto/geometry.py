@@ -419,18 +419,21 @@ def photo_to_dem(
         raise ValueError("dem must provide finite z_min_m and z_max_m bounds (metres)")
     pose.flying_height(zmax)
     g = _rays(camera, pose, xy_mm)
-    gz = g[..., 2]
+    shape = g.shape[:-1]
+    g = g.reshape(-1, 3)
+    # the ray S + t·g one component at a time (contiguous 1-D arrays): the same arithmetic, element for element,
+    # as on the (n, 3) array, without its temporaries
+    gx, gy, gz = (np.ascontiguousarray(g[:, k]) for k in range(3))
     if np.any(gz >= 0):
         raise ValueError(
             f"a photo ray points at or above the horizon (alpha_deg = {pose.alpha_deg:g}); it never meets the terrain"
         )
-    S = pose.centre
+    Sx, Sy, Sz = (float(v) for v in pose.centre)
     t0 = (zmax - pose.Z_m) / gz  # ray at the top bound: above (or on) the terrain
     t1 = (zmin - pose.Z_m) / gz  # ray at the bottom bound: below (or on) the terrain
 
     def resid(t):
-        P = S + t[..., None] * g
-        return P[..., 2] - height(P[..., 0], P[..., 1])
+        return (Sz + t * gz) - height(Sx + t * gx, Sy + t * gy)
 
     tol_m = check_positive("tol_m", tol_m, unit="m", hi=1e3)
     max_iter = check_int_range("max_iter", max_iter, 1, 10_000)
@@ -439,14 +442,14 @@ def photo_to_dem(
     if zmax - zmin <= tol_m:
         t = t0
     else:
+        g_len = np.sqrt(np.sum(g * g, axis=-1))  # |g|: the bracket's length along the ray is |t1 − t0|·|g|
         side = np.zeros(t0.shape, dtype=int)
-        t = t0.copy()
         for _ in range(max_iter):
-            denom = np.where(f0 - f1 == 0, 1.0, f0 - f1)
-            t = np.where(f0 - f1 == 0, t0, (f0 * t1 - f1 * t0) / denom)
+            d = f0 - f1
+            flat = d == 0
+            t = np.where(flat, t0, (f0 * t1 - f1 * t0) / np.where(flat, 1.0, d))
             ft = resid(t)
-            step = np.abs(t1 - t0) * np.sqrt(np.sum(g * g, axis=-1))
-            if np.all((np.abs(ft) <= tol_m) | (step <= tol_m)):
+            if np.all((np.abs(ft) <= tol_m) | (np.abs(t1 - t0) * g_len <= tol_m)):
                 break
             upper = ft * f0 > 0  # t replaces t0
             # Illinois: halve the retained end's residual when the same end is kept twice
@@ -455,7 +458,11 @@ def photo_to_dem(
             t1 = np.where(upper, t1, t)
             f1 = np.where(upper, np.where(side == 1, f1 * 0.5, f1), ft)
             side = np.where(upper, 1, -1)
-    return S + t[..., None] * g
+    out = np.empty(g.shape)
+    out[:, 0] = Sx + t * gx
+    out[:, 1] = Sy + t * gy
+    out[:, 2] = Sz + t * gz
+    return out.reshape(shape + (3,))
 
 
 def transfer_points(camera: Camera, pose_from: Pose, pose_to: Pose, xy_mm, terrain=None) -> np.ndarray:

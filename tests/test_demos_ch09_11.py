@@ -157,22 +157,49 @@ def test_transformer_demo_preview_on_slider_then_full():
 
 
 def test_transformer_demo_in_a_kernel_previews_then_settles_and_says_so():
+    """A slider move in a running kernel: the preview now and its status note after the picture (TABLE_DELAY_S,
+    so that the page paints the frame first), the full picture once the slider rests, then the note cleared."""
     import asyncio
+
+    from aerophoto.widgets import TABLE_DELAY_S
+
+    async def until(cond, what):
+        t0 = asyncio.get_running_loop().time()
+        while not cond():  # a loaded machine may take a while
+            assert asyncio.get_running_loop().time() - t0 < 30, f"never: {what}"
+            await asyncio.sleep(0.01)
 
     async def drive():
         d = dr.TransformerDemo()
-        d.values["alpha_deg"] = 4.0
-        d.status.value = d.on_slider()  # as a slider move does, in a running kernel
-        seen = [d.result.preview, "aerophoto-pending" in d.status.value]
-        t0 = asyncio.get_running_loop().time()
-        while d._later is not None:  # until the settle timer has fired (a loaded machine may take a while)
-            assert asyncio.get_running_loop().time() - t0 < 30, "the full render never came"
-            await asyncio.sleep(0.02)
-        seen += [d.result.preview, d.status.value, d.result.screen.pixel == dr.SCREEN_PIXEL_MM]
+        d.controls()["alpha_deg"].value = 4.0  # the slider moves
+        seen = [d.result.preview, d.status.value, d._later is not None]
+        await until(lambda: "aerophoto-pending" in d.status.value or d._later is None, "the note")
+        seen += ["aerophoto-pending" in d.status.value]
+        await until(lambda: d._later is None and d.status.value == "", "the full picture and the note cleared")
+        seen += [d.result.preview, d.result.screen.pixel == dr.SCREEN_PIXEL_MM]
         d.close()
         return seen
 
-    assert asyncio.run(drive()) == [True, True, False, "", True]
+    assert asyncio.run(drive()) == [True, "", True, True, False, True]
+    assert TABLE_DELAY_S < 0.25  # the note comes before the full picture (the demo's settle delay)
+
+
+def test_a_slider_move_in_a_kernel_that_is_superseded_shows_no_stale_note():
+    """Reset right after a slider move (before the deferred note): the note never appears, nothing stays pending."""
+    import asyncio
+
+    from aerophoto.widgets import TABLE_DELAY_S
+
+    async def drive():
+        d = dr.TransformerDemo()
+        d.controls()["alpha_deg"].value = 4.0
+        d._on_reset()
+        await asyncio.sleep(TABLE_DELAY_S + 0.4)  # past the note's and the full picture's delays
+        out = [d.status.value, d._later, d._status_pending, d.result.preview, d.values["alpha_deg"]]
+        d.close()
+        return out
+
+    assert asyncio.run(drive()) == ["", None, None, False, 3.0]
 
 
 @pytest.mark.parametrize("values", _extremes(dr.TransformerDemo))

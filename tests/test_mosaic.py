@@ -364,9 +364,10 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
     import asyncio
 
     from aerophoto.demos.fotoschema import FotoschemaDemo, fotoschema_model
+    from aerophoto.widgets import TABLE_DELAY_S
 
     d = FotoschemaDemo()
-    d.settle_s = 0.05
+    d.settle_s = 0.15  # longer than the status line's delay (TABLE_DELAY_S), as the demo's own 0.35 s
     ctl = d.controls()
     seen = []
 
@@ -382,10 +383,12 @@ def test_demo_sliders_preview_while_moving_and_render_full_when_still():
         ctl["relief_m"].value = 65.0  # a second event restarts the settle timer
         seen.append(d.result.preview)
         seen.append(d._later is not None)
-        seen.append("aerophoto-pending" in d.status.value)  # the status line says a full picture is coming
+        await asyncio.sleep(TABLE_DELAY_S + 0.02)  # the status line follows the picture
+        seen.append("aerophoto-pending" in d.status.value)  # and says a full picture is coming
         await until_full()
         seen.append(d.result.preview)
         seen.append(d._later is None)
+        await asyncio.sleep(TABLE_DELAY_S + 0.02)  # the status line follows the picture
         seen.append(d.status.value)  # and clears when it came
 
     n0 = d.n_updates

@@ -248,6 +248,8 @@ class LiveDemo:
     _later = None
     #: True while a slider move is served (its table then follows the picture, :meth:`show`)
     _from_slider = False
+    #: the handle of a status line waiting to follow the picture (:meth:`_status_after_picture`)
+    _status_pending = None
 
     def __init__(self, **values):
         import ipywidgets as w
@@ -344,10 +346,11 @@ class LiveDemo:
             try:
                 fn()
             except Exception as exc:  # never let a callback die silently
+                self._drop_status_later()
                 self.status.value = error_html(exc)
                 return
             if self._later is None and "aerophoto-pending" in self.status.value:
-                self.status.value = ""
+                self._status_after_picture("")
 
         self._later = loop.call_soon(run) if delay_s <= 0 else loop.call_later(delay_s, run)
         return True
@@ -358,8 +361,9 @@ class LiveDemo:
     def preview_then_full(self, delay_s: float, note: str = PREVIEW_NOTE) -> str:
         """What a heavy demo's slider move does: a preview now (``compute`` sees ``self._preview`` True), the full
         resolution once the slider has rested ``delay_s`` seconds (:meth:`later`); without an event loop (a script,
-        a test) the full resolution at once.  Returns the status line (:func:`pending_html` of ``note``, or "")."""
-        self.cancel_later()
+        a test) the full resolution at once.  Returns the status line (:func:`pending_html` of ``note``, or "").
+        A pending note of the previous move stays up (a move while dragging sends no status of its own)."""
+        self._drop_later()
         if running_loop() is None:
             self.update()
             return ""
@@ -375,6 +379,34 @@ class LiveDemo:
         if self._later is not None:
             self._later.cancel()
             self._later = None
+        self._drop_status_later()
+
+    def _drop_status_later(self) -> None:
+        if self._status_pending is not None:
+            self._status_pending.cancel()
+            self._status_pending = None
+
+    def _status_after_picture(self, value: str) -> None:
+        """Set the status line to ``value`` once the page has had time to paint the picture just drawn.
+
+        The status is HTML: a note laid out by the page right after a picture's frame arrives holds that frame's
+        decoding back (some 10–20 ms in JupyterLab), so in a running kernel it follows :data:`TABLE_DELAY_S`
+        later, like the table; a :func:`pending_html` note whose work is done by then is not shown at all.
+        Without an event loop, or when the line is already ``value``, it is set at once.
+        """
+        self._drop_status_later()
+        loop = running_loop()
+        if loop is None or value == self.status.value:
+            self.status.value = value
+            return
+
+        def fill():
+            self._status_pending = None
+            if "aerophoto-pending" in value and self._later is None:
+                return  # the work it announces has been done already
+            self.status.value = value
+
+        self._status_pending = loop.call_later(TABLE_DELAY_S, fill)
 
     def _drop_table_later(self) -> None:
         pending = getattr(self, "_table_pending", None)
@@ -463,8 +495,9 @@ class LiveDemo:
         self._from_slider = True
         try:
             self.values[name] = self._params[name].validate(change["new"])
-            self.status.value = t(self.on_slider())
+            self._status_after_picture(t(self.on_slider()))
         except Exception as exc:  # never let a callback die silently
+            self._drop_status_later()
             self.status.value = error_html(exc)
         finally:
             self._from_slider = False
@@ -539,6 +572,7 @@ class LiveDemo:
 
         self.cancel_later()
         self._drop_table_later()
+        self._drop_status_later()
         with contextlib.suppress(Exception):
             plt.close(self.fig)
         if self._layout is not None:

@@ -482,8 +482,8 @@ class FotoschemaDemo(LiveDemo):
         return self
 
     def on_slider(self) -> str:
-        """A slider moved: preview now, full resolution once the slider rests."""
-        self.cancel_later()
+        """A slider moved: preview now, full resolution once the slider rests (the previous move's note stays up)."""
+        self._drop_later()
         self.update(preview=True)
         # without an event loop (a script or a test) the full picture is glued at once
         if self.later(self.settle_s, self._settle):
@@ -528,9 +528,7 @@ class FotoschemaDemo(LiveDemo):
                 pass
         full = dataclasses.replace(r, image=image, extent_mm=extent, px_per_mm=float(self.full_px_per_mm),
                                    preview=False, timings_s={**r.timings_s, "glue": time.perf_counter() - t0})
-        self.show(full)
-        if "aerophoto-pending" in self.status.value:
-            self.status.value = ""
+        self.show(full)  # the note is cleared after it, by LiveDemo.later's callback
 
 
 # =========================================================================== static sheets

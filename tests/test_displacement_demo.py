@@ -171,6 +171,18 @@ def test_a_slider_move_sends_its_table_after_the_picture_and_reset_wins():
     assert asyncio.run(drive()) == [True, True, True, True, True]
 
 
+def test_a_slider_that_sends_back_the_shown_value_redraws_nothing():
+    """The page may send a slider's value back (after Reset, or with float noise): no preview, no draw."""
+    demo = DisplacementDemo()
+    ctl = demo.controls()["alpha_deg"]
+    n0 = demo.n_updates
+    ctl.value = demo.values["alpha_deg"] + 1e-12  # the same setting, as a float round trip gives it
+    assert demo.n_updates == n0
+    ctl.value = demo.values["alpha_deg"] + ctl.step  # a real move
+    assert demo.n_updates == n0 + 1
+    demo.close()
+
+
 def test_nice_factor():
     assert nice_factor(0.0) == 1
     assert nice_factor(6.5) == 2

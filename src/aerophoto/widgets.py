@@ -110,6 +110,13 @@ class _HeldTable:
         self.value = value
 
 
+def _same_value(a, b, param) -> bool:
+    """True when two values of ``param`` are the same setting (floats within a millionth of its step)."""
+    if param.kind == "choice" or isinstance(a, str) or isinstance(b, str) or b is None:
+        return a == b
+    return abs(float(a) - float(b)) <= 1e-6 * max(abs(float(param.step or 1.0)), 1e-12)
+
+
 def error_html(exc: BaseException) -> str:
     """A one-line, visible error message for a demo's status line (a callback never fails silently)."""
     import html
@@ -494,7 +501,10 @@ class LiveDemo:
         name = change["owner"]._aerophoto_name
         self._from_slider = True
         try:
-            self.values[name] = self._params[name].validate(change["new"])
+            value = self._params[name].validate(change["new"])
+            if _same_value(value, self.values.get(name), self._params[name]):
+                return  # the page sent back the value the demo shows (e.g. after Reset): nothing to redraw
+            self.values[name] = value
             self._status_after_picture(t(self.on_slider()))
         except Exception as exc:  # never let a callback die silently
             self._drop_status_later()

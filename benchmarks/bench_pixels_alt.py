@@ -3,12 +3,14 @@
     python -m pip install --no-deps --target ~/.cache/aerophoto-bench/anywidget-0.11.0 anywidget==0.11.0 psygnal==0.16.1
     python benchmarks/run.py pixels_alt             # 20 moves per demo, host and way
     python benchmarks/run.py pixels_alt --quick     # 10
+    AEROPHOTO_PIXELS_ONLY=demo-transformer,demo-fotoschema python benchmarks/run.py pixels_alt   # any demos (cells)
 
 Issue 20: a demo that matplotlib through ipympl cannot bring within 100 ms p95 is compared, on the same demo
 and in the same run, with one alternative that draws in the browser.  bench_canvas_alt.py re-implements one
 picture (the fotoschema) in JavaScript; this one is **generic** — it works for every LiveDemo unchanged — and
 is run on the four image-heavy demos still above 100 ms (``DEMOS``: the rough mosaic of 02, the shooting
-conditions and the table-10 key of 08, the contours of 16), each on the slider the browser benchmark times.
+conditions and the table-10 key of 08, the contours of 16), each on the slider the browser benchmark times;
+``AEROPHOTO_PIXELS_ONLY`` names other demos of tests/browser/chapters.py by their cells (or chapter/cell) instead.
 
 The two ways, per demo:
 
@@ -273,7 +275,17 @@ def run(quick: bool = False) -> dict:
     from playwright.sync_api import sync_playwright
 
     chs = {c.name: c for c in chapters.CHAPTERS}
-    todo = [(chs[name], next(d for d in chs[name].demos if d.cell == cell)) for name, cell in DEMOS]
+    only = [c.strip() for c in os.environ.get("AEROPHOTO_PIXELS_ONLY", "").split(",") if c.strip()]
+    if only:
+        every = [(c, d) for c in chapters.CHAPTERS for d in c.demos if d.cls]
+        found = {x: [(c, d) for c, d in every if x in (d.cell, f"{c.name}/{d.cell}")] for x in only}
+        unknown = [x for x, hits in found.items() if not hits]
+        if unknown:
+            valid = ", ".join(f"{c.name}/{d.cell}" for c, d in every)
+            raise ValueError(f"AEROPHOTO_PIXELS_ONLY = {','.join(unknown)!r}: no such demo cell; valid: {valid}")
+        todo = [found[x][0] for x in only]  # a cell in two chapters: the first, or name it chapter/cell
+    else:
+        todo = [(chs[name], next(d for d in chs[name].demos if d.cell == cell)) for name, cell in DEMOS]
     n = 10 if quick else 20
     results = HERE / "results"
     out = {"method": __doc__.split("Latency is measured")[1].split("Dependency:")[0].strip().replace("\n", " "),

@@ -87,20 +87,37 @@ def table_after_picture(demo, html, *args) -> None:
     JupyterLab, whose notebook is a long page), so in a running kernel the table follows :data:`TABLE_DELAY_S`
     later (a newer move replaces a pending table); without an event loop (a script, a test) it is set at once.
     """
-    pending = getattr(demo, "_table_pending", None)
-    if pending is not None:
-        pending.cancel()
-    demo._table_pending = None
-
     def fill():
-        demo._table_pending = None
         demo.table.value = html(*args)
 
+    _after_picture(demo, "_table_pending", fill)
+
+
+def _after_picture(demo, slot: str, fill) -> None:
+    """Call ``fill()`` :data:`TABLE_DELAY_S` from now in a running kernel (at once without an event loop).
+
+    ``slot`` names the attribute of ``demo`` that holds the pending call: a newer call for the same slot
+    replaces a pending one, and :func:`_drop_after_picture` drops it.  The demos' tables and status lines use it.
+    """
+    _drop_after_picture(demo, slot)
     loop = running_loop()
     if loop is None:
         fill()
         return
-    demo._table_pending = loop.call_later(TABLE_DELAY_S, fill)
+
+    def run():
+        setattr(demo, slot, None)
+        fill()
+
+    setattr(demo, slot, loop.call_later(TABLE_DELAY_S, run))
+
+
+def _drop_after_picture(demo, slot: str) -> None:
+    """Drop the call :func:`_after_picture` holds in ``demo``'s ``slot``, if any."""
+    pending = getattr(demo, slot, None)
+    if pending is not None:
+        pending.cancel()
+    setattr(demo, slot, None)
 
 
 class _HeldTable:
@@ -389,9 +406,7 @@ class LiveDemo:
         self._drop_status_later()
 
     def _drop_status_later(self) -> None:
-        if self._status_pending is not None:
-            self._status_pending.cancel()
-            self._status_pending = None
+        _drop_after_picture(self, "_status_pending")
 
     def _status_after_picture(self, value: str) -> None:
         """Set the status line to ``value`` once the page has had time to paint the picture just drawn.
@@ -401,25 +416,19 @@ class LiveDemo:
         later, like the table; a :func:`pending_html` note whose work is done by then is not shown at all.
         Without an event loop, or when the line is already ``value``, it is set at once.
         """
-        self._drop_status_later()
-        loop = running_loop()
-        if loop is None or value == self.status.value:
-            self.status.value = value
+        if value == self.status.value:
+            self._drop_status_later()
             return
 
         def fill():
-            self._status_pending = None
             if "aerophoto-pending" in value and self._later is None:
                 return  # the work it announces has been done already
             self.status.value = value
 
-        self._status_pending = loop.call_later(TABLE_DELAY_S, fill)
+        _after_picture(self, "_status_pending", fill)
 
     def _drop_table_later(self) -> None:
-        pending = getattr(self, "_table_pending", None)
-        if pending is not None:
-            pending.cancel()
-            self._table_pending = None
+        _drop_after_picture(self, "_table_pending")
 
     def cancel_later(self) -> None:
         """Drop the work scheduled by :meth:`later`, if any, and its note on the status line."""

@@ -882,10 +882,9 @@ def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, p
         for i, (pose, T) in enumerate(zip(fs.poses, inverse)):
             sel = np.flatnonzero(idx == i)
             row, col = np.divmod(sel, nx)
-            x, y = xs[col], ys[r0 + row]
-            u, v = T.a * x - T.b * y + T.tx, T.b * x + T.a * y + T.ty  # T.apply, photo mm
-            ins = (np.abs(u) <= h) & (np.abs(v) <= h)
-            sel, xy = sel[ins], np.column_stack([u[ins], v[ins]])
+            xy = T.apply(np.column_stack([xs[col], ys[r0 + row]]))  # photo mm
+            ins = np.all(np.abs(xy) <= h, axis=1)
+            sel, xy = sel[ins], xy[ins]
             if not sel.size:
                 continue
             if photos is not None:

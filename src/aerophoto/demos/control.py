@@ -314,6 +314,7 @@ class ResectionView:
         a.grid(True, alpha=0.3)
         self.origin = np.array([6_060_000.0, 5_310_000.0])
         self._fixed = None  # (known points, circle) in plot coordinates, as last set
+        self._frame = None  # (centre, least half-width) of the square frame around them
 
     def _xy(self, P):
         """Geodetic (X north, Y east) → plot (east, north) relative to the origin."""
@@ -327,6 +328,8 @@ class ResectionView:
             # the known points and their circle: set only when they change, so that a move of the station
             # leaves them (and the frame around them) in a live demo's cached background
             self._fixed = (K, circ)
+            lo, hi = np.vstack([K, circ]).min(axis=0), np.vstack([K, circ]).max(axis=0)
+            self._frame = ((lo + hi) / 2, 0.55 * float(max(hi - lo)))  # the frame's centre and least half-width
             self.known.set_data(K[:, 0], K[:, 1])
             for t, p in zip(self.labels, K):
                 t.xy = (p[0], p[1])
@@ -343,10 +346,8 @@ class ResectionView:
         self.ax.title.set_text(_t("Resection: three known points, two angles (scatter ×{k})", k=k))
         # a square frame centred on the known points and their circle, its half-width a round value
         # (plots.coarse_ceil) just beyond them and the station: it changes only when the station walks out of it
-        lo, hi = np.vstack([K, circ]).min(axis=0), np.vstack([K, circ]).max(axis=0)
-        mid = (lo + hi) / 2
-        reach = max(0.55 * float(max(hi - lo)), 1.08 * float(np.max(np.abs(P - mid))) + 60.0)
-        half = plots.coarse_ceil(reach)
+        mid, least = self._frame
+        half = plots.coarse_ceil(max(least, 1.08 * float(np.max(np.abs(P - mid))) + 60.0))
         self.ax.set_xlim(mid[0] - half, mid[0] + half)
         self.ax.set_ylim(mid[1] - half, mid[1] + half)
 

@@ -186,10 +186,8 @@ class FootprintView:
         allp = np.vstack([r.ground_polygon_m, r.vertical_polygon_m]) / 1000.0
         n = np.asarray(r.n_ground_m[:2], dtype=float) / 1000.0
         half = plots.coarse_ceil(float(np.max(np.hypot(*(allp - n).T))) * 1.03)  # any κ, λ: the same frame
-        lim_x, lim_y = (n[0] - half, n[0] + half), (n[1] - half, n[1] + half)
-        if self.ax_ground.get_xlim() != lim_x or self.ax_ground.get_ylim() != lim_y:
-            self.ax_ground.set_xlim(*lim_x)
-            self.ax_ground.set_ylim(*lim_y)
+        self.ax_ground.set_xlim(n[0] - half, n[0] + half)  # the same limits again: no change (steady_limits)
+        self.ax_ground.set_ylim(n[1] - half, n[1] + half)
         self.grid.set_segments(list(r.grid_photo_mm))
         u = g.principal_vertical(r.pose)
         v = np.array([-u[1], u[0]])
@@ -230,6 +228,7 @@ class FootprintDemo(LiveDemo):
         # footprint outgrows a round half-width: then the move is a full draw) and the photo's grid and points
         v = self.view
         self.animated = (v.vpoly, v.poly, v.N, v.O, v.C, v.grid)
+        plots.steady_limits(v.ax_ground, snap=False)  # the same limits again are no change
 
     def compute(self, **v):
         return footprint_model(**v)

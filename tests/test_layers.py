@@ -5,11 +5,14 @@ The layers (docs/CONTRIBUTING.md, "The house"):
 1. foundation — ``_validate``, ``geometry`` (camera, projection, Terrain), ``plane`` (2-D fits, rays), ``variants``
 2. physics — one module or package per topic, pure functions and frozen dataclasses
 3. the virtual world — ``terrain``, ``site``, ``simulate``, ``render`` (data only)
-4. the course's content — ``guide/`` (printed tables and their audits), ``tasks/`` (graded tasks)
+4. the course's content — ``guide/`` (printed tables and their audits), ``labs/`` (the students' lab worlds),
+   ``tasks/`` (graded tasks: rubrics only)
 5. presentation — ``plots``, ``widgets``, ``demos/``, ``i18n``
-6. course — ``checks``, ``book``, ``course``, ``nbtools``, ``report``
+6. course — ``checks``, ``gradebook``, ``book``, ``course``, ``nbtools``, ``report``
 
 A module may import from its own layer or any lower one.  Every import counts, also one inside a function.
+Three rules more: ``labs/`` never imports ``tasks/``; nothing under ``demos/`` or ``report/`` imports ``tasks/``;
+``report/`` never constructs a live demo (its figures come from the plotting functions the demos use).
 """
 
 from __future__ import annotations
@@ -26,9 +29,9 @@ LAYERS = {
     2: ("flight", "quality", "displacement", "mosaic", "triangulation", "stereo", "projective", "control",
         "accuracy", "interpretation", "spectral", "bundle", "dem", "budget", "rectify", "soilmap"),
     3: ("terrain", "site", "simulate", "render"),
-    4: ("guide", "tasks"),
+    4: ("guide", "labs", "tasks"),
     5: ("plots", "widgets", "demos", "i18n"),
-    6: ("checks", "book", "course", "nbtools", "report", "lite", "__init__", "__main__"),
+    6: ("checks", "gradebook", "book", "course", "nbtools", "report", "lite", "__init__", "__main__"),
 }
 LAYER_OF = {name: layer for layer, names in LAYERS.items() for name in names}
 MAX_LINES = 900
@@ -93,7 +96,44 @@ def test_no_module_is_too_big(path):
     assert n <= MAX_LINES, f"{path.relative_to(PKG)} has {n} lines; split it by concern (≤ {MAX_LINES})"
 
 
+#: (packages whose modules must not import these top-level modules, why)
+FORBIDDEN = (
+    (("labs",), "tasks", "the rubrics build on the lab worlds, never the other way round"),
+    (("demos", "report"), "tasks", "presentation and the report never reach into the rubrics: a demo takes what it "
+                                   "needs from labs/, the report reads the registry through aerophoto.gradebook"),
+)
+
+
+@pytest.mark.parametrize("path", _modules(), ids=lambda p: str(p.relative_to(PKG)))
+def test_no_forbidden_imports(path):
+    here = _top(path)
+    for packages, target, why in FORBIDDEN:
+        if here in packages:
+            assert target not in _imported(path), f"{path.relative_to(PKG)} imports {target}: {why}"
+
+
+def _constructed_demos(path: Path) -> list:
+    """Names ending in ``Demo`` that ``path`` calls (constructs), anywhere in the file."""
+    out = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Call):
+            f = node.func
+            name = f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
+            if name.endswith("Demo"):
+                out.append(name)
+    return out
+
+
+@pytest.mark.parametrize("path", sorted((PKG / "report").glob("*.py")), ids=lambda p: p.name)
+def test_the_report_draws_no_live_demo(path):
+    made = _constructed_demos(path)
+    assert not made, f"report/{path.name} constructs {made}: draw with the demos' plotting functions (ax=None)"
+
+
 def test_the_layer_test_sees_relative_and_lazy_imports():
     # a probe of the reader itself: known imports of known modules
     assert "geometry" in _imported(PKG / "flight.py")
     assert "tasks" in _imported(PKG / "checks.py")  # imported inside a function
+    assert "labs" in _imported(PKG / "tasks" / "ch06.py")
+    assert "labs" in _imported(PKG / "demos" / "fotoschema.py")  # inside functions
+    assert "FootprintDemo" in _constructed_demos(PKG / "demos" / "footprint.py")  # the probe sees a construction

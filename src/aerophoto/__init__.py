@@ -53,7 +53,7 @@ _SUBMODULES = (
     "accuracy",
     "soilmap",
     "terrain",
-    "guide",
+    "guide", "labs",
     "tasks",
     "plots",
     "widgets",

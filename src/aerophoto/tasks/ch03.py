@@ -34,7 +34,7 @@ import numpy as np
 
 from ..displacement import base_lengths_mm
 from .base import Answer, Hidden, Task, submitted_number
-from .displacement_lab import RELIEF_BASES, RELIEF_NAMES, relief_sheet
+from ..labs.displacement import RELIEF_BASES, RELIEF_NAMES, relief_sheet
 
 __all__ = ["TOL_XY_MM", "TOL_LEN_MM", "TOL_M_I", "TOL_M_PART", "TOL_M_CP", "TOL_DM_PCT", "BASE_LABELS",
            "ZONES", "numbers", "scale_answers", "scale_spec", "scale_hidden", "ReliefTable2", "ReliefTable3", "ReliefTable4", "TASKS"]

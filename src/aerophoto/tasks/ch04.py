@@ -35,7 +35,7 @@ from .. import geometry as g
 from ..displacement import base_lengths_mm
 from .base import Answer, Hidden, Task, submitted_number
 from .ch03 import TOL_LEN_MM, TOL_XY_MM, numbers, scale_answers, scale_hidden, scale_spec
-from .displacement_lab import TILT_BASES, TILT_NAMES, tilt_sheet
+from ..labs.displacement import TILT_BASES, TILT_NAMES, tilt_sheet
 
 __all__ = ["BASE_LABELS", "ZONES", "TOL_PHI_DEG", "Isocentre", "TiltTable5", "TiltTable6", "TiltTable7", "TASKS"]
 

@@ -16,7 +16,7 @@ Measured (milliseconds, median and p95):
 * ``demo_kernel_update_largest``: the same at the largest variant's camera and scale (f = 1090 mm,
   1:21 900);
 * ``lab_strip_all_variants``: every student's strip of chapters 06 and 12 built from scratch — flown,
-  pricked, laid, reduced and read (:func:`aerophoto.tasks.ch06.strip_readings`) — for all 100 variants;
+  pricked, laid, reduced and read (:func:`aerophoto.labs.ch06.strip_readings`) — for all 100 variants;
 * ``grade_lab_task``: the trusted grading of task 06.2 (``checks.grade_task``) on a right answer (the
   student's strip is built on its first use and then reused), and ``grade_lab_task_wrong`` on a wrong one,
   which asks for every other variant's answers to recognise another variant's.
@@ -89,14 +89,14 @@ def run(quick: bool = False) -> dict:
     out["accumulation_study"] = measure(lambda: T.accumulation_study(n_bases=(2, 4, 6, 8), seeds=range(20)),
                                         2 if quick else 5, warmup=1)
     from aerophoto import checks, tasks
+    from aerophoto.labs import ch06
+    from aerophoto.labs import own as _own
     from aerophoto.variants import variant_for_index
-
-    from aerophoto.tasks import _own, ch06
 
     variants = [variant_for_index(i) for i in range(100)]
 
     def all_strips():
-        for cache in (ch06._lab_parts, ch06._readings, _own._own_strip):
+        for cache in (ch06._lab_parts, ch06.shared_readings, _own.own_strip_of):
             cache.cache_clear()
         for v in variants:
             ch06.strip_readings(v)

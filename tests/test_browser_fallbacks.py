@@ -45,7 +45,7 @@ def _block(monkeypatch, *names):
 @pytest.fixture(scope="module")
 def pair():
     """The chapter 7 example pair, normalised, at 512 pixels (the height model's size; cached by ch07)."""
-    from aerophoto.tasks import ch07
+    from aerophoto.labs import ch07
 
     lab = ch07.example_lab()
     return lab, ch07.lab_images(lab, 512)
@@ -127,7 +127,7 @@ def test_stereo_match_points_fallback_on_the_known_disparity(monkeypatch):
 @pytest.fixture(scope="module")
 def rectification(pair):
     """The left photo of the pair and its rectification onto a 1:10 000 base (chapter 11's lab for that photo)."""
-    from aerophoto.tasks.ch11 import rectification_lab_for
+    from aerophoto.labs.ch11 import rectification_lab_for
 
     lab, images = pair
     photo = images.photos[0]

@@ -14,7 +14,7 @@ import pytest
 from aerophoto import checks, tasks
 from aerophoto import displacement as d
 from aerophoto.tasks import ch03, ch04
-from aerophoto.tasks.displacement_lab import relief_sheet, tilt_sheet
+from aerophoto.labs.displacement import relief_sheet, tilt_sheet
 from aerophoto.variants import variant_for_index
 
 IDS = ("task-03-1", "task-03-2", "task-03-3", "task-04-1", "task-04-2", "task-04-3", "task-04-4")

@@ -124,7 +124,7 @@ def test_a_rendered_photo_of_flat_ground_rectifies_onto_the_truth_within_a_pixel
 
     from aerophoto.render import render
     from aerophoto.site import get_site
-    from aerophoto.tasks.ch11 import rectification_lab_for
+    from aerophoto.labs.ch11 import rectification_lab_for
 
     site = get_site(relief_m=0)
     cam = g.Camera(108.0)

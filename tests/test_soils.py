@@ -8,6 +8,7 @@ from aerophoto import checks, soilmap, spectral, tasks
 from aerophoto.guide import s14
 from aerophoto.site import get_site
 from aerophoto.site import soils as so
+from aerophoto.labs import ch13 as lab13
 from aerophoto.tasks import ch13
 from aerophoto.variants import variant_for_index
 
@@ -305,7 +306,7 @@ def test_explorer_opens_on_variant_00_and_moves_its_artists_in_place():
 
     demo = SpectralExplorerDemo()
     assert demo.values["moisture_pct"] == REFERENCE["moisture_pct"]
-    p00 = ch13.patch_of(variant_for_index(0))
+    p00 = lab13.patch_of(variant_for_index(0))
     assert demo_patch().extent_m == p00.extent_m
     demo.set(roughness=0.0)  # no clods: the task's own photo of variant 00's patch
     np.testing.assert_allclose(demo.result.composite, p00.composite, atol=1e-6)

@@ -6,6 +6,7 @@ import pytest
 
 from aerophoto import accuracy as acc
 from aerophoto import checks, tasks
+from aerophoto.labs import ch15 as lab15
 from aerophoto.tasks import ch14, ch15
 from aerophoto.variants import variant_for_index
 
@@ -73,7 +74,7 @@ def test_every_variant_works_for_chapter_14(which):
 def test_every_variant_works_for_chapter_15(which):
     for i in which:
         v = variant_for_index(i)
-        sv = ch15.student_block(v)
+        sv = lab15.student_block(v)
         a2 = ch15.FindBlunders().answers(v)
         assert a2["blunder_point"] == sv.blunder_point, i
         assert a2["bad_control"] == sv.bad_control, i
@@ -97,11 +98,11 @@ def test_slips_are_named():
     with pytest.raises(checks.WrongAnswer, match="not as n"):
         checks.check_task("task-14-2", v, **{**b, "m20_mm": b["d_mm"] * 20})
     c = tasks.answers("task-15-1", v)
-    m = ch15.student_block(v).meas
+    m = lab15.student_block(v).meas
     with pytest.raises(checks.WrongAnswer, match="tie points are unknowns"):
         checks.check_task("task-15-1", v, **{**c, "n_unknowns": 6 * m.n_photos})
     d = tasks.answers("task-15-3", v)
-    fp = ch15.solve_block(ch15.student_block(v)).field_point(ch15.field_point_id(v))
+    fp = ch15.solve_block(lab15.student_block(v)).field_point(ch15.field_point_id(v))
     with pytest.raises(checks.WrongAnswer, match="semi-minor"):
         checks.check_task("task-15-3", v, **{**d, "a_m": fp["b_m"]})
     e = tasks.answers("task-15-2", v)

@@ -10,7 +10,9 @@ import pytest
 from aerophoto import checks, tasks
 from aerophoto import geometry as g
 from aerophoto import mosaic as mo
-from aerophoto.tasks import _own, ch05
+from aerophoto.labs import ch05 as lab05
+from aerophoto.labs import own as _own
+from aerophoto.tasks import ch05
 from aerophoto.variants import variant, variant_for_index
 
 V3 = variant_for_index(3)
@@ -29,7 +31,7 @@ def test_the_chapter_registers_its_tasks():
 @pytest.mark.parametrize("i", [0, 3, 57, 99])
 def test_each_student_glues_their_own_strip(i):
     v = variant_for_index(i)
-    own = ch05.own_fotoschema(v)
+    own = lab05.own_fotoschema(v)
     assert own.fs.camera.f_mm == v.f_mm and own.fs.m_design == v.m and own.fs.scale.M == v.M
     assert own.numbers == (36, 37, 38, 39) and len(own.fs.seams) == 3
     # near-vertical photos, tilts capped at 2° and at f·tg α ≤ 6 mm (the photos stay on the site)
@@ -53,18 +55,18 @@ def test_strips_lie_at_places_of_their_own():
 
 def test_the_readings_are_the_truth_read_to_a_tenth_of_a_millimetre():
     for v in (variant_for_index(0), V57, variant_for_index(99)):
-        own = ch05.own_fotoschema(v)
-        t = ch05.seam_readings(v)
+        own = lab05.own_fotoschema(v)
+        t = lab05.seam_readings(v)
         d = own.details
         assert len(t) == d.dI_mm.size == own.fs.dI_mm.size
         for col in ("contour from the cut, mm", "prick from the cut, mm"):
             assert all(x == round(x, 1) and str(x) != "-0.0" for x in t[col])
         assert np.all(np.abs(t["contour from the cut, mm"] - d.contour_from_cut_mm) <= 0.05 + 1e-9)
-        assert np.all(np.abs(t["prick from the cut, mm"] - d.prick_from_cut_mm) <= ch05.PRICK_MAX_MM + 0.05 + 1e-9)
-        a = ch05.answers_of(v)
-        assert np.all(np.abs(np.array(a["dI_mm"]) - d.dI_mm) <= 0.05 + ch05.PRICK_MAX_MM + 0.05 + 1e-9)
+        assert np.all(np.abs(t["prick from the cut, mm"] - d.prick_from_cut_mm) <= lab05.PRICK_MAX_MM + 0.05 + 1e-9)
+        a = lab05.answers_of(v)
+        assert np.all(np.abs(np.array(a["dI_mm"]) - d.dI_mm) <= 0.05 + lab05.PRICK_MAX_MM + 0.05 + 1e-9)
         assert a["m_rms_mm"] == pytest.approx(math.sqrt(np.mean(d.dI_mm ** 2)), abs=0.12)
-        p = ch05.scale_readings(v)
+        p = lab05.scale_readings(v)
         truth_sheet, truth_plan = own.fs.scale.sheet_mm, own.plan_xy_mm()
         assert np.all(np.abs(p[["along the strip, mm", "across, mm"]].to_numpy() - truth_sheet) <= 0.15 + 1e-9)
         assert np.all(np.abs(p[["x (north) on the plan, mm", "y (east) on the plan, mm"]].to_numpy() - truth_plan)
@@ -82,14 +84,14 @@ def test_the_readings_are_the_truth_read_to_a_tenth_of_a_millimetre():
 
 def test_high_flights_leave_seams_within_the_reading_error():
     # ΔI ≈ b·h/H: 30 m of relief at H = 1200 m (variant 00) against H = 23 871 m (variant 99)
-    low, high = ch05.own_fotoschema(variant_for_index(0)), ch05.own_fotoschema(variant_for_index(99))
+    low, high = lab05.own_fotoschema(variant_for_index(0)), lab05.own_fotoschema(variant_for_index(99))
     assert np.max(np.abs(low.details.dI_mm)) > 0.2
     assert np.max(np.abs(high.details.dI_mm)) < 0.1
 
 
 def test_inputs_are_the_readings_and_fresh_each_time():
     t = tasks.inputs("task-05-1", V3)
-    assert t.equals(ch05.seam_readings(V3))
+    assert t.equals(lab05.seam_readings(V3))
     assert list(t.columns) == ["y across, mm", "contour from the cut, mm", "prick from the cut, mm"]
     assert list(dict.fromkeys(t.index.get_level_values(0))) == ["36/37", "37/38", "38/39"]
     t.iloc[0, 1] = 99.0  # a student changing the table does not change the task
@@ -131,7 +133,7 @@ def test_every_variant_works():
 
 
 def test_the_answers_hold_together():
-    a = ch05.answers_of(V3)
+    a = lab05.answers_of(V3)
     t1, t2 = tasks.get("task-05-1"), tasks.get("task-05-2")
     assert t1.answers(V3) == {k: a[k] for k in t1.names} and t2.answers(V3) == {k: a[k] for k in t2.names}
     dI = np.array(a["dI_mm"])
@@ -226,7 +228,7 @@ def test_the_measuring_figure_shows_the_work_not_the_answers():
     texts = [t.get_text() for t in ax.texts] + [ax.get_title()]
     assert {"36a", "36b", "39a", "39b", "cut 36/37"} <= set(texts)
     assert "17 700" in ax.get_title()  # the design scale: an input
-    a = ch05.answers_of(V57)
+    a = lab05.answers_of(V57)
     shown = " ".join(texts)
     assert f"{a['m_mean']:.0f}" not in shown and "ΔI" not in shown and "m =" not in shown
 
@@ -237,12 +239,12 @@ def test_student_sheet_is_signed_with_the_computed_scale_on_a3(tmp_path, capsys)
     fig = student_sheet(V57, "Ivanova A.", year=2025)
     assert fig.aerophoto_paper == "A3"
     texts = " ".join(t.get_text() for t in fig.texts)
-    m_txt = f"{int(round(ch05.answers_of(V57)['m_mean'] / 100) * 100):,}".replace(",", " ")
+    m_txt = f"{int(round(lab05.answers_of(V57)['m_mean'] / 100) * 100):,}".replace(",", " ")
     assert f"М 1:{m_txt}" in texts and "Ivanova A., record book 19-0457" in texts and "2025" in texts
     assert "ФОТОСХЕМА" in texts and "Проверил" in texts
     # every variant's sheet fits A3 at true size, the largest variant too
     for i in (0, 17, 77, 99):
-        assert sheet_paper(ch05.own_fotoschema(variant_for_index(i)).fs)[0] == "A3"
+        assert sheet_paper(lab05.own_fotoschema(variant_for_index(i)).fs)[0] == "A3"
     assert PAPER_MM["A3"] == (420.0, 297.0)
     # in the notebook: not before task 05.2 has passed
     assert finished_sheet(V57, "Ivanova A.", answered=False) is None

@@ -7,7 +7,7 @@ import pytest
 
 from aerophoto import checks, tasks
 from aerophoto import stereo as st
-from aerophoto.tasks import ch07
+from aerophoto.labs import ch07
 from aerophoto.variants import variant_for_index
 
 V3 = variant_for_index(3)

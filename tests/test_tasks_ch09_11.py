@@ -9,7 +9,7 @@ import pytest
 from aerophoto import checks, tasks
 from aerophoto import control as c
 from aerophoto import rectify as rf
-from aerophoto.tasks import ch09, ch10, ch11
+from aerophoto.labs import ch09, ch10, ch11
 from aerophoto.variants import variant_for_index
 
 IDS = ("task-09-1", "task-09-2", "task-10-1", "task-10-2", "task-11-1", "task-11-2")

@@ -9,6 +9,7 @@ import pytest
 from aerophoto import checks, flight, tasks
 from aerophoto import quality as q
 from aerophoto.guide import s02, s03
+from aerophoto.labs import ch02 as lab02
 from aerophoto.tasks import ch01, ch02
 from aerophoto.variants import variant_for_index
 
@@ -53,8 +54,8 @@ def test_chapter_01_answers_are_the_plan():
 def test_chapter_02_data_and_answers():
     # (moved from test_quality: the task data used to be quality.variant_task / variant_task_answers)
     v = variant_for_index(0)
-    d = ch02.strip_measurements(v)
-    assert d == ch02.strip_measurements(v)  # deterministic
+    d = lab02.strip_measurements(v)
+    assert d == lab02.strip_measurements(v)  # deterministic
     assert d["b_mm"] == 180.0 and d["f_mm"] == 100.0 and d["H_m"] == 1200.0
     for k in ("a_mm", "b1_mm", "b2_mm", "L_mm", "l_mm"):
         assert d[k] == round(d[k], 1)
@@ -75,9 +76,9 @@ def test_chapter_02_inputs_are_the_table_the_notebook_shows():
     v = variant_for_index(0)
     meas = tasks.inputs("task-02-1", v)
     assert isinstance(meas, pd.Series) and meas.name == "your measurements"
-    assert tuple(meas.index) == ch02.MEASUREMENT_KEYS
-    d = ch02.strip_measurements(v)
-    assert all(meas[k] == d[k] for k in ch02.MEASUREMENT_KEYS)
+    assert tuple(meas.index) == lab02.MEASUREMENT_KEYS
+    d = lab02.strip_measurements(v)
+    assert all(meas[k] == d[k] for k in lab02.MEASUREMENT_KEYS)
     assert meas["a_mm"] == 105.0 and meas["b1_mm"] == 74.4 and meas["bubble_div"] == 0.3
     assert tasks.inputs("task-02-2", v).equals(meas)
     # the notebook's solution works on it as on the old dict
@@ -129,7 +130,7 @@ def test_chapter_01_slips_are_todays():
 
 def test_chapter_02_slips_are_recognised(capsys):
     v = variant_for_index(0)
-    d = ch02.strip_measurements(v)
+    d = lab02.strip_measurements(v)
     assert "divides by b1" in _wrong("task-02-1", v, dm_percent=(d["b1_mm"] - d["b2_mm"]) / d["b2_mm"] * 100)
     assert "multiply by 30′" in _wrong("task-02-2", v, alpha_read_deg=d["bubble_div"])
     assert "56 %" in _wrong("task-02-2", v, px_ok=not tasks.answers("task-02-2", v)["px_ok"])

@@ -571,7 +571,7 @@ def test_geodetic_directions_read_the_same_formulas():
 def test_tie_points_are_seen_on_all_three_photos_of_every_students_strip():
     # tilted photos turn against each other: a tie point at x = 0 of its photo, or a catalogue point near it,
     # may leave a neighbour's frame; the design slides it along the strip and the catalogue must be seen there
-    from aerophoto.tasks import ch06
+    from aerophoto.labs import ch06
     from aerophoto.variants import variant_for_index
 
     for i in range(100):

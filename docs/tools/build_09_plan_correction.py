@@ -51,7 +51,7 @@ a grid on the photo and a grid on the plan whose cells correspond, built on four
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
-from aerophoto import guide, plots, projective, tasks
+from aerophoto import guide, labs, plots, projective, tasks
 from aerophoto.demos import plan_correction as pc
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
@@ -168,7 +168,7 @@ So the worked example is the explorer's scene at the guide's numbers: a photo at
 tilted by 3°, and the plan at 1:10 000. Its four control points on the photo and the plan, to 0.01 mm:
 """, id="example-2-theory"),
     code("""
-example = tasks.ch09.lab_for(pc.EXAMPLE_SEED, 100.0, 12000.0, 3.0, -60.0, 10.0)
+example = labs.ch09.lab_for(pc.EXAMPLE_SEED, 100.0, 12000.0, 3.0, -60.0, 10.0)
 example.control_table()
 """, id="example-2"),
     md("""

@@ -50,6 +50,7 @@ import numpy as np
 import pandas as pd
 from aerophoto import bundle, guide, plots, tasks
 from aerophoto.demos import bundle_views
+from aerophoto.labs import ch15 as lab15
 from aerophoto.tasks import ch15
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
@@ -106,7 +107,7 @@ measurement is moved by 0.1 mm and one control height is wrong by 10 m (the arti
 heights wrong by 8–12 m).
 """, id="example-theory"),
     code("""
-ex = ch15.example_block()
+ex = lab15.example_block()
 pd.Series(ex.meas.summary(), name="example block")
 """, id="example-summary"),
     code("""

@@ -1,6 +1,6 @@
 """Graded tasks of chapter 02 (guide §3): measuring and judging the student's own strip.
 
-:func:`strip_measurements` flies a strip of five photos with the variant's
+:func:`aerophoto.labs.ch02.strip_measurements` flies a strip of five photos with the variant's
 camera, scale and overlap (:func:`aerophoto.simulate.variant_strip`) with
 imperfections drawn from the variant number, and reads on it what a
 technician reads on the rough mosaic.  The tasks' input is that table
@@ -24,7 +24,7 @@ __all__ = ["reference_answers", "MeasureStrip", "JudgeStrip", "TASKS"]
 
 
 def reference_answers(variant) -> dict:
-    """The correct answers to chapter 02's graded tasks, computed from :func:`strip_measurements` with the formulas."""
+    """The correct answers to chapter 02's graded tasks, computed from :func:`aerophoto.labs.ch02.strip_measurements` with the formulas."""
     d = strip_measurements(variant)
     Px = q.overlap_percent(d["a_mm"], d["b_mm"])
     dm = q.scale_difference_percent(d["b1_mm"], d["b2_mm"])
@@ -41,7 +41,7 @@ def reference_answers(variant) -> dict:
 
 class _StripTask(Task):
     def inputs(self, v) -> pd.Series:
-        """The measurements on the student's strip (:func:`measurement_table`)."""
+        """The measurements on the student's strip (:func:`aerophoto.labs.ch02.measurement_table`)."""
         return measurement_table(v)
 
     def answers(self, v) -> dict:

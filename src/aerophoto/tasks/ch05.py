@@ -1,6 +1,6 @@
 """Graded tasks of chapter 05 (guide §6): the student's own fotoschema — its seams and its mean scale.
 
-Every student glues **their own strip** (:func:`aerophoto.tasks._own.own_strip`:
+Every student glues **their own strip** (:func:`aerophoto.labs.own.own_strip`:
 four photos 36 … 39 with their variant's f, 1:m and p_x, flown over the
 virtual site at a place of their own, tilts up to 2° with f·tg α ≤ 6 mm) into a
 fotoschema with :func:`aerophoto.mosaic.assemble`, over the site's true relief
@@ -20,7 +20,7 @@ guide's two checks on it from readings made on the sheet:
 
 The readings are the truth (the camera model: :func:`aerophoto.mosaic.seam_details`,
 :class:`aerophoto.mosaic.ScaleCheck`) plus a bounded, seeded pricking error,
-rounded to 0.1 mm (:func:`aerophoto.tasks._own.read_mm`); the reference answers
+rounded to 0.1 mm (:func:`aerophoto.labs.own.read_mm`); the reference answers
 are computed **from the readings**, as the student computes them, and the tests
 hold them against the truth.  Plan coordinates follow the Russian geodetic
 convention — x north, y east (the package's ground frame is X east, Y north).
@@ -87,7 +87,7 @@ class SeamQuality(Task):
     )
 
     def inputs(self, v) -> pd.DataFrame:
-        """The readings along the cuts of the student's fotoschema (:func:`seam_readings`)."""
+        """The readings along the cuts of the student's fotoschema (:func:`aerophoto.labs.ch05.seam_readings`)."""
         return seam_readings(v)
 
     def answers(self, v) -> dict:
@@ -141,7 +141,7 @@ class MeanScale(Task):
     )
 
     def inputs(self, v) -> pd.DataFrame:
-        """The four points read on the student's fotoschema and plan (:func:`scale_readings`)."""
+        """The four points read on the student's fotoschema and plan (:func:`aerophoto.labs.ch05.scale_readings`)."""
         return scale_readings(v)
 
     def answers(self, v) -> dict:

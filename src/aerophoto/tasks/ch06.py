@@ -1,9 +1,9 @@
 """Graded tasks of chapter 06 (guide §7): the student's own strip — its error triangles, table 8 and table 9.
 
-Every student triangulates **their own strip** (:func:`aerophoto.tasks._own.own_strip`:
+Every student triangulates **their own strip** (:func:`aerophoto.labs.own.own_strip`:
 photos 36 … 39 with their variant's f, 1:m and p_x, at a place of their own
 on the virtual site — the same four photos they glue into a fotoschema in
-chapter 05).  The work of guide §7 / §13 is done on it (:func:`lab_strip`):
+chapter 05).  The work of guide §7 / §13 is done on it (:func:`aerophoto.labs.ch06.lab_strip`):
 
 1. the working centres, orienting, tie and control points are pricked on every
    photo with the guide's 0.1 mm (seed: the variant number) and the direction
@@ -11,11 +11,11 @@ chapter 05).  The work of guide §7 / §13 is done on it (:func:`lab_strip`):
 2. the templates are laid into a free strip at a scale of the variant's own,
    q = 0.92 … 0.969 of the plan's for i < 50 and 1.03 … 1.079 for i ≥ 50 (so
    half the class lays the strip too small, half too large: corrections away
-   from and towards the centre), :func:`free_scale_ratio`;
+   from and towards the centre), :func:`aerophoto.labs.ch06.free_scale_ratio`;
 3. the common tracing is "measured": every point of it read to 0.1 mm with a
-   bounded reading error (:func:`aerophoto.tasks._own.read_mm`).
+   bounded reading error (:func:`aerophoto.labs.own.read_mm`).
 
-What the student reads (:class:`StripReadings`, all in the Russian geodetic
+What the student reads (:class:`aerophoto.labs.ch06.StripReadings`, all in the Russian geodetic
 convention of the guide's table 8 — x north/up, y east/right, directions
 clockwise from +x, :mod:`aerophoto.triangulation.geodetic`):
 

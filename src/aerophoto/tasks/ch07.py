@@ -1,6 +1,6 @@
 """Graded tasks of chapter 07 (guide §8): the student's own stereo pair — its base, and heights from parallaxes.
 
-Each variant flies its own pair over the virtual site (:func:`stereo_lab`):
+Each variant flies its own pair over the virtual site (:func:`aerophoto.labs.ch07.stereo_lab`):
 two photos with the variant's camera f and scale 1:m, p_x = 60 %, centred on
 the site, with the small departures of a real flight seeded by i (tilts up to
 0.7°, crab jitter ±1°, base jitter ±2 %; both stations at one height).  The
@@ -24,7 +24,7 @@ true orientations), never from image analysis.  Tasks:
 * 07.3 (:class:`ParallaxForHeight`): the parallax difference the site's
   relief makes on the pair, and the stereo model's vertical exaggeration.
 
-:func:`example_lab` is the guide's example (variant 00's camera and scale,
+:func:`aerophoto.labs.ch07.example_lab` is the guide's example (variant 00's camera and scale,
 its own seed) that the chapter's live demo opens on.
 """
 

@@ -1,11 +1,11 @@
 """Graded tasks of chapter 08 (guide §9): interpreting the student's own colour photo of the interpretation site.
 
-Each variant photographs :mod:`aerophoto.site.cover`'s site with its own crop and conditions (:func:`lab_setup`,
+Each variant photographs :mod:`aerophoto.site.cover`'s site with its own crop and conditions (:func:`aerophoto.labs.ch08.lab_setup`,
 seeded by the variant number i): a frame camera f = 100 mm, 18×18 cm, at a scale 1:m between 1:8 000 and
 1:9 500, the photo's x axis turned by κ = 0°, 90°, 180° or 270° from east, a small tilt (α ≤ 1.5°), a summer day
 with the sun 35–60° high in the south-east to south-west, visibility 20–50 km, a little motion blur.
 
-The student gets :class:`LabPhoto` (``tasks.inputs("task-08-1", v)``): the photo itself (six bands, shown as
+The student gets :class:`aerophoto.labs.ch08.LabPhoto` (``tasks.inputs("task-08-1", v)``): the photo itself (six bands, shown as
 natural colour and colour infrared), the photo coordinates of the numbered marks as read on it, the scale, and the
 names to choose from — what the photo shows, never what is there: no class map, no site.  The truth is the site's
 (:func:`aerophoto.labs.ch08.truth`: the land cover under each mark, the river's flow, the stands, the river's width).

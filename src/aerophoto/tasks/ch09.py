@@ -4,7 +4,7 @@ Each variant has its own piece of farmland (:func:`aerophoto.projective.land_use
 with seed i) and its own new photo of it: the variant's camera f and scale
 1:m, tilt α = 3° with the principal vertical at λ, a heading κ and a small
 offset of the photo centre drawn from the variant.  The old plan is at
-1:10 000 (guide §10).  The student reads (:func:`plan_correction_lab`):
+1:10 000 (guide §10).  The student reads (:func:`aerophoto.labs.ch09.plan_correction_lab`):
 
 * the four control points on the photo (x, y mm from the principal point, to
   0.01 mm) and on the plan (x, y mm, to 0.01 mm);

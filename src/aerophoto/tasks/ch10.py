@@ -1,10 +1,10 @@
 """Graded tasks of chapter 10 (guide §11): the student's own resection and its check angle.
 
-Each variant gets its own station on the virtual site (:func:`resection_lab`):
+Each variant gets its own station on the virtual site (:func:`aerophoto.labs.ch10.resection_lab`):
 a well-defined ground point P that is not yet a control point, and four
 known points A, B, C, D of the site's control network round it.  The site's
 coordinates are turned into plane coordinates like the guide's §11 table
-(X north, Y east, metres, :data:`GEODETIC_ORIGIN`).  The angles "measured" at
+(X north, Y east, metres, :data:`aerophoto.labs.ch10.GEODETIC_ORIGIN`).  The angles "measured" at
 P are the true angles with a theodolite's random error (σ = 5″, rounded to
 whole seconds); in every fifth variant (i = 4, 9, 14, …) the angle β₂ was
 misread by several minutes — the check must catch it.

@@ -1,6 +1,6 @@
 """Graded tasks of chapter 11 (guide §12): the student's paper deformation and substrate, and a four-point rectification.
 
-* task 11.1 (:class:`Substrate`): the student's own table 11 (:func:`paper_lab`):
+* task 11.1 (:class:`Substrate`): the student's own table 11 (:func:`aerophoto.labs.ch11.paper_lab`):
   six lengths on the control grid (5 mm squares: two lines, two other lines and
   two diagonals of the rectangle they span, the numbers of squares drawn from
   the variant) and on the contact print (to 0.1 mm, with a paper deformation
@@ -8,7 +8,7 @@
   variant, the base at 1:M = 1:10 000.  The student computes
   K_d = [δl]/[l₀] and t = K_d·f·(K_t + 1), K_t = m/M.
 * task 11.2 (:class:`FourPointRectification`): the student's photo of the
-  virtual site (:func:`rectification_lab`): variant f, 1:m, α = 3°, λ, a
+  virtual site (:func:`aerophoto.labs.ch11.rectification_lab`): variant f, 1:m, α = 3°, λ, a
   heading and a centre drawn from the variant; four control points near the
   corners of the working area and two check points, measured on the photo
   (pricking error σ = 0.03 mm, to 0.01 mm) and on the base (1:10 000, to
@@ -19,7 +19,7 @@
 
 Answers are computed from the rounded numbers the student reads.  The
 chapter's worked example uses the guide's own numbers (f = 108 mm, 1:15 000,
-base 1:5000: :func:`example_rectification_lab`), which no variant has.
+base 1:5000: :func:`aerophoto.labs.ch11.example_rectification_lab`), which no variant has.
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ The three maps of task 13.1 (:func:`map_scales`): a map at twice the photo's sca
 mosaic reduced twice), a district map ten times smaller than the photos and a regional one forty times
 smaller: 1 : 2m, 1 : 10m, 1 : 40m with the student's m = 12 000 + 100i.
 
-The patch of tasks 13.2–13.3 (:func:`patch_of`): a square 10 cm × 10 cm on the student's photo, i.e.
+The patch of tasks 13.2–13.3 (:func:`aerophoto.labs.ch13.patch_of`): a square 10 cm × 10 cm on the student's photo, i.e.
 0.1·m metres on the ground (1.2–2.19 km), in 200 × 200 cells of 0.5 mm on the photo (m/2000 metres), centred
 at X = 1200 + 76i m and 300 + 100·(i mod 3) m north of the river's centre line, so every patch holds the
 floodplain and the slopes above it.  It is photographed bare (as in spring, before the crops come up: the

@@ -1,8 +1,8 @@
 """Graded tasks of chapter 15 (article 002): the block bundle adjustment of a mountain survey.
 
 The chapter's blocks are flown over the mountain version of the virtual site
-(:data:`MOUNTAIN_SITE`: 14 km × 11 km, heights 1800–2400 m) with the article's
-camera (f = 200 mm, 18 × 18 cm frame).  :func:`survey_block` builds one: the
+(:data:`aerophoto.labs.ch15.MOUNTAIN_SITE`: 14 km × 11 km, heights 1800–2400 m) with the article's
+camera (f = 200 mm, 18 × 18 cm frame).  :func:`aerophoto.labs.ch15.survey_block` builds one: the
 flight (:func:`aerophoto.simulate.block_over_site`), the tie points at the
 standard positions of every photo, sparse control (the site's control points
 nearest the block's corners and the middles of its long sides — the article's
@@ -14,9 +14,9 @@ eye, so measured with a larger error) and the planted blunders: one image
 measurement moved by a tenth of a millimetre, one control height wrong by
 metres (the article's barometric heights "with blunders of 8–12 m").
 
-The worked example (:func:`example_block`) is the article's experiment made
+The worked example (:func:`aerophoto.labs.ch15.example_block`) is the article's experiment made
 smaller: four strips of seven photos at 1:15 000.  The student's block
-(:func:`student_block`) is three strips of six photos at the student's scale
+(:func:`aerophoto.labs.ch15.student_block`) is three strips of six photos at the student's scale
 1:m (m = 12 000 + 100·i, guide §1: the footprint grows from 2.2 km to 3.9 km
 and the site holds the largest), with the student's own random streams.
 

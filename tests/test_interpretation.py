@@ -257,27 +257,28 @@ def test_lab_inputs_hold_no_answer_key():
 
 
 def test_lab_grades_correct_full_and_swapped_labels_partly():
-    from aerophoto import checks, tasks
+    from aerophoto import tasks
+    from aerophoto.course import score
 
     t = tasks.get("task-08-1")
     key = t.answers(V)
-    full = checks.grade_task("task-08-1", V, key)
+    full = score.grade_task("task-08-1", V, key)
     assert full.score == t.points == 3
     swapped = dict(key, obj1=key["obj2"], obj2=key["obj1"])
     assert key["obj1"] != key["obj2"]
-    part = checks.grade_task("task-08-1", V, swapped)
+    part = score.grade_task("task-08-1", V, swapped)
     assert part.score == pytest.approx(3 * 4 / 6)
     assert [ok for _, ok, _, _ in part.checks] == [False, False, True, True, True, True]
     # flow and spruce: one of two right → half the points
     t2 = tasks.get("task-08-2")
     k2 = t2.answers(V)
-    assert checks.grade_task("task-08-2", V, k2).score == 2
+    assert score.grade_task("task-08-2", V, k2).score == 2
     wrong = dict(k2, spruce="Q" if k2["spruce"] == "P" else "P")
-    assert checks.grade_task("task-08-2", V, wrong).score == pytest.approx(1.0)
+    assert score.grade_task("task-08-2", V, wrong).score == pytest.approx(1.0)
 
 
 def test_width_by_the_scale_passes_and_a_slip_does_not():
-    from aerophoto import checks
+    from aerophoto.course import score
     from aerophoto.labs import ch08
 
     for i in range(0, 60, 7):
@@ -287,12 +288,12 @@ def test_width_by_the_scale_passes_and_a_slip_does_not():
         su = ch08.setup_for(i)
         ab_mm = math.hypot(*(np.array(tr["A"]) - np.array(tr["B"])))
         w = ab_mm * su.m / 1000.0
-        g_ = checks.grade_task("task-08-3", v, {"width_m": w})
+        g_ = score.grade_task("task-08-3", v, {"width_m": w})
         assert g_.score == 1, (i, w, tr["width_m"])
         if lab is not None:  # from the marks as the student reads them
             A, B = lab.marks.loc["A"].to_numpy(), lab.marks.loc["B"].to_numpy()
-            assert checks.grade_task("task-08-3", v, {"width_m": math.hypot(*(A - B)) * lab.m / 1000}).score == 1
-    assert checks.grade_task("task-08-3", V, {"width_m": ch08.truth(V.i)["width_m"] * 1.2}).score == 0
+            assert score.grade_task("task-08-3", v, {"width_m": math.hypot(*(A - B)) * lab.m / 1000}).score == 1
+    assert score.grade_task("task-08-3", V, {"width_m": ch08.truth(V.i)["width_m"] * 1.2}).score == 0
 
 
 def test_flow_follows_the_photo_swing():

@@ -4,7 +4,8 @@ segmentation and the graded lab (aerophoto.site.soils, spectral, guide.s14, soil
 import numpy as np
 import pytest
 
-from aerophoto import checks, soilmap, spectral, tasks
+from aerophoto import soilmap, spectral, tasks
+from aerophoto.course import score
 from aerophoto.guide import s14
 from aerophoto.site import get_site
 from aerophoto.site import soils as so
@@ -266,24 +267,24 @@ def _student(task_id, v):
 @pytest.mark.parametrize("task_id", ["task-13-1", "task-13-2", "task-13-3"])
 def test_lab_grades_a_correct_submission_full(task_id):
     for v in V:
-        g = checks.grade_task(task_id, v, _student(task_id, v))
+        g = score.grade_task(task_id, v, _student(task_id, v))
         assert g.score == g.points, (v.i, g.checks)
 
 
 def test_lab_grades_wrong_submissions_zero():
     v = V[2]
     good = _student("task-13-1", v)
-    g = checks.grade_task("task-13-1", v, {**good, "class_2m": "large-scale"})  # ignoring the gap
+    g = score.grade_task("task-13-1", v, {**good, "class_2m": "large-scale"})  # ignoring the gap
     assert g.score == 0
     good = _student("task-13-2", v)
-    g = checks.grade_task("task-13-2", v, {**good, "band": "swir1"})
+    g = score.grade_task("task-13-2", v, {**good, "band": "swir1"})
     assert g.score == 0
-    g = checks.grade_task("task-13-2", v, {**good, "wet_dry_145_pct": 100 - good["wet_dry_145_pct"]})
+    g = score.grade_task("task-13-2", v, {**good, "wet_dry_145_pct": 100 - good["wet_dry_145_pct"]})
     assert g.score == 0
     good = _student("task-13-3", v)
-    g = checks.grade_task("task-13-3", v, {**good, "agreement_pct": good["agreement_pct"] - 1.0})
+    g = score.grade_task("task-13-3", v, {**good, "agreement_pct": good["agreement_pct"] - 1.0})
     assert g.score == 0
-    g = checks.grade_task("task-13-3", v, {**good, "k": len(so.SOIL_CLASSES) + 1})
+    g = score.grade_task("task-13-3", v, {**good, "k": len(so.SOIL_CLASSES) + 1})
     assert g.score == 0
 
 

@@ -7,6 +7,7 @@ import pytest
 from aerophoto import accuracy as acc
 from aerophoto import checks, tasks
 from aerophoto.labs import ch15 as lab15
+from aerophoto.course import score
 from aerophoto.tasks import ch14, ch15
 from aerophoto.variants import variant_for_index
 
@@ -15,7 +16,7 @@ IDS = ("task-14-1", "task-14-2", "task-15-1", "task-15-2", "task-15-3")
 
 
 def _grade(task_id, v, **changes):
-    return checks.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
+    return score.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
 
 
 def test_the_chapters_register_their_tasks():
@@ -28,7 +29,7 @@ def test_the_chapters_register_their_tasks():
 @pytest.mark.parametrize("task_id", IDS)
 @pytest.mark.parametrize("v", VARIANTS, ids=lambda v: f"v{v.i:02d}")
 def test_reference_answers_earn_full_marks(task_id, v):
-    g = checks.grade_task(task_id, v, tasks.answers(task_id, v))
+    g = score.grade_task(task_id, v, tasks.answers(task_id, v))
     assert g.passed and g.score == g.points, g.checks
     assert any(hidden for *_, hidden in g.checks)
 
@@ -36,8 +37,8 @@ def test_reference_answers_earn_full_marks(task_id, v):
 @pytest.mark.parametrize("task_id", IDS)
 def test_unanswered_and_other_variant_answers_fail(task_id):
     v, w = VARIANTS[1], VARIANTS[2]
-    assert checks.grade_task(task_id, v, {}).score == 0.0
-    assert not checks.grade_task(task_id, v, tasks.answers(task_id, w)).passed
+    assert score.grade_task(task_id, v, {}).score == 0.0
+    assert not score.grade_task(task_id, v, tasks.answers(task_id, w)).passed
 
 
 def test_task_14_1_example_inputs_and_answers():

@@ -8,6 +8,7 @@ import pytest
 
 from aerophoto import budget as bu
 from aerophoto import checks, dem, tasks
+from aerophoto.course import score
 from aerophoto.tasks import ch16, ch17
 from aerophoto.variants import variant_for_index
 
@@ -58,7 +59,7 @@ def _reference(task_id, v):
 def test_every_variant_has_answers_and_an_independent_solution_passes(task_id):
     for v in ALL:
         ref = _reference(task_id, v)
-        grade = checks.grade_task(task_id, v, ref)
+        grade = score.grade_task(task_id, v, ref)
         assert grade.passed and grade.score == grade.points, (v.i, grade.checks)
         ans = tasks.answers(task_id, v)
         assert set(ans) == set(tasks.get(task_id).names)
@@ -123,7 +124,7 @@ def test_typical_slips_are_recognised(task_id, i):
 
 def test_hidden_checks_catch_inconsistent_answers():
     v = V3
-    ok = lambda hs: [checks._hidden_ok(h)[0] for h in hs]  # noqa: E731
+    ok = lambda hs: [score.hidden_ok(h)[0] for h in hs]  # noqa: E731
     t = tasks.get("task-16-1")
     ref = tasks.answers("task-16-1", v)
     assert ok(t.hidden(v, ref)) == [True, True]
@@ -134,7 +135,7 @@ def test_hidden_checks_catch_inconsistent_answers():
     ref = tasks.answers("task-16-2", v)
     assert ok(t.hidden(v, ref)) == [True, True]
     # within the visible tolerance, but not a count of the 40 points
-    grade = checks.grade_task("task-16-2", v, {**ref, "share_pct": ref["share_pct"] + 0.009})
+    grade = score.grade_task("task-16-2", v, {**ref, "share_pct": ref["share_pct"] + 0.009})
     assert grade.visible_ok and not grade.hidden_ok
     assert ok(t.hidden(v, {**ref, "v_lines_m": 2 * ref["m_lines_m"]})) == [True, False]
     t = tasks.get("task-17-1")
@@ -164,7 +165,7 @@ def test_malformed_answers_never_stop_the_grader():
     for task_id in IDS:
         names = tasks.get(task_id).names
         for values in ({}, {n: "x" for n in names}, {n: float("nan") for n in names}):
-            grade = checks.grade_task(task_id, V3, values)
+            grade = score.grade_task(task_id, V3, values)
             assert grade.score == 0 and not grade.passed
 
 

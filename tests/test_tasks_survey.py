@@ -7,6 +7,7 @@ import pandas as pd
 import pytest
 
 from aerophoto import checks, flight, tasks
+from aerophoto.course import score
 from aerophoto import quality as q
 from aerophoto.guide import s02, s03
 from aerophoto.labs import ch02 as lab02
@@ -33,7 +34,7 @@ def test_the_chapters_register_their_tasks():
 @pytest.mark.parametrize("i", SOME_VARIANTS)
 def test_reference_answers_pass_the_trusted_grading(tid, i):
     v = variant_for_index(i)
-    grade = checks.grade_task(tid, v, tasks.answers(tid, v))
+    grade = score.grade_task(tid, v, tasks.answers(tid, v))
     assert grade.passed, grade.checks
     assert grade.score == grade.points
 
@@ -149,23 +150,23 @@ def test_hidden_checks_catch_inconsistent_submissions():
     p = flight.plan(v)
     # 01.1: Bx within its tolerance, Px within its own, but the two do not belong together
     bad = {**tasks.answers("task-01-1", v), "Px_percent": p.Px_percent + 0.019, "Bx_km": p.Bx_km * 1.0049}
-    g = checks.grade_task("task-01-1", v, bad)
+    g = score.grade_task("task-01-1", v, bad)
     assert g.visible_ok and _hidden(g) == {"Bx_km from Px_percent": False} and g.score == 0
     # 01.2: N is not the product of the student's own n and K
-    g = checks.grade_task("task-01-2", v, {"K": 22, "n": 31, "N": 683})
+    g = score.grade_task("task-01-2", v, {"K": 22, "n": 31, "N": 683})
     assert _hidden(g) == {"N = n·K": False}
     # 01.3: TS is not the student's own LS over W
     bad = {**tasks.answers("task-01-3", v), "LS_km": p.LS_km * 1.004, "TS_h": p.TS_h * 0.996}
-    g = checks.grade_task("task-01-3", v, bad)
+    g = score.grade_task("task-01-3", v, bad)
     assert g.visible_ok and _hidden(g) == {"TS_h from LS_km": False}
     # 02.2: a level reading within 0.01° of the right one, but not a whole number of 30′ divisions
     a = tasks.answers("task-02-2", v)
-    g = checks.grade_task("task-02-2", v, {**a, "alpha_read_deg": a["alpha_read_deg"] + 0.005})
+    g = score.grade_task("task-02-2", v, {**a, "alpha_read_deg": a["alpha_read_deg"] + 0.005})
     assert g.visible_ok and _hidden(g) == {"alpha_read_deg (30′ steps)": False} and not g.passed
     # no hidden check repeats a visible one: 02.1 has none (each answer is one formula of the given data)
     assert ch02.MeasureStrip().hidden(v, tasks.answers("task-02-1", v)) == []
     # unanswered values: the hidden check fails, it never raises
-    g = checks.grade_task("task-01-2", v, {"K": ..., "n": 31, "N": 682})
+    g = score.grade_task("task-01-2", v, {"K": ..., "n": 31, "N": 682})
     assert _hidden(g) == {"N = n·K": False} and g.score == 0
 
 
@@ -174,7 +175,7 @@ def test_hidden_checks_pass_the_reference_answers():
         v = variant_for_index(i)
         for tid in IDS:
             hidden = tasks.get(tid).hidden(v, tasks.answers(tid, v))
-            assert all(checks._hidden_ok(h)[0] for h in hidden), (tid, i)
+            assert all(score.hidden_ok(h)[0] for h in hidden), (tid, i)
 
 
 # --------------------------------------------------------------------------- the side-overlap allowance (guide §2)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from aerophoto import checks, tasks
+from aerophoto.course import score
 from aerophoto import triangulation as T
 from aerophoto.labs import ch06 as lab06
 from aerophoto.tasks import ch06, ch12
@@ -32,7 +33,7 @@ def test_every_variant_works():
     for i in range(100):
         v = variant_for_index(i)
         for task_id in IDS:
-            g = checks.grade_task(task_id, v, tasks.answers(task_id, v))
+            g = score.grade_task(task_id, v, tasks.answers(task_id, v))
             assert g.passed and g.score == g.points, (i, task_id, g.checks)
             assert any(hidden for *_, hidden in g.checks)
 
@@ -155,7 +156,7 @@ def _by_hand(task_id, v):
 @pytest.mark.parametrize("task_id", ["task-06-1", "task-06-2", "task-06-3", "task-12-2", "task-12-3"])
 def test_a_students_own_computation_passes(task_id):
     for v in VARIANTS:
-        g = checks.grade_task(task_id, v, _by_hand(task_id, v))
+        g = score.grade_task(task_id, v, _by_hand(task_id, v))
         assert g.passed, (v.i, g.checks)
 
 
@@ -189,7 +190,7 @@ def test_another_variants_answers_are_recognised():
     with pytest.raises(checks.WrongAnswer, match=f"variant {w.i:02d}"):
         checks.check_task("task-06-2", v, **{**a, "k_bases": tasks.answers("task-06-2", w)["k_bases"]})
     for task_id in IDS:
-        g = checks.grade_task(task_id, v, tasks.answers(task_id, w))
+        g = score.grade_task(task_id, v, tasks.answers(task_id, w))
         assert not g.passed and g.score == 0.0, task_id
 
 
@@ -204,18 +205,18 @@ def test_check_task_passes_the_reference_and_prints_the_verdict(capsys):
 
 # --------------------------------------------------------------------------- hidden checks
 def _grade(task_id, v, **changes):
-    return checks.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
+    return score.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
 
 
 def test_hidden_06_1_verdict_follows_from_the_students_sides():
     task = tasks.get("task-06-1")
     v = VARIANTS[1]
     (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.06, 0.04, 0.05], "triangles_ok": False})
-    assert h.expected is True and not checks._hidden_ok(h)[0]
+    assert h.expected is True and not score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.36, 0.04, 0.05], "triangles_ok": True})
-    assert h.expected is False and not checks._hidden_ok(h)[0]
+    assert h.expected is False and not score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.305, 0.04, 0.05], "triangles_ok": True})  # at the limit: either
-    assert checks._hidden_ok(h)[0]
+    assert score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": "small", "triangles_ok": True})
     assert h.answer is None
 
@@ -282,13 +283,13 @@ def test_hidden_12_2_mean_deviation_and_verdict_follow_from_the_students_k():
     v = VARIANTS[1]
     a = task.answers(v)
     hs = task.hidden(v, a)
-    assert all(checks._hidden_ok(h)[0] for h in hs)
+    assert all(score.hidden_ok(h)[0] for h in hs)
     k = np.array(a["k_bases"])
     g = _grade("task-12-2", v, dk_max=a["dk_max"] + 0.0004, k_bases=list(k - np.where(k > a["k_mean"], 0.0003, -0.0003)))
     assert g.visible_ok and not g.hidden_ok  # a smaller spread of the student's own k than the dk_max they give
     flat = [a["k_mean"]] * 6
     hs = task.hidden(v, {"k_bases": flat, "k_mean": a["k_mean"], "dk_max": 0.0, "spread_ok": False})
-    assert [checks._hidden_ok(h)[0] for h in hs] == [True, True, False]
+    assert [score.hidden_ok(h)[0] for h in hs] == [True, True, False]
     hs = task.hidden(v, {"k_bases": "six", "k_mean": 1.0, "dk_max": 0.0, "spread_ok": True})
     assert all(h.answer is None for h in hs)
 

@@ -381,7 +381,7 @@ def inspect_submission(release_nb, submitted_path: Path, autograded_path: Path |
     if autograded_path is None or not autograded_path.exists():
         flags.append(Flag("not_graded", "no autograded notebook (autograde failed or has not run)"))
         return flags
-    from .execute import error_outputs, test_outcome
+    from .outcomes import error_outputs, test_outcome
     from .common import graded_tasks
 
     graded = read_nb(autograded_path)

@@ -169,7 +169,7 @@ def _resolve_record_book(record_book, books: dict) -> str:
 
 
 def _task_status(t, v, env: dict) -> TaskStatus:
-    from ..checks import grade_task
+    from ..course.score import grade_task
 
     raw = {n: env.get(n, Ellipsis) for n in t.names}
     unread = {n: x.reason for n, x in raw.items() if isinstance(x, UNREADABLE)}

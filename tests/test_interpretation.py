@@ -224,17 +224,17 @@ def test_greyscale_photos_of_the_main_site_are_unchanged():
 
 # ----------------------------------------------------------------------------------------------- guide §9
 def test_table_10_transcribed():
-    from aerophoto.guide import s09
+    from aerophoto import guide
 
-    tab = s09.table_10()
+    tab = guide.ch08.table_10()
     assert len(tab) == 20
     assert tab["признаки"].str.contains("острым углом").any()
-    assert len(s09.CONDITIONS) == 8
-    objs = {r[5] for r in s09.TABLE_10 if r[5]}
+    assert len(guide.ch08.CONDITIONS) == 8
+    objs = {r[5] for r in guide.ch08.TABLE_10 if r[5]}
     from aerophoto.demos.interpretation import KEY_VIEWS, N_KEY_ROWS
 
     assert objs <= set(KEY_VIEWS)
-    assert N_KEY_ROWS == sum(1 for r in s09.TABLE_10 if r[5])
+    assert N_KEY_ROWS == sum(1 for r in guide.ch08.TABLE_10 if r[5])
 
 
 # ----------------------------------------------------------------------------------------------- the lab

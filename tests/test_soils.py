@@ -1,12 +1,11 @@
 """Chapter 13 (guide §14): the site's soil layer, the soil model's §14 facts, the scale classes, the
-segmentation and the graded lab (aerophoto.site.soils, spectral, guide.s14, soilmap, tasks.ch13)."""
+segmentation and the graded lab (aerophoto.site.soils, spectral, guide.ch13, soilmap, tasks.ch13)."""
 
 import numpy as np
 import pytest
 
-from aerophoto import soilmap, spectral, tasks
+from aerophoto import guide, soilmap, spectral, tasks
 from aerophoto.course import score
-from aerophoto.guide import s14
 from aerophoto.site import get_site
 from aerophoto.site import soils as so
 from aerophoto.labs import ch13 as lab13
@@ -145,7 +144,7 @@ def _dip_depth(theta, at):
     return 1.0 - r[1] / (0.5 * (r[0] + r[2]))
 
 
-@pytest.mark.parametrize("at", s14.WATER_DIPS_UM)
+@pytest.mark.parametrize("at", guide.ch13.WATER_DIPS_UM)
 def test_water_dips_deepen_with_moisture(at):
     d = [_dip_depth(t, at) for t in (0, 10, 20, 30, 40)]
     assert np.all(np.diff(d) > 0)
@@ -194,16 +193,16 @@ def test_finer_particles_are_brighter_most_below_0_4_mm():
     (500000, "small-scale"), (1e6, "small-scale"),
 ])
 def test_soil_map_scale_classes_with_the_gaps(m, expected):
-    assert s14.soil_map_scale_class(m) == expected
+    assert guide.ch13.soil_map_scale_class(m) == expected
 
 
 def test_scale_class_bad_input_and_notes():
     for bad in (0, -5, float("nan"), float("inf")):
         with pytest.raises(ValueError, match="scale_denominator"):
-            s14.soil_map_scale_class(bad)
-    assert "between classes" in s14.scale_class_note(30000) and "25 000" in s14.scale_class_note(30000)
-    assert len(s14.scale_table()) == 7  # four classes and three gaps
-    assert len(s14.STEPS) == 5 and s14.HUMUS_LINEAR_UP_TO_PCT == spectral.HUMUS_LINEAR_PCT
+            guide.ch13.soil_map_scale_class(bad)
+    assert "between classes" in guide.ch13.scale_class_note(30000) and "25 000" in guide.ch13.scale_class_note(30000)
+    assert len(guide.ch13.scale_table()) == 7  # four classes and three gaps
+    assert len(guide.ch13.STEPS) == 5 and guide.ch13.HUMUS_LINEAR_UP_TO_PCT == spectral.HUMUS_LINEAR_PCT
 
 
 # --------------------------------------------------------------------------- segmentation

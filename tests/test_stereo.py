@@ -366,6 +366,6 @@ def test_prints_at_true_size(lab, tmp_path):
 def test_guide_s08():
     from aerophoto import guide
 
-    assert guide.s08.CHECK_LINE_CM == 40.0
-    assert len(guide.s08.steps_table()) == 2 and len(guide.s08.checks_table()) == 4
-    assert "обратный стереоэффект" in guide.s08.terms_table()["Russian"].tolist()
+    assert guide.ch07.CHECK_LINE_CM == 40.0
+    assert len(guide.ch07.steps_table()) == 2 and len(guide.ch07.checks_table()) == 4
+    assert "обратный стереоэффект" in guide.ch07.terms_table()["Russian"].tolist()

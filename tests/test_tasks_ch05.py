@@ -1,5 +1,5 @@
 """Chapter 05's graded tasks (aerophoto.tasks.ch05): the student's own fotoschema, its seams and its mean scale;
-the student's sheet (aerophoto.demos.fotoschema); and what guide §6 prints (aerophoto.guide.s06)."""
+the student's sheet (aerophoto.demos.fotoschema); and what guide §6 prints (aerophoto.guide.ch05)."""
 
 import math
 import re
@@ -262,46 +262,46 @@ def test_student_sheet_is_signed_with_the_computed_scale_on_a3(tmp_path, capsys)
 def test_the_book_uses_the_guides_printed_rules():
     import inspect
 
-    from aerophoto.guide import s06
+    from aerophoto import guide
 
-    assert s06.rule("steps 5, 8", "largest cut-out").value == mo.ALLOWED_CUTOUT_MM == 0.5
-    lo, hi = s06.rule("step 8", "spacing").value
+    assert guide.ch05.rule("steps 5, 8", "largest cut-out").value == mo.ALLOWED_CUTOUT_MM == 0.5
+    lo, hi = guide.ch05.rule("step 8", "spacing").value
     assert lo <= mo.CHECK_SPACING_MM <= hi
     margin = inspect.signature(mo.choose_tie_points).parameters["margin_mm"].default
-    assert tuple(margin) == s06.rule("step 2", "distance of the tie points").value
-    assert s06.rule("step 7", "bases").value == 0.1
-    assert s06.rule("step 5", "the sheet").value == s06.SHEET == "A3"
+    assert tuple(margin) == guide.ch05.rule("step 2", "distance of the tie points").value
+    assert guide.ch05.rule("step 7", "bases").value == 0.1
+    assert guide.ch05.rule("step 5", "the sheet").value == guide.ch05.SHEET == "A3"
     with pytest.raises(KeyError, match="step 9"):
-        s06.rule("step 9", "anything")
-    t = s06.rules_table()
-    assert len(t) == len(s06.RULES) and list(t.columns)[:4] == ["where", "quantity", "value", "unit"]
-    assert [f.number for f in s06.FORMULAS] == ["6.1", "6.2"]
-    assert any("13000" in m.printed_text for m in s06.MARGINALIA)
+        guide.ch05.rule("step 9", "anything")
+    t = guide.ch05.rules_table()
+    assert len(t) == len(guide.ch05.RULES) and list(t.columns)[:4] == ["where", "quantity", "value", "unit"]
+    assert [f.number for f in guide.ch05.FORMULAS] == ["6.1", "6.2"]
+    assert any("13000" in m.printed_text for m in guide.ch05.MARGINALIA)
 
 
 def test_four_prints_at_60_percent_just_fill_a3():
-    from aerophoto.guide import s06
+    from aerophoto import guide
 
-    assert s06.strip_length_mm(4, 60) == pytest.approx(180 + 3 * 72)  # 396 mm
-    assert s06.strip_length_mm(5, 60) == pytest.approx(468.0)
-    assert s06.strip_length_mm(4, 60, trim_mm=15) == pytest.approx(426.0)
-    assert s06.prints_on_sheet() == 4
-    assert s06.prints_on_sheet(trim_mm=15) == 3  # with the guide's 1.5 cm trim A3 holds three
-    assert s06.prints_on_sheet((594.0, 420.0)) == 6  # A2
-    text = " ".join(s06.remarks())
+    assert guide.ch05.strip_length_mm(4, 60) == pytest.approx(180 + 3 * 72)  # 396 mm
+    assert guide.ch05.strip_length_mm(5, 60) == pytest.approx(468.0)
+    assert guide.ch05.strip_length_mm(4, 60, trim_mm=15) == pytest.approx(426.0)
+    assert guide.ch05.prints_on_sheet() == 4
+    assert guide.ch05.prints_on_sheet(trim_mm=15) == 3  # with the guide's 1.5 cm trim A3 holds three
+    assert guide.ch05.prints_on_sheet((594.0, 420.0)) == 6  # A2
+    text = " ".join(guide.ch05.remarks())
     assert "396" in text and "468" in text and "0.5–1" in text and "13000" in text
     with pytest.raises(ValueError, match="px_percent"):
-        s06.strip_length_mm(4, 100)
+        guide.ch05.strip_length_mm(4, 100)
     with pytest.raises(ValueError, match="n_photos"):
-        s06.strip_length_mm(0)
+        guide.ch05.strip_length_mm(0)
 
 
 def test_the_fotoschema_of_four_prints_matches_the_strip_length():
     # the sheet of the book's worked example (four untilted prints over flat ground) is as long as §6 says
     from aerophoto import simulate as sim
-    from aerophoto.guide import s06
+    from aerophoto import guide
 
     fs = mo.assemble(sim.fly_strip(g.Camera(100), 12000, 60, 4))
     x0, x1, _, _ = fs.extent_mm
-    assert x1 - x0 == pytest.approx(s06.strip_length_mm(4, 60), abs=1e-6)
-    assert len(fs.scale.names) == len(fs.scale.l_mm) == s06.rule("step 7", "points").value == 4
+    assert x1 - x0 == pytest.approx(guide.ch05.strip_length_mm(4, 60), abs=1e-6)
+    assert len(fs.scale.names) == len(fs.scale.l_mm) == guide.ch05.rule("step 7", "points").value == 4

@@ -9,7 +9,7 @@ import pytest
 from aerophoto import checks, flight, tasks
 from aerophoto.course import score
 from aerophoto import quality as q
-from aerophoto.guide import s02, s03
+from aerophoto import guide
 from aerophoto.labs import ch02 as lab02
 from aerophoto.tasks import ch01, ch02
 from aerophoto.variants import variant_for_index
@@ -195,7 +195,7 @@ def test_exact_allowance_keeps_the_overlap_on_the_highest_ground():
 
 
 def test_side_allowance_for_variant_00():
-    t = s02.side_allowance_table(flight.guide_example())
+    t = guide.ch01.side_allowance_table(flight.guide_example())
     g, e = t.columns[0], t.columns[1]
     assert list(t.index) == ["allowance, %", "Py, %", "by, cm", "By, km", "K"]
     assert t.loc["allowance, %", g] == approx(1.0) and t.loc["allowance, %", e] == approx(1.75)
@@ -223,12 +223,12 @@ def test_exact_allowance_changes_some_variants_strip_count():
 
 # --------------------------------------------------------------------------- guide §3, table 1
 def test_guide_table_1_as_printed():
-    t = s03.table_1()
+    t = guide.ch02.table_1()
     assert list(t.index) == [542, 543, 544, 545]
     assert list(t.columns) == ["sharpness", "fine detail", "defects"]
     assert t.loc[542, "sharpness"] == "good (хор.)" and t.loc[545, "defects"] == "yes (да)"
     assert not hasattr(q, "guide_table_1")
-    assert "no checkable numbers" in " ".join(s03.__doc__.replace("**", "").split())
+    assert "no checkable numbers" in " ".join(guide.ch02.__doc__.replace("**", "").split())
 
 
 def test_survey_tasks_have_no_nan_answers():

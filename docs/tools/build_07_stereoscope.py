@@ -91,7 +91,7 @@ times larger than horizontal distances — about 2.8 for the guide's pair ($B/H 
 how deep a model looks also depends on the observer.
 """, id="theory"),
     code("""
-guide.s08.terms_table()
+guide.ch07.terms_table()
 """, id="theory-terms"),
     code("""
 plots.static(sf.pair_geometry_figure(),
@@ -117,7 +117,7 @@ plots.static(sf.stereoscope_figure(),
                  "its photo; the two photos lie about 250 mm apart on the table.")
 """, id="figure-stereoscope"),
     code("""
-guide.s08.steps_table()
+guide.ch07.steps_table()
 """, id="example-steps"),
     md("""
 ### Checking the stereoscope
@@ -127,7 +127,7 @@ parallel in pairs with a straight line 40 cm long: with the instrument's base al
 see **one** line.
 """, id="checks-theory"),
     code("""
-guide.s08.checks_table()
+guide.ch07.checks_table()
 """, id="example-checks"),
     md("""
 Why it works: each eye looks at its own part of the line, one base apart. If the instrument is turned by a small

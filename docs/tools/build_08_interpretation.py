@@ -52,7 +52,7 @@ before noon are usually the most complete; snow, autumn's uniform colours, wet s
 take detail away.
 """, id="theory"),
     code("""
-guide.s09.conditions_table()
+guide.ch08.conditions_table()
 """, id="theory-conditions"),
     md("""
 ### How the book models them
@@ -123,7 +123,7 @@ are not enough, by **indirect keys** (косвенные): the links between obj
 calls the objects that point to something unseen **indicators** (индикаторы).
 """, id="theory-keys"),
     code("""
-guide.s09.keys_table()
+guide.ch08.keys_table()
 """, id="theory-keys-table"),
     md("""
 ## Table 10: the keys of topographic interpretation
@@ -132,7 +132,7 @@ The guide's table 10 (guide §9) lists, for rivers, lakes, ponds, bogs, forest, 
 railways and roads, what to determine and by which key. Here it is as printed, with our English beside it.
 """, id="example-theory"),
     code("""
-guide.s09.table_10()
+guide.ch08.table_10()
 """, id="example-table-10"),
     md("""
 **Notes on the table.** The guide places the **shallows on the downstream side of islands**: true of the bars that

@@ -80,7 +80,7 @@ place inside the cell — by eye or with a proportional compass (пропорц�
 two grids are images of each other under the projective transformation.
 """, id="theory"),
     code("""
-guide.s10.steps_table()
+guide.ch09.steps_table()
 """, id="theory-steps"),
     md("""
 ## Two ways to draw the grid
@@ -161,7 +161,7 @@ demo
 The ways it lists:
 """, id="example-theory"),
     code("""
-guide.s10.methods_table()
+guide.ch09.methods_table()
 """, id="example-1"),
     md("""
 So the worked example is the explorer's scene at the guide's numbers: a photo at 1:12 000 with $f = 100$ mm,

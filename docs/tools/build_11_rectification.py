@@ -119,7 +119,7 @@ by $|t|$ at the exposure.
 ### Table 11, recomputed
 """, id="table11-theory"),
     code("""
-guide.s12.table_11()
+guide.ch11.table_11()
 """, id="example-1"),
     md("""
 **What table 11 turns out to contain.** Every length difference, the three sums and $K_d = -0.7/734.8 =
@@ -133,7 +133,7 @@ paper stretched, so the 0.41 mm go under the paper at the exposure, not under th
 §12 also lists the plan coordinates of four points; nothing is computed from them in the guide:
 """, id="example-1-note"),
     code("""
-guide.s12.plan_points()
+guide.ch11.plan_points()
 """, id="example-2"),
     md("""
 Taken round, the four points make a long, narrow quadrilateral (about 830 m by 180–270 m in the list's units),

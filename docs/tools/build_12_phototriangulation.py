@@ -39,7 +39,7 @@ import pandas as pd
 from aerophoto import tasks, triangulation
 from aerophoto.demos.reduction import (ReductionDemo, TemplateView, StripView, AccumulationView, reduction_model,
                                        own_strip_figure)
-from aerophoto.guide import s13
+from aerophoto import guide
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
 md(r"""
@@ -94,7 +94,7 @@ the reading $n^3$ gives 5–6 bases between control points — the usual spacing
 triangulation. The other readings give strips two to five times longer:
 """, id="theory-zhukov"),
     code("""
-s13.zhukov_readings().round(2)   # n for m = 0.35 mm, k_i = 1, b = 60 mm: the guide's inputs
+guide.ch12.zhukov_readings().round(2)   # n for m = 0.35 mm, k_i = 1, b = 60 mm: the guide's inputs
 """, id="zhukov-readings"),
     md(r"""
 **3. A simulation.** The package lays free strips of 2 to 10 bases over flat ground with vertical photos,

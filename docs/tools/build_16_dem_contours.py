@@ -104,18 +104,18 @@ H the flying height and ρ the photo base (printed "p = 70 mm"). Two terms need 
   more) — the simulation below decides: the parallax.
 
 So the book uses $m_z = m_p\,(H/b)\,\sqrt{3(2ns + mn - sr)/(2mns)}$ with m_p = 0.025 mm
-(`aerophoto.dem.lysenko_mz_m`; the full argument: `guide.a000.LYSENKO_READING`). The article's inputs
+(`aerophoto.dem.lysenko_mz_m`; the full argument: `guide.ch16.LYSENKO_READING`). The article's inputs
 recomputed, with the printed result audited (article 000):
 """, id="theory-lysenko"),
     code("""
-guide.a000.lysenko()
+guide.ch16.lysenko()
 """, id="example-1"),
     md(r"""
 What each reading of the two terms gives with the article's inputs (H = 450 m, n = 70, m = 16, r = 38,
 s = 3, ρ = 70 mm), in centimetres — only the 0.025 mm row is of the article's order:
 """, id="example-2-theory"),
     code("""
-guide.a000.lysenko_readings().round(3)
+guide.ch16.lysenko_readings().round(3)
 """, id="example-2"),
     md(r"""
 ### The formula against a simulated block

@@ -27,7 +27,7 @@ no timer: a slider event is followed at once by the full render.  From code,
 at the preview one; ``demo.render_full()`` turns a shown preview into the full
 picture at once (what the timer does); ``demo.result.preview`` says which is shown.
 
-Both are blitted (``LiveDemo.animated``, :class:`aerophoto.plots.Blitter`): a
+Both are blitted (``LiveDemo.animated``, :class:`aerophoto.blit.Blitter`): a
 move redraws the sheet, its marks, the title and the ΔI stems over a cached
 picture of the axes, whose limits are snapped (the sheet's to 20 mm, the ΔI
 chart's to round values) so that most moves leave them alone; the tables

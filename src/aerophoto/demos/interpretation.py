@@ -178,9 +178,9 @@ KEY_VIEWS = {
 
 
 def _key_rows():
-    from ..guide import s09
+    from .. import guide
 
-    return [r for r in s09.TABLE_10 if r[5] is not None]
+    return [r for r in guide.ch08.TABLE_10 if r[5] is not None]
 
 
 #: how many rows of table 10 the site illustrates (the key's slider runs over them)

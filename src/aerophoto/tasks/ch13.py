@@ -29,7 +29,7 @@ import numpy as np
 import pandas as pd
 
 from .. import soilmap, spectral
-from ..guide import s14
+from .. import guide
 from ..labs.ch13 import Patch, patch_of
 from .base import Answer, Hidden, Task, submitted_number
 
@@ -67,7 +67,7 @@ class ScaleClasses(Task):
     points = 2
     cross_variant = False  # five options: another variant's answer is no sign of a mix-up
     spec = tuple(
-        Answer(f"class_{f}m", f"class of a soil map at 1 : {f}·m", kind="choice", options=s14.CLASS_NAMES,
+        Answer(f"class_{f}m", f"class of a soil map at 1 : {f}·m", kind="choice", options=guide.ch13.CLASS_NAMES,
                hint="compare the denominator with the ranges of guide §14 — and mind the gaps between them.")
         for f in MAP_FACTORS
     )
@@ -77,12 +77,12 @@ class ScaleClasses(Task):
                              "scale denominator": list(map_scales(v))}).set_index("map")
 
     def answers(self, v) -> dict:
-        return {f"class_{f}m": s14.soil_map_scale_class(d) for f, d in zip(MAP_FACTORS, map_scales(v))}
+        return {f"class_{f}m": guide.ch13.soil_map_scale_class(d) for f, d in zip(MAP_FACTORS, map_scales(v))}
 
     def hidden(self, v, got) -> list:
         # a smaller map is never of a larger class: the named classes of the three answers do not go back
         # ("between classes" names no class and is skipped; an answer that is no option fails)
-        rank = {"detailed": 0, "large-scale": 1, "medium-scale": 2, "small-scale": 3, s14.BETWEEN: None}
+        rank = {"detailed": 0, "large-scale": 1, "medium-scale": 2, "small-scale": 3, guide.ch13.BETWEEN: None}
         answers = [got.get(f"class_{f}m") for f in MAP_FACTORS]
         if not all(isinstance(a, str) and a in rank for a in answers):
             ok = None

@@ -13,7 +13,7 @@ Look-ups by grade id::
     tasks.inputs("task-03-1", v)
 
 The student-facing checks (:func:`aerophoto.checks.check_task`) and the
-instructor's grader (:func:`aerophoto.checks.grade_task`) both read the task
+instructor's grader (:func:`aerophoto.course.score.grade_task`) both read the task
 from here; the notebooks only name the task and pass their variables.
 Submodules load on first use.
 """

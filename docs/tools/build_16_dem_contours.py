@@ -245,7 +245,7 @@ block.table()
     md(r"""
 ## Task 16.2 — check points of your sheet (graded)
 
-Your sheet is a 1 km square of the site of its own (`aerophoto.tasks.ch16.sheet_of(v)` gives its corner);
+Your sheet is a 1 km square of the site of its own (`aerophoto.labs.ch16.sheet_of(v)` gives its corner);
 its regular DEM has the step of the article's 7 mm on *your* photo, d = 0.007·m metres, and node heights
 with the article's densification error of 12 cm. The table gives 40 check points: their true
 ("geodetic") heights `Z_geod_m` and the heights read from the regular DEM (`Z_grid_m`) and from the same

@@ -38,7 +38,7 @@ Static figures for the notebook: :func:`correction_sheet` (the корректу�
 finished sheet with the guide's marginalia, at true scale on an ISO paper
 size) and :func:`export_sheet` (PNG and PDF, never overwriting silently).
 
-The student's own fotoschema (chapter 05's tasks, :mod:`aerophoto.labs.ch05`):
+The student's own fotoschema (chapter 05's lab, :mod:`aerophoto.labs.ch05`):
 :func:`own_sheet_figure` draws it for measuring (the glued prints, the cuts,
 the numbered check points and the four points of the mean scale — no
 mismatch and no scale: those are the student's answers);

@@ -23,9 +23,11 @@ chapter  module                              what the student gets
 11       :mod:`aerophoto.labs.ch11`          table 11 of paper deformation; the photo to rectify (§12)
 13       :mod:`aerophoto.labs.ch13`          the bare-soil patch, its composite and soil map (§14)
 15       :mod:`aerophoto.labs.ch15`          the mountain site and the survey blocks (article 002)
+16       :mod:`aerophoto.labs.ch16`          the block for Lysenko's formula; the own 1 km sheet, its DEMs (000)
 =======  ==================================  ====================================================================
 
-Chapters 00, 01, 14, 16 and 17 give numbers only (their inputs live with their tasks).  Everything is
+Chapters 00, 01, 14 and 17 give their inputs with their tasks (:mod:`aerophoto.tasks`): numbers drawn from
+the variant (and chapter 14's Monte Carlo strip).  Everything is
 deterministic (seeded by the variant number) and cached per process where it is costly; shared arrays are
 read only.  Submodules load on first use::
 
@@ -40,7 +42,7 @@ import importlib
 __all__ = ["MODULES"]
 
 #: the lab modules (loaded on first use)
-MODULES = ("own", "displacement", "ch02", "ch05", "ch06", "ch07", "ch08", "ch09", "ch10", "ch11", "ch13", "ch15")
+MODULES = ("own", "displacement", "ch02", "ch05", "ch06", "ch07", "ch08", "ch09", "ch10", "ch11", "ch13", "ch15", "ch16")
 
 
 def __getattr__(name: str):

@@ -15,6 +15,9 @@ Look-ups by grade id::
 The student-facing checks (:func:`aerophoto.checks.check_task`) and the
 instructor's grader (:func:`aerophoto.course.score.grade_task`) both read the task
 from here; the notebooks only name the task and pass their variables.
+Only the rubrics live here: the students' lab worlds the tasks are set on (the
+own strip, the stereo pair, the photo to rectify, the survey block …) are
+:mod:`aerophoto.labs`, which this package imports and which never imports it.
 Submodules load on first use.
 """
 

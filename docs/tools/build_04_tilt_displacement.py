@@ -8,24 +8,12 @@ template lines only (the reference lives in aerophoto.tasks.ch04); the check cel
 
 from pathlib import Path
 
-from aerophoto import tasks
-from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
+from aerophoto.nbtools import code, md, notebook, write
+
+from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "04_tilt_displacement.ipynb"
-
-
-def answer_cell(task_id: str):
-    """The answer cell of the student book: the task's template lines only."""
-    t = tasks.get(task_id)
-    return nbgrader_answer(code(t.template(), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
 
 
 CELLS = [
@@ -114,8 +102,8 @@ displacement, from the point's image on the (turned) vertical photo to its image
 the guide's formula, drawn along the same line. The table gives the largest of each and the formula's
 error. Arrows are lengthened by the factor in the title.
 
-Like every demo of the book it opens on the guide's worked example — $f = 100$ mm, 1:12 000, $\alpha = 3^\circ$,
-$\lambda = -60^\circ$ (variant 00) — not on your variant; its $f$ slider reaches 1100 mm, the longest lens of
+Like every demo of the book it opens on the guide's worked example — $f = 100$ mm, 1:12 000, $\\alpha = 3^\\circ$,
+$\\lambda = -60^\\circ$ (variant 00) — not on your variant; its $f$ slider reaches 1100 mm, the longest lens of
 the guide's scheme.
 """, id="demo-theory"),
     code("""

@@ -7,24 +7,12 @@ Cells are identified by id; the notebook is written without outputs.
 
 from pathlib import Path
 
-from aerophoto import tasks
-from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
+from aerophoto.nbtools import code, md, notebook, write
+
+from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "09_plan_correction.ipynb"
-
-
-def answer_cell(task_id: str):
-    """The answer cell of the student book: the task's template lines only (the reference lives in aerophoto.tasks)."""
-    t = tasks.get(task_id)
-    return nbgrader_answer(code(t.template(), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
 
 
 CELLS = [

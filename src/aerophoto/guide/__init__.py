@@ -18,30 +18,28 @@ from __future__ import annotations
 
 import functools
 import importlib
-import pkgutil
-import re
 
+from .. import _chapters
 from .audit import TOLERANCE_UNITS, Audit, Printed, digit_unit, discrepancy_frame, printed, render
 
 __all__ = ["TOLERANCE_UNITS", "Audit", "Printed", "printed", "digit_unit", "render", "discrepancy_frame",
            "CHAPTER_MODULES", "chapter_modules"]
 
-_CHAPTER = re.compile(r"ch\d\d")
-
 
 @functools.cache
 def chapter_modules() -> tuple:
-    """The chapter modules on disk, ``("ch01", …, "ch17")``: the naming rule ``ch`` + the chapter's number.
+    """The chapter modules on disk, ``("ch01", …, "ch17")``: the naming rule ``ch`` + the chapter's number
+    (:mod:`aerophoto._chapters`).
 
     Read on first use (importing the package reads nothing); ``CHAPTER_MODULES`` is the same tuple.
     """
-    return tuple(sorted(m.name for m in pkgutil.iter_modules(__path__) if _CHAPTER.fullmatch(m.name)))
+    return _chapters.chapter_modules(__path__)
 
 
 def __getattr__(name: str):
     if name == "CHAPTER_MODULES":
         return chapter_modules()
-    if _CHAPTER.fullmatch(name) and name in chapter_modules():
+    if _chapters.CHAPTER_MODULE.fullmatch(name) and name in chapter_modules():
         module = importlib.import_module(f".{name}", __name__)
         globals()[name] = module
         return module

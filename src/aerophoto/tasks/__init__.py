@@ -25,27 +25,26 @@ from __future__ import annotations
 
 import functools
 import importlib
-import pkgutil
 import re
+from collections.abc import Mapping
+from types import MappingProxyType
 
+from .. import _chapters
 from .base import KINDS, Answer, Hidden, Task
 
 __all__ = ["Answer", "Hidden", "Task", "KINDS", "get", "all_tasks", "chapter_tasks", "inputs", "answers",
            "CHAPTER_MODULES", "chapter_modules"]
 
-_CHAPTER = re.compile(r"ch\d\d")
-
 
 @functools.cache
-def chapter_modules() -> dict:
-    """The chapter modules by notebook number, ``{"00": "ch00", …}``: the modules ``chNN`` on disk.
+def chapter_modules() -> Mapping[str, str]:
+    """The chapter modules by notebook number, ``{"00": "ch00", …}`` (read-only): the modules ``chNN`` on disk.
 
-    The naming rule replaces a list kept by hand (tests/test_chapter_key.py checks one module per chapter of
-    :data:`aerophoto.book.CHAPTERS`); read on first use, importing the package reads nothing.
-    ``CHAPTER_MODULES`` is the same mapping.
+    The naming rule (:mod:`aerophoto._chapters`) replaces a list kept by hand (tests/test_chapter_key.py checks
+    one module per chapter of :data:`aerophoto.book.CHAPTERS`); read on first use, importing the package reads
+    nothing.  ``CHAPTER_MODULES`` is the same mapping.
     """
-    names = sorted(m.name for m in pkgutil.iter_modules(__path__) if _CHAPTER.fullmatch(m.name))
-    return {name[2:]: name for name in names}
+    return MappingProxyType({name[2:]: name for name in _chapters.chapter_modules(__path__)})
 
 
 _ID = re.compile(r"^task-(\d\d)-(\d+)$")
@@ -90,7 +89,7 @@ def answers(task_id: str, v) -> dict:
 def __getattr__(name: str):
     if name == "CHAPTER_MODULES":
         return chapter_modules()
-    if _CHAPTER.fullmatch(name) and name in chapter_modules().values():
+    if _chapters.CHAPTER_MODULE.fullmatch(name) and name in chapter_modules().values():
         module = importlib.import_module(f".{name}", __name__)
         globals()[name] = module
         return module

@@ -151,9 +151,12 @@ class Chapter:
         return f"aerophoto.tasks.ch{self.number}"
 
     @property
-    def lab_module(self) -> str:
-        """The module of the chapter's lab world, ``"aerophoto.labs.chNN"`` (by the rule; it may not exist)."""
-        return f"aerophoto.labs.ch{self.number}"
+    def lab_module(self) -> str | None:
+        """The module of the chapter's lab world, ``"aerophoto.labs.chNN"``; None for a chapter whose inputs come
+        with its tasks (no lab world of its own: 00, 01, 12, 14, 17)."""
+        from . import labs
+
+        return f"aerophoto.labs.ch{self.number}" if f"ch{self.number}" in labs.chapter_modules() else None
 
     @property
     def demo_modules(self) -> tuple:
@@ -164,7 +167,7 @@ class Chapter:
     def key_text(self) -> str:
         """The chapter's key as lines of text: what ``python -m aerophoto.book NN`` prints."""
         rows = [("notebook", f"notebooks/{self.notebook}"), ("source", self.source), ("guide module", self.guide_module or "— (the source prints no tables)"),
-                ("tasks module", self.tasks_module), ("lab module", self.lab_module),
+                ("tasks module", self.tasks_module), ("lab module", self.lab_module or "— (the inputs come with the tasks)"),
                 ("demo modules", ", ".join(self.demo_modules) or "—")]
         head = f"chapter {self.number} · {self.title} ({self.source})"
         return "\n".join([head, *(f"  {k:<13}{v}" for k, v in rows)])

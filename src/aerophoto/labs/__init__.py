@@ -12,7 +12,9 @@ physics and the virtual world, never :mod:`aerophoto.tasks` (which imports it).
 chapter  module                              what the student gets
 =======  ==================================  ====================================================================
 02       :mod:`aerophoto.labs.ch02`          five photos' measurements on the rough mosaic (guide §3)
-03, 04   :mod:`aerophoto.labs.displacement`  the relief and tilt lab sheets: pricked points, photo, plan (§4, §5)
+03       :mod:`aerophoto.labs.ch03`          the relief sheet: six pricked points, photo, plan (§4)
+04       :mod:`aerophoto.labs.ch04`          the tilt sheet: nine pricked points, photo, plan (§5)
+03, 04   :mod:`aerophoto.labs.displacement`  what the two sheets share: how they are built (§4, §5)
 05       :mod:`aerophoto.labs.ch05`          the own fotoschema, seam and scale readings, the worked answers (§6)
 05–06    :mod:`aerophoto.labs.own`           the own strip 36 … 39 over the site, tilts that fit, readings
 06, 12   :mod:`aerophoto.labs.ch06`          the strip's templates, free strip, reduction and readings (§7, §13)
@@ -37,16 +39,27 @@ read only.  Submodules load on first use::
 
 from __future__ import annotations
 
+import functools
 import importlib
 
-__all__ = ["MODULES"]
+from .. import _chapters
 
-#: the lab modules (loaded on first use)
-MODULES = ("own", "displacement", "ch02", "ch05", "ch06", "ch07", "ch08", "ch09", "ch10", "ch11", "ch13", "ch15", "ch16")
+__all__ = ["SHARED", "MODULES", "chapter_modules"]
+
+#: the lab modules that serve more than one chapter (the chapter modules ``chNN`` are found by their name)
+SHARED = ("own", "displacement")
+
+
+@functools.cache
+def chapter_modules() -> tuple:
+    """The chapter lab modules on disk, ``("ch02", "ch03", …)``, by the naming rule (:mod:`aerophoto._chapters`)."""
+    return _chapters.chapter_modules(__path__)
 
 
 def __getattr__(name: str):
-    if name in MODULES:
+    if name == "MODULES":  # every lab module: the shared ones, then the chapters'
+        return SHARED + chapter_modules()
+    if name in SHARED or (_chapters.CHAPTER_MODULE.fullmatch(name) and name in chapter_modules()):
         module = importlib.import_module(f".{name}", __name__)
         globals()[name] = module
         return module

@@ -8,10 +8,15 @@ Cells are identified by id; the notebook is written without outputs.
 from pathlib import Path
 
 from aerophoto import tasks
+from aerophoto.demos.plan_correction import grid_node_misses
 from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "09_plan_correction.ipynb"
+
+#: the grids figure's largest node misses, mm: the same numbers its titles print (grid_node_misses)
+MISS = grid_node_misses(alpha_deg=10.0, n=4)
+MISS_C, MISS_P = f"{MISS['central']:.2f}", f"{MISS['proportional']:.2f}"
 
 
 def answer_cell(task_id: str):
@@ -99,17 +104,22 @@ photo's cell $(j, i)$ maps exactly onto the plan's cell $(j, i)$. What is left i
 the compass places a point by proportion, which treats the small cell as if it had no perspective. That error
 falls as $1/n^2$.
 
-The figure shows both on the example's new photo, tilted by 10° to make the difference visible. Green circles are
-the exact images of the plan grid's nodes.
-""", id="grids-theory"),
+The figure shows both on the example's new photo, tilted by 10° to make the difference visible. In each panel the
+plan's grid is drawn by the same method as the photo's, and the green circles are the exact images of the plan
+grid's nodes on the photo. With central directions every node sits on its circle (largest miss {MISS_C} mm); with
+equal parts the nodes miss their circles by up to {MISS_P} mm. (Compared with the images of the plan's
+*equal-part* grid, even the exact central grid would seem to miss: the two methods do not give the same grid, and
+what matters is that photo and plan are drawn alike.)
+""".format(MISS_C=MISS_C, MISS_P=MISS_P), id="grids-theory"),
     code("""
 plots.static(pc.grids_figure(alpha_deg=10.0, n=4),
              alt="Two panels with the same quadrilateral of four control points on a photo tilted by 10 degrees. "
                  "Left: a 4 by 4 grid drawn by central directions; its grid lines converge to the points where "
-                 "opposite sides meet, and every node sits on a green circle, the exact image of the plan grid's "
-                 "node. Right: the grid of proportional division (equal parts of each side); its nodes miss the "
-                 "green circles by up to several millimetres.")
-""", id="figure-grids"),
+                 "opposite sides meet, and every node sits on a green circle, the exact image of the node of the "
+                 "plan's grid drawn the same way (largest miss {MISS_C} mm). Right: the grid of proportional "
+                 "division (equal parts of each side, on photo and plan); its nodes miss the green circles by up "
+                 "to {MISS_P} mm.")
+""".replace("{MISS_C}", MISS_C).replace("{MISS_P}", MISS_P), id="figure-grids"),
     md("""
 How the error of the transfer depends on the grid's density, for three tilts (the example's four points; every
 point inside their quadrilateral):

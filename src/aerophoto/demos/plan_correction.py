@@ -25,7 +25,8 @@ from .. import projective as pj
 from ..widgets import LiveDemo, Param
 
 __all__ = ["PlanCorrectionResult", "plan_correction_model", "PlanCorrectionView", "PlanCorrectionDemo",
-           "EXAMPLE_SEED", "plan_correction_figure", "grids_figure", "transfer_study_figure", "legend_html"]
+           "EXAMPLE_SEED", "plan_correction_figure", "grids_figure", "grid_node_misses", "transfer_study_figure",
+           "legend_html"]
 
 #: the scene of the chapter's example (variants use seeds 0…99)
 EXAMPLE_SEED = 2014
@@ -257,22 +258,44 @@ class PlanCorrectionDemo(LiveDemo):
         self.legend.value = legend_html()
 
 
+def _grid_pair_nodes(alpha_deg: float, n: int, lambda_deg: float):
+    """The example's quadrilateral and, per method, (photo grid nodes, exact images of the plan grid's nodes)."""
+    r = plan_correction_model(alpha_deg, lambda_deg, n, 85.0, "central")
+    P, Q = r.pair.photo_corners, r.pair.plan_corners
+    to_photo = r.pair.exact.inverse()
+    return P, {method: (pj.grid(P, n, method), to_photo.apply(pj.grid(Q, n, method)))
+               for method in ("central", "proportional")}
+
+
+def grid_node_misses(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60.0) -> dict:
+    """Largest miss, mm on the photo, between each method's grid on the new photo and the exact images of the
+    plan's grid drawn the same way (guide §10): ``{"central": ~0, "proportional": …}``.
+
+    The grid on the photo and the grid on the plan are drawn by the same method; the miss is how far the photo
+    node is from the true image of its plan node.  Central directions are projectively exact (0 up to rounding);
+    equal parts are not.  ``grids_figure``'s titles and chapter 09's text and alt text print these values.
+    """
+    _, pairs = _grid_pair_nodes(alpha_deg, n, lambda_deg)
+    return {m: float(np.max(np.hypot(*(nodes - exact).reshape(-1, 2).T))) for m, (nodes, exact) in pairs.items()}
+
+
 def grids_figure(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60.0):
-    """The two ways of drawing the grid on the new photo's quadrilateral, against the exact images of the plan's grid.
+    """The two ways of drawing the grid on the new photo's quadrilateral, each against the exact images of the
+    plan's grid drawn the same way.
 
     Left: central directions — the grid lines run to the two centres where
     opposite sides meet, and the nodes coincide with the exact images of the
-    plan grid's nodes (green).  Right: proportional division — equal parts
-    of the sides; its nodes miss the exact images.
+    plan's central grid (green).  Right: proportional division — equal parts
+    of the sides on photo and plan; its nodes miss the exact images of the plan's
+    equal-part nodes.  The titles print :func:`grid_node_misses`.
     """
-    r = plan_correction_model(alpha_deg, lambda_deg, n, 85.0, "central")
-    P, Q = r.pair.photo_corners, r.pair.plan_corners
-    exact_nodes = r.pair.exact.inverse().apply(pj.proportional_grid(Q, n))
+    P, pairs = _grid_pair_nodes(alpha_deg, n, lambda_deg)
+    misses = grid_node_misses(alpha_deg, n, lambda_deg=lambda_deg)
     fig = plots.figure(figsize=(9.6, 4.9))
     axes = fig.subplots(1, 2)
     for a, method, title in ((axes[0], "central", "central directions (exact)"),
                              (axes[1], "proportional", "proportional division (equal parts)")):
-        nodes = pj.grid(P, n, method)
+        nodes, exact_nodes = pairs[method]
         a.add_collection(LineCollection(_grid_segments(nodes), colors=_C["blue"], linewidths=1.0))
         a.plot(exact_nodes[..., 0].ravel(), exact_nodes[..., 1].ravel(), "o", mfc="none", mec=_C["truth"], ms=7,
                mew=1.6, label="images of the plan grid's nodes")
@@ -285,8 +308,7 @@ def grids_figure(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60
                     v = V[:2] / V[2]
                     for e in ends:
                         a.plot([v[0], e[0]], [v[1], e[1]], color=_C["grey"], lw=0.5, ls=":")
-        err = float(np.max(np.hypot(*(nodes - exact_nodes).reshape(-1, 2).T)))
-        a.set_title(f"{title}\nlargest node miss {err:.2f} mm")
+        a.set_title(f"{title}\nlargest node miss {misses[method]:.2f} mm")
         a.set_xlim(-95, 95)
         a.set_ylim(-95, 95)
         a.set_aspect("equal")

@@ -5,12 +5,26 @@
 
 from pathlib import Path
 
+from aerophoto.guide import s11
 from aerophoto.nbtools import code, md, notebook, write
 
 from build_09_plan_correction import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "10_ground_control.ipynb"
+
+#: §11's shift, computed (guide.s11.shift_summary): the text prints these, never typed-in numbers
+_S = s11.shift_summary()
+SHIFT = {"dX_km": f"{abs(_S['mean_dX_m']) / 1000:.1f}", "dY_km": f"{abs(_S['mean_dY_m']) / 1000:.1f}",
+         "dlat_min": f"{_S['mean_dlat_min']:.1f}", "dlon_min": f"{_S['mean_dlon_min']:.1f}",
+         "rel_m": f"{_S['max_relative_m']:.0f}"}
+
+
+def _shift(text: str) -> str:
+    """Fill <dX_km>, <dY_km>, <dlat_min>, <dlon_min>, <rel_m> with the computed shift."""
+    for k, val in SHIFT.items():
+        text = text.replace(f"<{k}>", val)
+    return text
 
 CELLS = [
     md("""
@@ -156,12 +170,12 @@ the computed X, Y are ranges):
     code("""
 guide.s11.coordinate_table()
 """, id="example-1"),
-    md("""
+    md(_shift("""
 **What the table turns out to contain.** The X, Y are *not* the Gauss–Krüger coordinates of the printed φ, λ:
-every point is off by nearly the same amount, about 17.4 km in X and 28.8 km in Y, and projected back the X, Y fall
-some 10′ south and 27′ west of the printed latitudes and longitudes. A common shift is what a local (conditional)
-coordinate system or invented numbers would give. Even with the shift removed the four points disagree by up to
-about 115 m, more than reading φ, λ to 5″ (all the printed seconds are multiples of 5) would explain. So the table's
+every point is off by nearly the same amount, about <dX_km> km in X and <dY_km> km in Y, and projected back the X, Y
+fall <dlat_min>′ south and <dlon_min>′ west of the printed latitudes and longitudes (the mean of the four points).
+A common shift is what a local (conditional) coordinate system or invented numbers would give. Even with the shift removed the four points disagree by up to
+about <rel_m> m, more than reading φ, λ to 5″ (all the printed seconds are multiples of 5) would explain. So the table's
 plane coordinates and its geographic coordinates come from two different sources. A resection works in plane
 coordinates: below we use X, Y.
 
@@ -169,7 +183,7 @@ coordinates: below we use X, Y.
 
 The guide prints no measured angles. Take the explorer's starting station and compute what a theodolite there
 would read, then resect it back and check it:
-""", id="example-2-theory"),
+"""), id="example-2-theory"),
     code("""
 import numpy as np
 
@@ -217,7 +231,7 @@ If the check fails, one of the measured angles is wrong: the station must be mea
 """, id="task-10-2"),
     answer_cell("task-10-2"),
     check_cell("task-10-2"),
-    md("""
+    md(_shift("""
 ## Summary
 
 * Sparse control is laid in rows across the strips, the rows as many bases apart as Zhukov's formula allows for
@@ -227,10 +241,10 @@ If the check fails, one of the measured angles is wrong: the station must be mea
   through the three points (the danger circle) it is undetermined, near it weak. A third angle to a fourth point
   checks it.
 * The guide's §11 table: its X, Y are not the Pulkovo 1942 Gauss–Krüger coordinates of its φ, λ — all four are
-  shifted by about 17.4 km and 28.8 km, and even the relative positions disagree by up to 115 m.
+  shifted by about <dX_km> km and <dY_km> km, and even the relative positions disagree by up to <rel_m> m.
 
 Next: **11 · Rectification**.
-""", id="summary"),
+"""), id="summary"),
 ]
 
 

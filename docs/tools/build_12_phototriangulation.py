@@ -35,6 +35,7 @@ the scan has garbled; we work out what it must say and test it against simulated
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
+import math
 import pandas as pd
 from aerophoto import tasks, triangulation
 from aerophoto.demos.reduction import (ReductionDemo, TemplateView, StripView, AccumulationView, reduction_model,

@@ -46,6 +46,7 @@ points are computed together by **block phototriangulation** (блочная ф�
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
+import math
 import numpy as np
 import pandas as pd
 from aerophoto import bundle, guide, plots, tasks

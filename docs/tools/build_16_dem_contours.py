@@ -46,6 +46,7 @@ them.
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
+import math
 from aerophoto import dem, guide, plots, tasks
 from aerophoto.demos.dem_contours import ContourDemo, ContourView, contour_frame, spacing_study_figure
 from aerophoto.site import get_site

@@ -40,6 +40,7 @@ map for buildings. Its answer is "not quite" — 0.44–0.45 mm.
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
+import math
 from aerophoto import budget, guide, plots, tasks
 from aerophoto.demos.error_budget import BudgetDemo, budget_figure
 v = aerophoto.setup(RECORD_BOOK)

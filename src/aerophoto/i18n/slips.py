@@ -196,7 +196,11 @@ _SLIPS = {
     "the whole frame is not the base: b = l·(1 − p_x)": "весь кадр — не базис: b = l·(1 − p_x)",
     "this is l_воск / l_осн — the coefficient is base over template":
         "это l_воск / l_осн — коэффициент равен основе, делённой на восковку",
-    "this is m_X; the plan error m_D has the coefficient 0.35": "это m_X; у ошибки в плане m_D коэффициент 0,35",
+    "this is m_X alone; the plan error m_D = √(m_X² + m_Y²)": "это одна m_X; ошибка в плане m_D = √(m_X² + m_Y²)",
+    "this is the other reading of m_D, √2·m_X (the article's printed 0.11 mm); this task takes m_D as the plan "
+    "error √(m_X² + m_Y²), as the article's legend names it (chapter 14)":
+        "это другое прочтение m_D, √2·m_X (напечатанные в статье 0,11 мм); в этой задаче m_D — ошибка в плане "
+        "√(m_X² + m_Y²), как её называет экспликация статьи (глава 14)",
     "this is m_Z at the photo scale in mm; the task asks for metres on the ground":
         "это m_Z в масштабе снимка в мм; задание требует метры на местности",
     "this is max k − min k; the guide's spread is the deviation from the mean":

@@ -1,6 +1,7 @@
 """Chapters 07–17 read against their sources: the numbers the text states follow from the computation."""
 
 import json
+import math
 import re
 from pathlib import Path
 
@@ -50,3 +51,22 @@ def test_ch11_transformer_reports_first_step_within_tolerance():
     table = r.table()["value"]
     assert table["every point within 0.4 mm from step"] == "6"
     assert table["first full cycle within 0.4 mm ends at step"] == "10"
+
+
+# ---- chapter 16: correlated node errors are not averaged down ------------------------------------------------
+
+def test_ch16_correlated_node_errors():
+    from aerophoto import dem
+    assert dem.correlated_noise_factor(30.0, 0.0) == pytest.approx(4 / 9, rel=1e-3)  # independent: the 8 cm
+    assert dem.correlated_noise_factor(30.0, 1e7) == pytest.approx(1.0, abs=1e-5)    # fully shared: all 12 cm
+    ks = [dem.correlated_noise_factor(30.0, L) for L in (10.0, 30.0, 100.0, 300.0)]
+    assert all(a < b for a, b in zip(ks, ks[1:]))
+    assert 11.0 < math.sqrt(dem.correlated_noise_factor(30.0, 300.0)) * 12 < 12.0
+    with pytest.raises(ValueError, match="corr_length_m"):
+        dem.correlated_noise_factor(30.0, -1.0)
+
+
+def test_ch16_sd3_audit_numbers():
+    text = _cell("16_dem_contours", "sd3-audit")
+    assert f"{31 * math.sqrt(2):.1f}" in text and f"{math.sqrt(2 * 31**2 - 14**2):.1f}" in text
+    assert f"{12 * math.sqrt(2):.1f}" in text and f"{math.sqrt(2 * 12**2 - 14**2):.1f}" in text

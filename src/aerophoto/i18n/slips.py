@@ -196,6 +196,14 @@ _SLIPS = {
     "the whole frame is not the base: b = l·(1 − p_x)": "весь кадр — не базис: b = l·(1 − p_x)",
     "this is l_воск / l_осн — the coefficient is base over template":
         "это l_воск / l_осн — коэффициент равен основе, делённой на восковку",
+    "the transfer stage here is formula (9) applied to the mean discrepancy 0.5 mm (0.357 mm, the article's slip); "
+    "rule (1) first turns the mean into an RMS, 1.25·0.5 mm (chapter 17)":
+        "этап переноса здесь — формула (9), применённая к средней невязке 0,5 мм (0,357 мм, ошибка статьи); "
+        "правило (1) сначала переводит среднюю ошибку в СКО, 1,25·0,5 мм (глава 17)",
+    "that uses b from the pricked principal points, which the photos' tilts shift by 1–3 %; the parallaxes of the "
+    "normalised pair go with its base b₀ = B·f/H (chapter 07)":
+        "здесь взят базис b по наколотым главным точкам, который наклоны снимков сдвигают на 1–3 %; параллаксы "
+        "нормализованной пары идут с её базисом b₀ = B·f/H (глава 07)",
     "this is m_X alone; the plan error m_D = √(m_X² + m_Y²)": "это одна m_X; ошибка в плане m_D = √(m_X² + m_Y²)",
     "this is the other reading of m_D, √2·m_X (the article's printed 0.11 mm); this task takes m_D as the plan "
     "error √(m_X² + m_Y²), as the article's legend names it (chapter 14)":

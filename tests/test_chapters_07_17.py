@@ -70,3 +70,47 @@ def test_ch16_sd3_audit_numbers():
     text = _cell("16_dem_contours", "sd3-audit")
     assert f"{31 * math.sqrt(2):.1f}" in text and f"{math.sqrt(2 * 31**2 - 14**2):.1f}" in text
     assert f"{12 * math.sqrt(2):.1f}" in text and f"{math.sqrt(2 * 12**2 - 14**2):.1f}" in text
+
+
+# ---- chapter 08: task 08.3 names the banner's scale; chapter 07: task 07.3 on the unbiased base ----------------
+
+def test_ch08_width_with_the_flight_scale_gets_its_hint():
+    from aerophoto import checks, tasks
+    from aerophoto.variants import variant_for_index
+    v = variant_for_index(17)
+    lab = tasks.inputs("task-08-3", v)
+    w = tasks.answers("task-08-3", v)["width_m"]
+    assert abs(v.m / lab.m - 1) > 0.2  # the flight's 1:m and the photo's own scale differ
+    g = checks.grade_task("task-08-3", v, {"width_m": w * v.m / lab.m})
+    assert not g.passed and "scale of your variant's flight" in g.checks[0][2]
+    text = _cell("08_interpretation", "task-08-3")
+    assert "lab.m" in text and "not the 1:m of your variant" in text
+
+
+def test_ch07_task_3_uses_the_base_of_the_normalised_pair():
+    from aerophoto import stereo as st
+    from aerophoto import tasks
+    from aerophoto.tasks import ch07
+    from aerophoto.variants import variant_for_index
+    v = variant_for_index(63)  # f = 730 mm: the pricked base is 2.9 % long
+    lab = ch07.stereo_lab(v)
+    assert lab.b_mm / lab.b_flat_mm - 1 == pytest.approx(0.029, abs=0.001)
+    assert lab.b_flat_mm == pytest.approx(lab.B_record_m * v.f_mm / lab.H_m)
+    a = tasks.answers("task-07-3", v)
+    h = v.Zmax_m - v.Zmin_m
+    assert a["dp_relief_mm"] == pytest.approx(lab.b_flat_mm * h / (lab.H_m - h))
+    assert a["V"] == pytest.approx(float(st.vertical_exaggeration(lab.b_flat_mm, v.f_mm, 65.0, 250.0)))
+
+
+# ---- chapter 09: the third way of §10, similar figures -------------------------------------------------------
+
+def test_ch09_similar_figures():
+    from aerophoto.demos import plan_correction as pc
+    P = np.array([[-60.0, -40.0], [30.0, -40.0], [60.0, 55.0], [-40.0, 58.0]])
+    M = np.array([[1.1, 0.2], [-0.1, 0.9]])
+    Q = P @ M.T + [5.0, -3.0]  # an affine pair: similar figures are exact
+    xy = np.array([[0.0, 0.0], [20.0, 10.0], [-30.0, 30.0]])
+    np.testing.assert_allclose(pc.similar_figures_transfer(P, Q, xy), xy @ M.T + [5.0, -3.0], atol=1e-9)
+    study = pc.three_methods_study((3.0,))
+    sim, prop, cen = study.iloc[0]
+    assert 0.8 < sim < 1.5 and abs(sim / prop - 1) < 0.15 and cen < 0.1

@@ -199,6 +199,35 @@ example.table()
     code("""
 control.check_resection(example, K[3], g, M=10000).table()
 """, id="example-3"),
+    md(r"""
+**How loose is the check?** Here the tolerance is 210″ — three and a half minutes of arc, for angles a theodolite
+reads to a few seconds. Which blunder (грубая ошибка) would it catch? Put a blunder of 30″ to 10′ into one of the
+two measured angles, resect again and compute the check:
+""", id="check-blunder-theory"),
+    code("""
+import pandas as pd
+
+rows = []
+for which in ("β1", "β2"):
+    for blunder_s in (30.0, 60.0, 120.0, 300.0, 600.0):
+        d = blunder_s / 3600.0
+        bad = control.resect(K[0], K[1], K[2], b1 + d * (which == "β1"), b2 + d * (which == "β2"))
+        chk = control.check_resection(bad, K[3], g, M=10000)
+        rows.append((which, blunder_s, np.hypot(*(bad.point - P_true)), chk.discrepancy_arcsec, not chk.ok))
+pd.DataFrame(rows, columns=["angle", "blunder, ″", "station moved, m", "Δγ, ″", "caught"]).set_index(
+    ["angle", "blunder, ″"]).round(1)
+""", id="check-blunder"),
+    md(r"""
+A blunder in β₁ shows in γ about 1.5 times enlarged, one in β₂ only 0.64 times (γ is measured from C, on β₂'s
+side of the figure, and shares its geometry). So the check catches a blunder in β₁ from about 2.3′ and one in β₂
+only from about 5.5′: a misread minute on the circle, the commonest blunder of all, passes unseen. That is the
+price of tying the tolerance to the plan rather than to the instrument: every blunder that passes moves the
+station by less than about 1 m — 0.1 mm at 1:10 000, the accuracy the plan asks for — so it does no harm *to the
+plan*. A check meant to catch blunders would be set from the angles' own precision: with an RMS of 15″ per angle,
+Δγ has an RMS of $15''\sqrt{1 + 1.5^2 + 0.64^2} = 29''$, three times that is 86″, and blunders from about 1′ in β₁ and
+2.2′ in β₂ would be caught — two to three times finer. The book keeps the plan's tolerance, as its purpose is the
+plan, and the task asks for it; it is worth knowing what it lets through.
+""", id="check-blunder-notes"),
     md("""
 ## Task 10.1 — your resection (graded)
 

@@ -25,7 +25,8 @@ from .. import projective as pj
 from ..widgets import LiveDemo, Param
 
 __all__ = ["PlanCorrectionResult", "plan_correction_model", "PlanCorrectionView", "PlanCorrectionDemo",
-           "EXAMPLE_SEED", "plan_correction_figure", "grids_figure", "grid_node_misses", "transfer_study_figure",
+           "EXAMPLE_SEED", "plan_correction_figure", "grids_figure", "grid_node_misses", "similar_figures_transfer",
+           "three_methods_study", "transfer_study_figure",
            "legend_html"]
 
 #: the scene of the chapter's example (variants use seeds 0…99)
@@ -317,6 +318,46 @@ def grids_figure(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60
     axes[0].set_ylabel("y, mm")
     axes[1].legend(loc="lower right", fontsize=9)
     return fig
+
+
+def similar_figures_transfer(photo_corners, plan_corners, xy) -> np.ndarray:
+    """The method of similar figures (способ подобных фигур, guide §10): carry photo points to the plan
+    triangle by triangle, as if each triangle of the figure were similar (affine) to its image.
+
+    The quadrilateral of the four control points is split by its diagonal 1–3 into two triangles; a point keeps its
+    barycentric coordinates in its triangle.  ``photo_corners``, ``plan_corners`` (4, 2) mm, ``xy`` (k, 2) mm
+    inside the photo quadrilateral; returns (k, 2) plan mm (NaN for a point outside both triangles).
+    """
+    P = np.asarray(photo_corners, float)
+    Q = np.asarray(plan_corners, float)
+    pts = np.atleast_2d(np.asarray(xy, float))
+    out = np.full_like(pts, np.nan)
+    for tri in ((0, 1, 2), (0, 2, 3)):
+        A = np.column_stack([P[list(tri)], np.ones(3)])
+        lam = np.linalg.solve(A.T, np.column_stack([pts, np.ones(len(pts))]).T).T  # barycentric, (k, 3)
+        inside = np.all(lam >= -1e-9, axis=1) & np.isnan(out[:, 0])
+        out[inside] = lam[inside] @ Q[list(tri)]
+    return out
+
+
+def three_methods_study(alphas=(1.0, 3.0, 8.0), n: int = 4, *, lambda_deg: float = -60.0) -> pd.DataFrame:
+    """Largest transfer error on the plan, mm, of the guide's three ways of §10 over the example's quadrilateral
+    (625 points inside it): similar figures (two triangles), proportional division and central directions with
+    ``n`` cells per side, for each tilt α in ``alphas`` (°)."""
+    u, w = np.meshgrid(np.linspace(0.02, 0.98, 25), np.linspace(0.02, 0.98, 25))
+    rows = []
+    for alpha in alphas:
+        r = plan_correction_model(alpha, lambda_deg, n, 85.0, "central")
+        P, Q = r.pair.photo_corners, r.pair.plan_corners
+        xy = (((1 - u) * (1 - w))[..., None] * P[0] + (u * (1 - w))[..., None] * P[1] + (u * w)[..., None] * P[2]
+              + ((1 - u) * w)[..., None] * P[3]).reshape(-1, 2)
+        exact = r.pair.exact.apply(xy)
+        prop = plan_correction_model(alpha, lambda_deg, n, 85.0, "proportional").pair.transfer(xy)
+        err = lambda a: float(np.max(np.hypot(*(a - exact).T)))  # noqa: E731
+        rows.append((alpha, err(similar_figures_transfer(P, Q, xy)), err(prop), err(r.pair.transfer(xy))))
+    return pd.DataFrame(rows, columns=["α, °", "similar figures (2 triangles), mm",
+                                       f"proportional division, n = {n}, mm",
+                                       f"central directions, n = {n}, mm"]).set_index("α, °")
 
 
 def transfer_study_figure(alphas=(1.0, 3.0, 8.0), ns=(1, 2, 4, 8, 16, 32)):

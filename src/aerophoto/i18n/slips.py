@@ -204,6 +204,10 @@ _SLIPS = {
     "normalised pair go with its base b₀ = B·f/H (chapter 07)":
         "здесь взят базис b по наколотым главным точкам, который наклоны снимков сдвигают на 1–3 %; параллаксы "
         "нормализованной пары идут с её базисом b₀ = B·f/H (глава 07)",
+    "that is the scale of your variant's flight (the 1:m of the banner); this photo has its own scale, lab.m, "
+    "printed with the photo — use that one":
+        "это масштаб съёмки вашего варианта (1:m из заголовка); у этого снимка свой масштаб, lab.m, напечатанный "
+        "вместе со снимком, — возьмите его",
     "this is m_X alone; the plan error m_D = √(m_X² + m_Y²)": "это одна m_X; ошибка в плане m_D = √(m_X² + m_Y²)",
     "this is the other reading of m_D, √2·m_X (the article's printed 0.11 mm); this task takes m_D as the plan "
     "error √(m_X² + m_Y²), as the article's legend names it (chapter 14)":

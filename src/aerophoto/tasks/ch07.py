@@ -43,7 +43,8 @@ from .. import stereo as st
 from .base import Answer, Hidden, Task, submitted_number
 
 __all__ = ["HM_CLASSES", "HeightModel", "height_model", "SUN", "SIGMA_READ_MM", "SIGMA_PRICK_MM", "OBJECT_LABELS", "StereoLab", "lab_for", "stereo_lab", "example_lab",
-           "lab_images", "PairImages", "PairBase", "ObjectHeights", "ParallaxForHeight", "TASKS", "EXAMPLE_SEED"]
+           "lab_images", "PairImages", "PairBase", "ObjectHeights", "ParallaxForHeight", "TASKS", "EXAMPLE_SEED",
+           "PRICKED_BASE"]
 
 #: reading error of one coordinate on the normalised pair, mm (a parallax bar reads parallaxes to ~0.01 mm)
 SIGMA_READ_MM = 0.007
@@ -54,6 +55,9 @@ OBJECT_LABELS = ("A: roof corner", "B: tree top", "C: chimney top", "D: mast top
 #: the seed of the guide's example pair (the live demo's)
 EXAMPLE_SEED = 2014
 PX_PERCENT = 60.0
+#: slip hint of task 07.3: the base of the pricked principal points (task 07.1) instead of b₀ = B·f/H
+PRICKED_BASE = ("that uses b from the pricked principal points, which the photos' tilts shift by 1–3 %; the parallaxes "
+                "of the normalised pair go with its base b₀ = B·f/H (chapter 07)")
 #: the viewing the vertical exaggeration of task 07.3 refers to: eye base and viewing distance, mm
 EYE_BASE_MM, VIEWING_MM = st.EYE_BASE_MM, st.VIEWING_DISTANCE_MM
 
@@ -169,6 +173,13 @@ class StereoLab:
     def b_mm(self) -> float:
         """The photo base b = (b₁ + b₂)/2 from the pricked principal points, mm."""
         return float(np.mean(self.photo_bases_mm()))
+
+    @property
+    def b_flat_mm(self) -> float:
+        """The base of the normalised pair, b₀ = B·f/H (the record's B, H = f·m): the parallax of a point on the
+        mean plane, mm.  The pricked principal points (:attr:`b_mm`) carry the tilts' displacements as well —
+        about f·tan α, 2.9 % at f = 730 mm with tilts of half a degree — so heights go with b₀ (task 07.3)."""
+        return float(self.B_record_m * self.f_mm / self.H_m)
 
     @property
     def pA_mm(self) -> float:
@@ -638,30 +649,38 @@ class ParallaxForHeight(Task):
 
     def inputs(self, v) -> dict:
         lab = stereo_lab(v)
-        return {"h_m": v.Zmax_m - v.Zmin_m, "H_m": lab.H_m, "eye_base_mm": EYE_BASE_MM,
-                "viewing_distance_mm": VIEWING_MM}
+        return {"h_m": v.Zmax_m - v.Zmin_m, "H_m": lab.H_m, "B_m": lab.B_record_m, "f_mm": lab.f_mm,
+                "eye_base_mm": EYE_BASE_MM, "viewing_distance_mm": VIEWING_MM}
 
     def _ref(self, v):
+        # the unbiased base of the normalised pair, b₀ = B·f/H (chapter 07: the pricked principal points carry the
+        # tilts' displacements and are 1–3 % off it)
         lab = stereo_lab(v)
         h = v.Zmax_m - v.Zmin_m
-        return lab, h, float(st.parallax_difference_mm(h, lab.b_mm, lab.H_m))
+        return lab, h, float(st.parallax_difference_mm(h, lab.b_flat_mm, lab.H_m))
 
     def answers(self, v) -> dict:
         lab, h, dp = self._ref(v)
-        V = float(st.vertical_exaggeration(lab.b_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))  # B/H = b/f
+        V = float(st.vertical_exaggeration(lab.b_flat_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))  # B/H = b₀/f
         return {"dp_relief_mm": dp, "V": V}
 
     def slips(self, v) -> dict:
         lab, h, dp = self._ref(v)
-        small = float(st.parallax_difference_mm(h, lab.b_mm, lab.H_m, approx=True))
-        BH = lab.b_mm / lab.f_mm
+        b0 = lab.b_flat_mm
+        small = float(st.parallax_difference_mm(h, b0, lab.H_m, approx=True))
+        BH = b0 / lab.f_mm
+        pricked_dp = float(st.parallax_difference_mm(h, lab.b_mm, lab.H_m))
+        pricked_V = float(st.vertical_exaggeration(lab.b_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))
+        V = float(st.vertical_exaggeration(b0, lab.f_mm, EYE_BASE_MM, VIEWING_MM))
         return {
             "dp_relief_mm": {"that is the small form b·h/H; the exact one is b·h/(H − h)":
                              small if abs(small - dp) > 0.005 else None,
                              "the relief's parallax difference uses the photo base b in mm, not B in m":
-                             lab.B_record_m * h / (lab.H_m - h)},
+                             lab.B_record_m * h / (lab.H_m - h),
+                             PRICKED_BASE: pricked_dp if abs(pricked_dp - dp) > 0.005 else None},
             "V": {"V is (B/H) divided by (e/d), not the other way round": (EYE_BASE_MM / VIEWING_MM) / BH,
-                  "B/H is b/f with both in mm": (lab.b_mm / (lab.f_mm / 1000.0)) / (EYE_BASE_MM / VIEWING_MM)},
+                  "B/H is b/f with both in mm": (b0 / (lab.f_mm / 1000.0)) / (EYE_BASE_MM / VIEWING_MM),
+                  PRICKED_BASE: pricked_V if abs(pricked_V / V - 1) > 0.005 else None},
         }
 
     def hidden(self, v, got) -> list:

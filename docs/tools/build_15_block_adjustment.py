@@ -261,6 +261,28 @@ plots.static(bundle_views.ellipse_figure(sol),
                  "near or inside their ellipse.")
 """, id="figure-ellipses"),
     md(r"""
+## Live: control, measuring error and a blunder
+
+A smaller block of the same mountains (3 strips × 4 photos at 1:15 000, f = 200 mm), adjusted by the bundle method
+as above — linearised at the truth, so that every move is one solution of the same normal equations
+(`aerophoto.demos.block_adjustment_live??`). Choose which of the nine control points stay control (the rest
+become check points), the measuring error σ of a photo coordinate, and whether one image measurement carries a
+blunder, and how large. σ scales all the a priori errors together (the gravimetric marks 6σ, the control 0.1 m per
+µm), so the shapes of the ellipses stay and their sizes follow σ. Left: the block, the gravimetric points' standard
+ellipses and the check points' true errors, both ×400; the point of the observation data snooping rejects is
+ringed. Right: every observation's |w|, sorted, against the critical 4.0.
+
+**Try this.** At σ = 5 µm the 0.1 mm blunder has |w| ≈ 12 and is rejected. Raise σ: its |w| falls as 1/σ — 6.6 at
+10 µm, 4.3 at 20 µm — and at 30 µm it passes unseen, while the check points' errors grow in proportion. Switch the
+blunder off: no |w| reaches 4. Take the control down to three corners: the height errors and the ellipses grow
+several times — nothing holds the block's bending.
+""", id="demo-adjustment-theory"),
+    code("""
+from aerophoto.demos.block_adjustment_live import BlockAdjustmentDemo
+adjustment_demo = BlockAdjustmentDemo()
+adjustment_demo
+""", id="demo-block-adjustment"),
+    md(r"""
 ## The 1986 package and the same work today (table 2)
 
 The article's Fortran-IV package ran in 120–250 KB of memory; its table 2 lists what it could hold. Some

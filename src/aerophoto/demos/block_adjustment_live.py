@@ -294,7 +294,7 @@ class BlockAdjustmentView:
 
     def __init__(self, ax=None):
         if ax is None:
-            self.fig = plots.figure(figsize=(11.0, 4.9))
+            self.fig = plots.figure(figsize=(9.0, 4.4))
             self.ax_map, self.ax_w = self.fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.35, 1.0]})
         else:
             self.ax_map, self.ax_w = ax

@@ -19,7 +19,7 @@ def _cell(stem, cell_id):
 # ---- chapter 10: the §11 table's shift is printed as computed ------------------------------------------------
 
 def test_ch10_shift_text_follows_the_projection():
-    from aerophoto.guide import s11
+    from aerophoto.guide import ch10 as s11
     s = s11.shift_summary()
     assert s["mean_dlon_min"] == pytest.approx(26.2, abs=0.05)
     assert s["mean_dlat_min"] == pytest.approx(9.9, abs=0.05)
@@ -33,10 +33,10 @@ def test_ch10_shift_text_follows_the_projection():
 
 def test_ch11_table_11_prints_clean_differences():
     from aerophoto import guide
-    t = guide.s12.table_11().table
+    t = guide.ch11.table_11().table
     col = t["δl = l₀ − l_i, mm"]
     assert list(col) == [-0.5, 0.0, 0.0, -0.3, -0.1, 0.2, -0.7]
-    assert "99999" not in guide.s12.table_11()._repr_html_()
+    assert "99999" not in guide.ch11.table_11()._repr_html_()
 
 
 def test_ch11_transformer_reports_first_step_within_tolerance():
@@ -90,7 +90,7 @@ def test_ch08_width_with_the_flight_scale_gets_its_hint():
 def test_ch07_task_3_uses_the_base_of_the_normalised_pair():
     from aerophoto import stereo as st
     from aerophoto import tasks
-    from aerophoto.tasks import ch07
+    from aerophoto.labs import ch07
     from aerophoto.variants import variant_for_index
     v = variant_for_index(63)  # f = 730 mm: the pricked base is 2.9 % long
     lab = ch07.stereo_lab(v)

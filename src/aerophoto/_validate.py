@@ -11,7 +11,10 @@ import math
 from numbers import Real
 
 __all__ = ["check_range", "check_positive", "check_percent", "check_int_range", "check_finite_array",
-           "check_points"]
+           "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional"]
+
+#: the most elements a computed grid, profile or sample may have (a step or count asking for more is refused)
+MAX_WORK = 20_000_000
 
 
 def _fmt(x: float) -> str:
@@ -107,6 +110,8 @@ def check_finite_array(name: str, value, *, ndim: int | None = None, last: int |
     """
     import numpy as np
 
+    if value is None or isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} = {value!r:.80} is not an array of numbers; expected numbers (a list or an ndarray)")
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -128,7 +133,78 @@ def check_finite_array(name: str, value, *, ndim: int | None = None, last: int |
 def check_points(name: str, value, *, dim: int = 2, min_points: int = 0):
     """Points as a float array of shape (k, dim) with finite coordinates (a single point → (1, dim))."""
     a = check_finite_array(name, value, last=dim)
+    if a.ndim > 2:
+        raise ValueError(f"{name} has shape {a.shape}; expected ({dim},) for one point or (k, {dim}) for k points")
     a = a.reshape(-1, dim)
     if len(a) < min_points:
         raise ValueError(f"{name} has {len(a)} point(s); the valid range is at least {min_points}")
     return a
+
+
+def _type_names(types) -> str:
+    types = types if isinstance(types, tuple) else (types,)
+    return " or ".join(getattr(t, "__name__", str(t)) for t in types)
+
+
+def check_type(name: str, value, types, *, what: str | None = None, none: bool = False):
+    """Return ``value`` if it is an instance of ``types`` (or None when ``none``), else raise TypeError.
+
+    The message names the parameter and the expected type, e.g. ``camera = None is a NoneType; expected a
+    Camera``.  ``what`` replaces the type names in the message (``"a Terrain (an object with Z(X, Y))"``).
+    """
+    if (none and value is None) or isinstance(value, types):
+        return value
+    expected = what or f"a {_type_names(types)}"
+    raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; expected {expected}"
+                    + (" or None" if none else ""))
+
+
+def check_choice(name: str, value, choices):
+    """Return ``value`` if it is one of ``choices`` (strings compared exactly), else raise ValueError listing them."""
+    try:
+        ok = value in choices
+    except TypeError:
+        ok = False
+    if not ok or (isinstance(value, float) and math.isnan(value)):
+        raise ValueError(f"{name} = {value!r:.60} is not one of the valid choices: "
+                         + ", ".join(repr(c) for c in choices))
+    return value
+
+
+def check_work_size(name: str, value, n: float, *, limit: float = MAX_WORK, what: str = "elements"):
+    """Refuse a step or count for which the work (``n`` elements) would exceed ``limit``.
+
+    ``value`` is the parameter the student gave (a step in mm, a count); ``n`` the number of elements it asks
+    for.  ValueError names the parameter, its value and the limit.
+    """
+    if not (n <= limit):  # also NaN
+        raise ValueError(f"{name} = {value!r:.40} would need {n:.3g} {what}; the valid range keeps it at most "
+                         f"{limit:.3g} (a larger step or a smaller count)")
+    return value
+
+
+def check_values(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_open: bool = False,
+                 hi_open: bool = False, unit: str = "", max_size: int = MAX_WORK):
+    """A scalar or array of numbers, every one finite and within the range: a float (scalar given) or ndarray.
+
+    The array form of :func:`check_range` for the vectorised formulas (``relief_displacement(r_mm, h_m, H_m)``).
+    """
+    import numpy as np
+
+    if isinstance(value, (int, float, Real)) and not isinstance(value, bool):
+        return check_range(name, value, lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
+    a = check_finite_array(name, value, max_size=max_size)
+    if a.size:
+        bad_lo = a <= lo if lo_open else a < lo
+        bad_hi = a >= hi if hi_open else a > hi
+        bad = bad_lo | bad_hi
+        if bad.any():
+            x = float(a[bad].ravel()[0])
+            raise ValueError(f"{name} contains {_fmt(x)}, outside the valid range "
+                             f"{_describe(name, lo, hi, lo_open, hi_open, unit)}")
+    return a if a.ndim else float(a)
+
+
+def check_optional(name: str, value, check, *args, **kwargs):
+    """``None`` passes through (the documented default); anything else goes to ``check(name, value, …)``."""
+    return None if value is None else check(name, value, *args, **kwargs)

@@ -754,6 +754,11 @@ ALLOWED: dict = {
     ("variants.index_from_record_book", "record_book", "int"): "a record-book number may be an integer (documented)",
     ("variants.as_variant", "variant", "None"): "None is the guide's worked example where a caller allows it",
     ("flight.plan", "variant", "None"): "None is the guide's worked example (documented)",
+    **{(f"quality.{f}", "dem", "None"): "None is flat ground (geometry.as_terrain, documented)"
+       for f in ("measure_overlap", "measure_base", "measure_crab_deg", "assess_flight")},
+    ("displacement.ratio_text", "N", "inf"): "N = ∞ (no deviation, Δm = 0) prints as the guide's 0",
+    ("displacement.Base", "name", "str"): "any text is a base name",
+    ("displacement.mean_object_plane", "zone_heights_m", "len+1"): "any number of zones",
 }
 
 # --------------------------------------------------------------------------------------------- the tests

@@ -11,7 +11,9 @@ import math
 from numbers import Real
 
 __all__ = ["check_range", "check_positive", "check_percent", "check_int_range", "check_finite_array",
-           "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional"]
+           "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional",
+           "checked", "Spec", "points", "array", "values", "number", "whole", "of_type", "one_of", "terrain",
+           "sequence", "names", "optional", "point", "pairs"]
 
 #: the most elements a computed grid, profile or sample may have (a step or count asking for more is refused)
 MAX_WORK = 20_000_000
@@ -208,3 +210,165 @@ def check_values(name: str, value, lo: float = -math.inf, hi: float = math.inf, 
 def check_optional(name: str, value, check, *args, **kwargs):
     """``None`` passes through (the documented default); anything else goes to ``check(name, value, …)``."""
     return None if value is None else check(name, value, *args, **kwargs)
+
+
+# ----------------------------------------------------------------------------------------- declarative entry checks
+class Spec:
+    """A check of one argument for :func:`checked`: ``spec(name, value)`` raises by name or returns."""
+
+    def __init__(self, fn, *args, **kwargs):
+        self.fn, self.args, self.kwargs = fn, args, kwargs
+
+    def __call__(self, name, value):
+        self.fn(name, value, *self.args, **self.kwargs)
+
+
+def points(dim: int = 2, *, min_points: int = 0) -> Spec:
+    """Points (k, dim) or one point (dim,), finite (``check_points``)."""
+    return Spec(check_points, dim=dim, min_points=min_points)
+
+
+def array(*, ndim: int | None = None, last: int | None = None, min_len: int = 0, max_size: int = MAX_WORK) -> Spec:
+    """An array of finite numbers (``check_finite_array``)."""
+    return Spec(check_finite_array, ndim=ndim, last=last, min_len=min_len, max_size=max_size)
+
+
+def values(lo: float = -math.inf, hi: float = math.inf, **kw) -> Spec:
+    """A number or an array of numbers, finite and within the range (``check_values``)."""
+    return Spec(check_values, lo, hi, **kw)
+
+
+def number(lo: float = -math.inf, hi: float = math.inf, **kw) -> Spec:
+    """One finite number within the range (``check_range``)."""
+    return Spec(check_range, lo, hi, **kw)
+
+
+def whole(lo: int, hi: int) -> Spec:
+    """A whole number within [lo, hi] (``check_int_range``)."""
+    return Spec(check_int_range, lo, hi)
+
+
+def of_type(types, *, what: str | None = None, none: bool = False) -> Spec:
+    """An instance of ``types`` (``check_type``)."""
+    return Spec(check_type, types, what=what, none=none)
+
+
+def one_of(*choices) -> Spec:
+    """One of the given choices (``check_choice``)."""
+    return Spec(check_choice, choices)
+
+
+def _check_terrain(name, value, none=False, number_ok=True):
+    if (none and value is None) or (number_ok and isinstance(value, Real) and not isinstance(value, bool)):
+        if value is not None:
+            check_range(name, value, -1e5, 1e5, unit="m")
+        return
+    if not callable(getattr(value, "height", None)):
+        raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; expected a terrain (an object with "
+                        "height(X, Y), z_min_m and z_max_m" + (", a height in metres" if number_ok else "")
+                        + (" or None)" if none else ")"))
+
+
+def terrain(*, none: bool = False, number_ok: bool = True) -> Spec:
+    """A terrain (an object with ``height(X, Y)``), a height in metres (``number_ok``) or None (``none``)."""
+    return Spec(_check_terrain, none=none, number_ok=number_ok)
+
+
+def _check_seq(name, value, item, min_len, max_len):
+    if value is None or isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; expected a sequence")
+    if not (min_len <= len(value) <= max_len):
+        raise ValueError(f"{name} has {len(value)} item(s); the valid range is {min_len} ≤ len({name}) ≤ {max_len}")
+    if item is not None:
+        for k, v in enumerate(value):
+            item(f"{name}[{k}]", v)
+
+
+def sequence(item: Spec | None = None, *, min_len: int = 0, max_len: int = 10**6) -> Spec:
+    """A sequence (list, tuple, array) of ``min_len``… items, each passing ``item``."""
+    return Spec(_check_seq, item, min_len, max_len)
+
+
+def _check_names(name, value, min_len):
+    if value is None or isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; expected a sequence of point names")
+    for k, v in enumerate(value):
+        if not isinstance(v, (str, int)) or isinstance(v, bool):
+            raise TypeError(f"{name}[{k}] = {v!r:.40} is a {type(v).__name__}; expected a point name (str)")
+    if len(value) < min_len:
+        raise ValueError(f"{name} has {len(value)} name(s); the valid range is at least {min_len}")
+
+
+def names(*, min_len: int = 0) -> Spec:
+    """A sequence of point names (strings or whole numbers)."""
+    return Spec(_check_names, min_len)
+
+
+def optional(spec) -> Spec:
+    """``spec``, or None."""
+    spec = spec if isinstance(spec, Spec) else of_type(spec)
+    return Spec(lambda name, value: None if value is None else spec(name, value))
+
+
+def checked(**specs):
+    """Decorator: check the named arguments of a public function at its entry, before any work.
+
+    ``specs`` maps parameter names to a :class:`Spec` (``points(2)``, ``values(0)``, …) or a class (a
+    ``check_type``).  Only arguments actually passed are checked (defaults are valid by construction), with
+    one dictionary look-up per argument: cheap enough for every public entry.  The signature is kept
+    (``inspect.signature`` follows ``__wrapped__``).
+    """
+    import functools
+    import inspect
+
+    specs = {k: (v if isinstance(v, Spec) else of_type(v)) for k, v in specs.items()}
+
+    def deco(fn):
+        params = list(inspect.signature(fn).parameters.values())
+        unknown = set(specs) - {p.name for p in params}
+        if unknown:
+            raise TypeError(f"checked: {fn.__qualname__} has no parameter(s) {sorted(unknown)}")
+        positional = [p.name for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+
+        @functools.wraps(fn)
+        def wrapper(*args, **kwargs):
+            for name, value in zip(positional, args):
+                spec = specs.get(name)
+                if spec is not None:
+                    spec(name, value)
+            for name, value in kwargs.items():
+                spec = specs.get(name)
+                if spec is not None:
+                    spec(name, value)
+            return fn(*args, **kwargs)
+
+        return wrapper
+
+    return deco
+
+
+def _check_point(name, value, dim):
+    a = check_finite_array(name, value)
+    if a.size != dim:
+        raise ValueError(f"{name} has shape {a.shape}; expected one point of {dim} coordinates")
+
+
+def point(dim: int = 2) -> Spec:
+    """Exactly one point: ``dim`` finite coordinates."""
+    return Spec(_check_point, dim)
+
+
+def _check_pairs(name, value, min_len=1):
+    if value is None or isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; expected a sequence of (name, name) pairs")
+    for k, pr in enumerate(value):
+        if isinstance(pr, (str, bytes)) or not hasattr(pr, "__len__") or len(pr) != 2 \
+                or not all(isinstance(x, (str, int)) and not isinstance(x, bool) for x in pr):
+            raise ValueError(f"{name}[{k}] = {pr!r:.40} is not a pair of point names (name, name)")
+    if len(value) < min_len:
+        raise ValueError(f"{name} has {len(value)} pair(s); the valid range is at least {min_len}")
+
+
+def pairs(*, min_len: int = 1) -> Spec:
+    """A sequence of at least ``min_len`` (name, name) pairs (bases between named points)."""
+    return Spec(_check_pairs, min_len)

@@ -227,6 +227,8 @@ def classify(fn, kwargs, param, kind, base_nonfinite):
     """``(outcome, detail)``: clear, vague, obscure, nan, silent or ok (a valid return of a may-return kind)."""
     try:
         got = _call(fn, kwargs)
+        if inspect.isgenerator(got):
+            got = list(got)  # a generator checks its arguments when called, not when first iterated
     except _Hang:
         return "obscure", f"no answer within {LIMIT_S} s"
     except (ValueError, TypeError) as exc:
@@ -758,6 +760,10 @@ ALLOWED: dict = {
        for f in ("measure_overlap", "measure_base", "measure_crab_deg", "assess_flight")},
     ("displacement.ratio_text", "N", "inf"): "N = ∞ (no deviation, Δm = 0) prints as the guide's 0",
     ("displacement.Base", "name", "str"): "any text is a base name",
+    **{(f"mosaic.{f}", p, "None"): "None is flat ground / no texture (documented)"
+       for f, p in (("assemble", "dem"), ("seam_details", "dem"), ("sheet_raster", "ground"),
+                    ("sheet_raster_bands", "ground"), ("catalogue_points", "ground"))},
+    ("mosaic.sheet_raster_bands", "band_px", "None"): "None is the whole sheet in one band (documented)",
     ("displacement.mean_object_plane", "zone_heights_m", "len+1"): "any number of zones",
 }
 

@@ -13,7 +13,7 @@ from numbers import Real
 __all__ = ["check_range", "check_positive", "check_percent", "check_int_range", "check_finite_array",
            "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional",
            "checked", "Spec", "points", "array", "values", "number", "whole", "of_type", "one_of", "terrain",
-           "sequence", "names", "optional", "point", "pairs"]
+           "sequence", "names", "optional", "point", "pairs", "has_attrs"]
 
 #: the most elements a computed grid, profile or sample may have (a step or count asking for more is refused)
 MAX_WORK = 20_000_000
@@ -372,3 +372,13 @@ def _check_pairs(name, value, min_len=1):
 def pairs(*, min_len: int = 1) -> Spec:
     """A sequence of at least ``min_len`` (name, name) pairs (bases between named points)."""
     return Spec(_check_pairs, min_len)
+
+
+def _check_attrs(name, value, attrs, what):
+    if not all(hasattr(value, a) for a in attrs):
+        raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; expected {what}")
+
+
+def has_attrs(*attrs: str, what: str) -> Spec:
+    """An object with the given attributes (a duck-typed package object from a higher layer), e.g. a Strip."""
+    return Spec(_check_attrs, attrs, what)

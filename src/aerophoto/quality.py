@@ -755,12 +755,6 @@ def _dm(deg: float) -> str:
     return f"{sign}{total // 60}°{total % 60:02d}′"
 
 
-def _check_flight(name, flight):
-    if not hasattr(flight, "shots") and not hasattr(flight, "strips"):
-        raise TypeError(f"{name} = {flight!r:.60} is a {type(flight).__name__}; expected a simulated flight "
-                        "(aerophoto.simulate.Strip or Block)")
-
-
 def _strips_of(flight):
     strips = getattr(flight, "strips", None)
     return tuple(strips) if strips is not None else (flight,)
@@ -774,7 +768,7 @@ def _nearest_neighbour_pairs(strip_a, strip_b):
     return [(strip_a.shots[i], strip_b.shots[int(j)]) for i, j in enumerate(np.argmin(d, axis=1))]
 
 
-@V.checked(flight=V.Spec(_check_flight), dem=V.terrain(none=True), points_m=V.optional(V.points(3)))
+@V.checked(flight=V.has_attrs("shots", what="a simulated flight (simulate.Strip or Block)"), dem=V.terrain(none=True), points_m=V.optional(V.points(3)))
 def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None = None) -> QualityReport:
     """Measure a simulated flight as the guide measures a rough mosaic (§3) and judge it.
 

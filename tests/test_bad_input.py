@@ -763,6 +763,13 @@ ALLOWED: dict = {
     **{(f"mosaic.{f}", p, "None"): "None is flat ground / no texture (documented)"
        for f, p in (("assemble", "dem"), ("seam_details", "dem"), ("sheet_raster", "ground"),
                     ("sheet_raster_bands", "ground"), ("catalogue_points", "ground"))},
+    ("triangulation.strip.design_points", "terrain", "None"): "None is flat ground at Z = 0 (documented)",
+    ("triangulation.study.accumulation_study", "n_bases", "len+1"): "any number of strip lengths",
+    **{(f"stereo.{f}", p, "a-nan"): "NaN pixels mark no data in an image (documented); it stays no data"
+       for f, ps in (("normalise_image", ("image",)), ("anaglyph", ("left", "right")),
+                     ("side_by_side", ("left", "right")), ("match_points", ("left", "right")),
+                     ("dense_parallax", ("left", "right"))) for p in ps},
+    ("stereo.model_point", "H_m", "None"): "without H the model is in photo units (documented)",
     ("mosaic.sheet_raster_bands", "band_px", "None"): "None is the whole sheet in one band (documented)",
     ("displacement.mean_object_plane", "zone_heights_m", "len+1"): "any number of zones",
 }

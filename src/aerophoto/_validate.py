@@ -13,7 +13,7 @@ from numbers import Real
 __all__ = ["check_range", "check_positive", "check_percent", "check_int_range", "check_finite_array",
            "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional",
            "checked", "Spec", "points", "array", "values", "number", "whole", "of_type", "one_of", "terrain",
-           "sequence", "names", "optional", "point", "pairs", "has_attrs"]
+           "sequence", "names", "optional", "point", "pairs", "has_attrs", "shape", "image"]
 
 #: the most elements a computed grid, profile or sample may have (a step or count asking for more is refused)
 MAX_WORK = 20_000_000
@@ -382,3 +382,37 @@ def _check_attrs(name, value, attrs, what):
 def has_attrs(*attrs: str, what: str) -> Spec:
     """An object with the given attributes (a duck-typed package object from a higher layer), e.g. a Strip."""
     return Spec(_check_attrs, attrs, what)
+
+
+def _check_shape(name, value, shape):
+    a = check_finite_array(name, value)
+    if a.shape != shape:
+        raise ValueError(f"{name} has shape {a.shape}; expected {shape}")
+
+
+def shape(*dims: int) -> Spec:
+    """A finite array of exactly this shape (a 3×3 rotation, a 4-number window)."""
+    return Spec(_check_shape, tuple(dims))
+
+
+def _check_image(name, value, ndim, nan_ok):
+    import numpy as np
+
+    if value is None or isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} = {value!r:.60} is not an image; expected a 2-D array of grey values")
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} = {value!r:.60} is not an image; expected a 2-D array of grey values") from None
+    if a.ndim not in ndim or a.size == 0 or a.size > MAX_WORK * 4:
+        raise ValueError(f"{name} has shape {a.shape}; expected a non-empty image with {' or '.join(map(str, ndim))} "
+                         "dimensions")
+    bad = np.isinf(a) if nan_ok else ~np.isfinite(a)
+    if bad.any():
+        raise ValueError(f"{name} contains {a[bad].ravel()[0]}; grey values must be finite"
+                         + (" (NaN marks no data)" if nan_ok else ""))
+
+
+def image(*ndim: int, nan_ok: bool = True) -> Spec:
+    """An image: a non-empty array of 2 (or the given) dimensions; NaN marks no data when ``nan_ok``, ±inf never."""
+    return Spec(_check_image, ndim or (2,), nan_ok)

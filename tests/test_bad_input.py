@@ -211,9 +211,9 @@ def _alarm(signum, frame):
     raise _Hang()
 
 
-def _call(fn, kwargs):
+def _call(fn, kwargs, limit_s=LIMIT_S):
     old = signal.signal(signal.SIGALRM, _alarm)
-    signal.setitimer(signal.ITIMER_REAL, LIMIT_S)
+    signal.setitimer(signal.ITIMER_REAL, limit_s)
     try:
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
@@ -296,7 +296,7 @@ def valid_kwargs(qual, obj, S):
 def sweep_one(qual, obj, S):
     """``[(param, label, kind, outcome, detail)]`` for one public name."""
     kwargs, sig = valid_kwargs(qual, obj, S)
-    base = _call(obj, kwargs)
+    base = _call(obj, kwargs, 60.0)  # the valid call (first imports, caches) may take longer
     base_nonfinite = _nonfinite_paths(base)
     params = dict(kwargs)
     for p in sig.parameters.values():  # optional numbers keep their default unless mutated

@@ -517,7 +517,7 @@ VALID: dict = {
                             "half_window": 3, "d_max": 8},
     "stereo.dense_parallax": {"left": _IMG, "right": np.roll(_IMG, -3, axis=1), "half_window": 2, "d_max": 6},
     # projective
-    "projective.grids.check_quadrilateral": dict(_GRID), "projective.grids.unit_square_map": dict(_GRID),
+    "projective.grids.check_quadrilateral": dict(_GRID, name="corners"), "projective.grids.unit_square_map": dict(_GRID),
     "projective.grids.vanishing_points": {"corners": np.array([[-50.0, -50.0], [50.0, -40.0], [45.0, 45.0],
                                                                [-50.0, 50.0]])},
     "projective.grids.proportional_grid": dict(_GRID), "projective.grids.projective_grid": dict(_GRID),
@@ -769,6 +769,11 @@ ALLOWED: dict = {
        for f, ps in (("normalise_image", ("image",)), ("anaglyph", ("left", "right")),
                      ("side_by_side", ("left", "right")), ("match_points", ("left", "right")),
                      ("dense_parallax", ("left", "right"))) for p in ps},
+    ("projective.grids.check_quadrilateral", "name", "str"): "the name is any label for the messages",
+    ("projective.grids.transfer_study", "ns", "len+1"): "any number of grid sizes",
+    ("projective.images.warp_raster", "image", "col+1"): "a raster of any size",
+    **{(f"projective.images.{f}", "cval", "nan"): "NaN marks pixels with no data (the default)"
+       for f in ("warp_photo", "warp_raster")},
     ("stereo.model_point", "H_m", "None"): "without H the model is in photo units (documented)",
     ("mosaic.sheet_raster_bands", "band_px", "None"): "None is the whole sheet in one band (documented)",
     ("displacement.mean_object_plane", "zone_heights_m", "len+1"): "any number of zones",

@@ -13,7 +13,7 @@ from numbers import Real
 __all__ = ["check_range", "check_positive", "check_percent", "check_int_range", "check_finite_array",
            "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional",
            "checked", "Spec", "points", "array", "values", "number", "whole", "of_type", "one_of", "terrain",
-           "sequence", "names", "optional", "point", "pairs", "has_attrs", "shape", "image"]
+           "sequence", "names", "optional", "point", "pairs", "has_attrs", "shape", "image", "fill", "check_broadcast"]
 
 #: the most elements a computed grid, profile or sample may have (a step or count asking for more is refused)
 MAX_WORK = 20_000_000
@@ -416,3 +416,26 @@ def _check_image(name, value, ndim, nan_ok):
 def image(*ndim: int, nan_ok: bool = True) -> Spec:
     """An image: a non-empty array of 2 (or the given) dimensions; NaN marks no data when ``nan_ok``, ±inf never."""
     return Spec(_check_image, ndim or (2,), nan_ok)
+
+
+def _check_fill(name, value):
+    if not (isinstance(value, Real) and not isinstance(value, bool) and (math.isnan(value) or math.isfinite(value))):
+        raise (TypeError if not isinstance(value, Real) else ValueError)(
+            f"{name} = {value!r:.40} is not a fill value; expected a finite number or NaN (no data)")
+
+
+def fill() -> Spec:
+    """A fill value for pixels with no data: a finite number or NaN (never ±inf)."""
+    return Spec(_check_fill)
+
+
+def check_broadcast(**arrays):
+    """Refuse arrays whose shapes do not broadcast together, naming them (instead of numpy's message)."""
+    import numpy as np
+
+    shapes = {k: np.shape(v) for k, v in arrays.items()}
+    try:
+        np.broadcast_shapes(*shapes.values())
+    except ValueError:
+        raise ValueError("the shapes of " + ", ".join(f"{k} {s}" for k, s in shapes.items())
+                         + " do not match (one value per point)") from None

@@ -774,6 +774,15 @@ ALLOWED: dict = {
     ("projective.images.warp_raster", "image", "col+1"): "a raster of any size",
     **{(f"projective.images.{f}", "cval", "nan"): "NaN marks pixels with no data (the default)"
        for f in ("warp_photo", "warp_raster")},
+    **{(f"accuracy.{f}", "terrain", "None"): "None is flat ground (geometry.as_terrain, documented)"
+       for f in ("strip_monte_carlo", "block_precision", "block_monte_carlo")},
+    ("interpretation.Conditions", "visibility_km", "None"): "None is a clear sky, no haze (documented)",
+    ("interpretation.haze", "visibility_km", "None"): "None is a clear sky, no haze (documented)",
+    **{(f"interpretation.{f}", p, "a-nan"): "NaN pixels mark no data in an image (documented); they stay no data"
+       for f, p in (("motion_blur", "image"), ("haze", "rho"), ("contrast", "image"))},
+    **{(f"interpretation.{f}", "image", "col+1"): "an image of any size" for f in ("motion_blur", "contrast")},
+    ("spectral.apparent_reflectance", "rho", "a-nan"): "NaN pixels mark no data in an image; they stay no data",
+    ("spectral.soil_reflectance", "wl_um", "None"): "None is the model's own wavelength grid (documented)",
     ("stereo.model_point", "H_m", "None"): "without H the model is in photo units (documented)",
     ("mosaic.sheet_raster_bands", "band_px", "None"): "None is the whole sheet in one band (documented)",
     ("displacement.mean_object_plane", "zone_heights_m", "len+1"): "any number of zones",

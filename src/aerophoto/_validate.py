@@ -13,7 +13,7 @@ from numbers import Real
 __all__ = ["check_range", "check_positive", "check_percent", "check_int_range", "check_finite_array",
            "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional",
            "checked", "Spec", "points", "array", "values", "number", "whole", "of_type", "one_of", "terrain",
-           "sequence", "names", "optional", "point", "pairs", "has_attrs", "shape", "image", "fill", "check_broadcast"]
+           "sequence", "names", "optional", "point", "pairs", "has_attrs", "shape", "image", "fill", "check_broadcast", "indices", "function"]
 
 #: the most elements a computed grid, profile or sample may have (a step or count asking for more is refused)
 MAX_WORK = 20_000_000
@@ -439,3 +439,22 @@ def check_broadcast(**arrays):
     except ValueError:
         raise ValueError("the shapes of " + ", ".join(f"{k} {s}" for k, s in shapes.items())
                          + " do not match (one value per point)") from None
+
+
+def _check_indices(name, value, min_len):
+    import numpy as np
+
+    a = check_finite_array(name, value, ndim=1, min_len=min_len)
+    if a.size and (np.any(a < 0) or np.any(a != np.round(a))):
+        bad = a[(a < 0) | (a != np.round(a))][0]
+        raise ValueError(f"{name} contains {bad:g}; every entry must be a whole number ≥ 0 (an index)")
+
+
+def indices(*, min_len: int = 1) -> Spec:
+    """A 1-D array of whole numbers ≥ 0 (photo, strip or point indices)."""
+    return Spec(_check_indices, min_len)
+
+
+def function(what: str = "a function") -> Spec:
+    """A callable."""
+    return Spec(lambda name, value: None if callable(value) else check_type(name, value, (), what=what))

@@ -62,6 +62,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_int_range, check_positive, check_range
 from .bundle import collinearity as _col
@@ -338,6 +339,7 @@ class StripMonteCarlo:
         return pd.DataFrame(rows, columns=cols).set_index("n")
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), terrain=V.terrain(none=True))
 def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.01 / math.sqrt(2.0),
                       n_runs: int = 100, seed: int = 0, d_mm: float | None = None, halfway: bool = False,
                       margin_mm: float = 3.0) -> StripMonteCarlo:
@@ -447,6 +449,7 @@ def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.0
     return StripMonteCarlo(n, sig, scale_m, free, mid, mid_n, b_mm, f)
 
 
+@V.checked(n=V.array(ndim=1, min_len=2), rms=V.array(ndim=1, min_len=2), law=V.function('a function n → factor'))
 def fit_accumulation(n, rms, law) -> tuple:
     """Least-squares coefficient d of ``rms ≈ d·law(n)`` through the origin, and the log-log slope of rms.
 
@@ -518,6 +521,8 @@ class BlockPrecision:
                 "height max, m": float(self.sigma_Z_m[t].max())}
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), photo_strip=V.indices(),
+           photo_order=V.indices(), terrain=V.terrain(none=True))
 def block_precision(camera: g.Camera, poses, photo_strip, photo_order, terrain, *, every: int = 4,
                     layout: str = "rows", sigma_mm: float = 0.01, control_factor: float = 1.0,
                     d_mm: float | None = None, halfway_mm: float | None = None, points_m=None) -> BlockPrecision:
@@ -575,6 +580,7 @@ def block_precision(camera: g.Camera, poses, photo_strip, photo_order, terrain, 
                           eo[:, :3], rows)
 
 
+@V.checked(strip_precision=BlockPrecision, block_precision_=BlockPrecision)
 def block_vs_strip(strip_precision: BlockPrecision, block_precision_: BlockPrecision) -> dict:
     """How much better the block is: ratios strip/block of the RMS plan and height errors of tie points."""
     a, b = strip_precision.summary(), block_precision_.summary()
@@ -582,6 +588,8 @@ def block_vs_strip(strip_precision: BlockPrecision, block_precision_: BlockPreci
 
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), photo_strip=V.indices(),
+           photo_order=V.indices(), terrain=V.terrain(none=True), seed=V.whole(0, 2**32 - 1))
 def block_monte_carlo(camera: g.Camera, poses, photo_strip, photo_order, terrain, *, every: int = 4,
                       layout: str = "rows", sigma_mm: float = 0.01, control_factor: float = 1.0, n_runs: int = 20,
                       seed: int = 0, points_m=None) -> dict:

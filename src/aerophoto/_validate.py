@@ -441,18 +441,18 @@ def check_broadcast(**arrays):
                          + " do not match (one value per point)") from None
 
 
-def _check_indices(name, value, min_len):
+def _check_indices(name, value, min_len, ndim):
     import numpy as np
 
-    a = check_finite_array(name, value, ndim=1, min_len=min_len)
+    a = check_finite_array(name, value, ndim=ndim, min_len=min_len).ravel()
     if a.size and (np.any(a < 0) or np.any(a != np.round(a))):
         bad = a[(a < 0) | (a != np.round(a))][0]
         raise ValueError(f"{name} contains {bad:g}; every entry must be a whole number ≥ 0 (an index)")
 
 
-def indices(*, min_len: int = 1) -> Spec:
-    """A 1-D array of whole numbers ≥ 0 (photo, strip or point indices)."""
-    return Spec(_check_indices, min_len)
+def indices(*, min_len: int = 1, ndim: int | None = 1) -> Spec:
+    """An array (1-D unless ``ndim``) of whole numbers ≥ 0 (photo, strip or point indices)."""
+    return Spec(_check_indices, min_len, ndim)
 
 
 def function(what: str = "a function") -> Spec:

@@ -197,7 +197,7 @@ def whole_bases(n_real: float) -> int:
 
 # =========================================================================== Monte Carlo of strips
 def _rot_b(opk):  # (R, 3) → (R, 3, 3)
-    return _col.rotation_opk(opk[:, 0], opk[:, 1], opk[:, 2])
+    return _col._rotation_opk(opk[:, 0], opk[:, 1], opk[:, 2])
 
 
 def _rays_b(R, xy, f):
@@ -383,13 +383,13 @@ def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.0
     half = camera.half_mm - margin_mm
     obs = {}
     for j in range(len(poses)):
-        xy = _col.project(np.repeat(eo[j:j + 1], len(pts), axis=0), pts, f)
+        xy = _col._project(np.repeat(eo[j:j + 1], len(pts), axis=0), pts, f)
         inside = np.flatnonzero(np.all(np.abs(xy) <= half, axis=1))
         obs[j] = (inside, xy[inside])
     rng = np.random.default_rng(seed)
     noisy = {j: xy[None] + sig * rng.standard_normal((runs,) + xy.shape) for j, (k, xy) in obs.items()}
     # the strip's own frame: photo 0 fixed as in truth (a similarity to the control fixes the datum anyway)
-    R0 = np.repeat(_col.rotation_opk(*eo[0, 3:])[None], runs, axis=0)
+    R0 = np.repeat(_col._rotation_opk(*eo[0, 3:])[None], runs, axis=0)
     S0 = np.repeat(eo[0:1, :3], runs, axis=0)
     Rs, Ss = [R0], [S0]
     models = []  # per model j = 1 … n: (point indices, coordinates (runs, k, 3))

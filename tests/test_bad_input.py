@@ -786,6 +786,13 @@ ALLOWED: dict = {
     ("bundle.design.standard_points", "terrain", "None"): "None is flat ground (documented)",
     ("bundle.design.standard_points", "halfway_mm", "None"): "None places the points half a base apart (default)",
     ("bundle.solve.rms_expectation", "components", "len+1"): "any number of components",
+    **{(f"dem.{f}", "terrain", "None"): "None is flat ground (geometry.as_terrain, documented)"
+       for f in ("densification.block_layout", "densification.lysenko_study", "surface.structural_lines",
+                 "surface.grid_dem", "surface.tin_dem", "surface.grid_with_lines", "surface.structural_dem",
+                 "surface.contour_accuracy", "surface.dem_accuracy", "surface.evaluate")},
+    ("dem.surface.contour_accuracy", "lines", "()"): "no contours: the accuracy is undefined — NaN with n_lines = 0",
+    ("dem.surface.spacing_study", "spacings_m", "len+1"): "any number of spacings",
+    ("soilmap.segment_tones", "image", "col+1"): "an image of any size",
     ("stereo.model_point", "H_m", "None"): "without H the model is in photo units (documented)",
     ("mosaic.sheet_raster_bands", "band_px", "None"): "None is the whole sheet in one band (documented)",
     ("displacement.mean_object_plane", "zone_heights_m", "len+1"): "any number of zones",

@@ -13,7 +13,8 @@ from numbers import Real
 __all__ = ["check_range", "check_positive", "check_percent", "check_int_range", "check_finite_array",
            "check_points", "check_type", "check_choice", "check_work_size", "check_values", "check_optional",
            "checked", "Spec", "points", "array", "values", "number", "whole", "of_type", "one_of", "terrain",
-           "sequence", "names", "optional", "point", "pairs", "has_attrs", "shape", "image", "fill", "check_broadcast", "indices", "function"]
+           "sequence", "names", "optional", "point", "pairs", "has_attrs", "shape", "image", "fill",
+           "check_broadcast", "indices", "function"]
 
 #: the most elements a computed grid, profile or sample may have (a step or count asking for more is refused)
 MAX_WORK = 20_000_000
@@ -360,7 +361,8 @@ def point(dim: int = 2) -> Spec:
 
 def _check_pairs(name, value, min_len=1):
     if value is None or isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
-        raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; expected a sequence of (name, name) pairs")
+        raise TypeError(f"{name} = {value!r:.60} is a {type(value).__name__}; "
+                        "expected a sequence of (name, name) pairs")
     for k, pr in enumerate(value):
         if isinstance(pr, (str, bytes)) or not hasattr(pr, "__len__") or len(pr) != 2 \
                 or not all(isinstance(x, (str, int)) and not isinstance(x, bool) for x in pr):

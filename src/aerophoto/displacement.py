@@ -694,7 +694,8 @@ class ReliefWork:
     table4: ScaleTable
 
 
-@V.checked(names=V.names(min_len=2), photo_xy_mm=V.points(2, min_points=2), l_plan_mm=V.array(ndim=1), Z_m=V.array(ndim=1), bases=V.pairs(), n_mm=V.point(2))
+@V.checked(names=V.names(min_len=2), photo_xy_mm=V.points(2, min_points=2), l_plan_mm=V.array(ndim=1),
+           Z_m=V.array(ndim=1), bases=V.pairs(), n_mm=V.point(2))
 def relief_work(names, photo_xy_mm, l_plan_mm, Z_m, bases, *, f_mm: float, n_mm, M: float = GUIDE_M_PLAN,
                 threshold_mm: float = THRESHOLD_MM) -> ReliefWork:
     """Run the guide's §4 (tables 2 → 3 → 4) on measured photo coordinates and plan lengths.

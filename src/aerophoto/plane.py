@@ -466,7 +466,8 @@ def resect_directions(angles_rad, known_xy, *, line=None, x0=None, iterations: i
     iterations = check_int_range("iterations", iterations, 1, 200)
     k = len(phi)
     if len(K) != k:
-        raise ValueError(f"angles_rad has {k} directions but known_xy {len(K)} points; give one known point per direction")
+        raise ValueError(f"angles_rad has {k} directions but known_xy {len(K)} points; "
+                         "give one known point per direction")
     n_obs = k + (1 if line is not None else 0)
     if n_obs < 3:
         raise ValueError(f"{n_obs} observations; a resection needs at least 3 (centre and rotation are 3 unknowns)")

@@ -768,7 +768,8 @@ def _nearest_neighbour_pairs(strip_a, strip_b):
     return [(strip_a.shots[i], strip_b.shots[int(j)]) for i, j in enumerate(np.argmin(d, axis=1))]
 
 
-@V.checked(flight=V.has_attrs("shots", what="a simulated flight (simulate.Strip or Block)"), dem=V.terrain(none=True), points_m=V.optional(V.points(3)))
+@V.checked(flight=V.has_attrs("shots", what="a simulated flight (simulate.Strip or Block)"), dem=V.terrain(none=True),
+           points_m=V.optional(V.points(3)))
 def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None = None) -> QualityReport:
     """Measure a simulated flight as the guide measures a rough mosaic (§3) and judge it.
 

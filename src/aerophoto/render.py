@@ -405,7 +405,8 @@ def _ground_pixel_m(site, camera: g.Camera, pose: g.Pose, n_px: int) -> float:
     return camera.frame_mm / n_px * H / camera.f_mm
 
 
-@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"), camera=g.Camera, pose=g.Pose)
+@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"), camera=g.Camera,
+           pose=g.Pose)
 def render(
     site,
     camera: g.Camera,
@@ -649,14 +650,16 @@ def trace(site, camera: g.Camera, pose: g.Pose, xy_mm, *, objects: bool = True) 
                 nrm.reshape(shape + (3,)))
 
 
-@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"), shot=V.has_attrs("camera", "pose", "number", what="a Shot (simulate.Strip.shots[i])"))
+@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"),
+           shot=V.has_attrs("camera", "pose", "number", what="a Shot (simulate.Strip.shots[i])"))
 def render_shot(site, shot, n_px: int = 512, **kwargs) -> Photo:
     """Render a simulated :class:`aerophoto.simulate.Shot` (its true pose; its number is carried along)."""
     kwargs.setdefault("number", shot.number)
     return render(site, shot.camera, shot.pose, n_px, **kwargs)
 
 
-@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"), strip=V.has_attrs("shots", what="a simulated Strip or Block"))
+@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"),
+           strip=V.has_attrs("shots", what="a simulated Strip or Block"))
 def render_strip(site, strip, n_px: int = 512, **kwargs) -> list:
     """Render every shot of a strip (or a block's ``shots``), in order; a list of :class:`Photo`."""
     shots = strip.shots if hasattr(strip, "shots") else list(strip)

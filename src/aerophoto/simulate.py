@@ -651,7 +651,8 @@ def _check_fits(site, flight):
         )
 
 
-@V.checked(site=V.has_attrs("height", "centre_m", what="a Site (aerophoto.site.get_site())"), camera=Camera, azimuth_deg=V.number(-1e4, 1e4))
+@V.checked(site=V.has_attrs("height", "centre_m", what="a Site (aerophoto.site.get_site())"), camera=Camera,
+           azimuth_deg=V.number(-1e4, 1e4))
 def strip_over_site(
     site,
     camera: Camera,
@@ -678,7 +679,8 @@ def strip_over_site(
     return st
 
 
-@V.checked(site=V.has_attrs("height", "centre_m", what="a Site (aerophoto.site.get_site())"), camera=Camera, azimuth_deg=V.number(-1e4, 1e4))
+@V.checked(site=V.has_attrs("height", "centre_m", what="a Site (aerophoto.site.get_site())"), camera=Camera,
+           azimuth_deg=V.number(-1e4, 1e4))
 def block_over_site(
     site,
     camera: Camera,

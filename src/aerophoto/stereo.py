@@ -106,7 +106,8 @@ def _diff(na, a, nb, b):
     try:
         np.broadcast_shapes(a.shape, b.shape)
     except ValueError:
-        raise ValueError(f"{na} has shape {a.shape} and {nb} {b.shape}; they must match (one value per point)") from None
+        raise ValueError(f"{na} has shape {a.shape} and {nb} {b.shape}; "
+                         "they must match (one value per point)") from None
     return a - b
 
 
@@ -184,7 +185,8 @@ def height_difference_m(dp_mm, b_mm, H_m, *, approx: bool = False):
     H = _positive_array("H_m", H_m, "m")
     if approx:
         if np.any(np.abs(H * dp / b) >= H):
-            raise ValueError(f"dp_mm = {float(np.max(np.abs(dp))):g} gives |Δh| ≥ H: the valid range is |dp_mm| < b_mm")
+            raise ValueError(f"dp_mm = {float(np.max(np.abs(dp))):g} gives |Δh| ≥ H: "
+                             "the valid range is |dp_mm| < b_mm")
         return _out(H * dp / b)
     if np.any(b + dp <= 0):
         raise ValueError(f"b_mm + dp_mm = {float(np.min(b + dp)):g}: the point's parallax b + Δp must be positive "
@@ -192,7 +194,8 @@ def height_difference_m(dp_mm, b_mm, H_m, *, approx: bool = False):
                          "dp_mm > −b_mm")
     dh = H * dp / (b + dp)
     if np.any(dh >= H * (1.0 - 1e-6)):
-        raise ValueError(f"dp_mm = {float(np.max(dp)):g} puts the point at the camera (Δh → H = {float(np.max(H)):g} m); "
+        raise ValueError(f"dp_mm = {float(np.max(dp)):g} puts the point at the camera "
+                         f"(Δh → H = {float(np.max(H)):g} m); "
                          "the valid range keeps Δh below the flying height (dp_mm ≪ 10⁶·b_mm)")
     return _out(dh)
 

@@ -134,7 +134,8 @@ class RescaledRelief:
 
     def __init__(self, site, relief_m: float):
         if not all(hasattr(site, a) for a in ("height", "z_min_m", "z_max_m")):
-            raise TypeError(f"site = {site!r:.60} is a {type(site).__name__}; expected a Site (aerophoto.site.get_site())")
+            raise TypeError(f"site = {site!r:.60} is a {type(site).__name__}; "
+                            "expected a Site (aerophoto.site.get_site())")
         self.site = site
         self.relief_m = check_range("relief_m", relief_m, 0.0, 3000.0, unit="m")
         r0 = float(site.z_max_m - site.z_min_m)

@@ -183,7 +183,8 @@ class RelativeOrientation:
         return float(np.sqrt(np.mean(q * q))) if len(q) else float("nan")
 
 
-@V.checked(xy_left=V.points(2, min_points=5), xy_right=V.points(2, min_points=5), f_mm=V.number(0.0, 2000.0, lo_open=True),
+@V.checked(xy_left=V.points(2, min_points=5), xy_right=V.points(2, min_points=5),
+           f_mm=V.number(0.0, 2000.0, lo_open=True),
            R_left=V.optional(V.shape(3, 3)), reject_k=V.number(0.0), max_iter=V.whole(1, 1000))
 def relative_orientation(xy_left, xy_right, f_mm: float, R_left=None, *, reject_k: float = 4.0,
                          max_iter: int = 12) -> RelativeOrientation:

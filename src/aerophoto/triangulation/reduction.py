@@ -307,7 +307,8 @@ class Reduction:
         )
 
 
-@V.checked(strip=FreeStrip, short_base_mm=V.number(0.0, lo_open=True), control=V.optional(V.points(2)), origin_m=V.optional(V.point(2)))
+@V.checked(strip=FreeStrip, short_base_mm=V.number(0.0, lo_open=True), control=V.optional(V.points(2)),
+           origin_m=V.optional(V.point(2)))
 def reduce_strip(
     strip: FreeStrip,
     *,

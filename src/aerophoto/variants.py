@@ -147,6 +147,9 @@ def variant(record_book) -> Variant:
 #: what a variant argument may be, for the messages
 VARIANT_FORMS = ("a Variant (variants.variant('19-0457')), a record-book number with at least two digits "
                  "('19-0457', 190457) or None for the guide's worked example (variant 00)")
+#: the same without None, where a variant must be given
+VARIANT_FORMS_GIVEN = ("a Variant (variants.variant('19-0457')) or a record-book number with at least two digits "
+                       "('19-0457', 190457)")
 
 
 def as_variant(variant, name: str = "variant", *, none: bool = True) -> Variant | None:
@@ -158,12 +161,13 @@ def as_variant(variant, name: str = "variant", *, none: bool = True) -> Variant 
     """
     if isinstance(variant, Variant) or (none and variant is None):
         return variant
+    forms = VARIANT_FORMS if none else VARIANT_FORMS_GIVEN
     if isinstance(variant, str) or (isinstance(variant, int) and not isinstance(variant, bool)):
         try:
             return _variant_of(variant)
         except ValueError:
-            raise ValueError(f"{name} = {variant!r:.40} is not a variant; expected {VARIANT_FORMS}") from None
-    check_type(name, variant, Variant, what=VARIANT_FORMS, none=none)
+            raise ValueError(f"{name} = {variant!r:.40} is not a variant; expected {forms}") from None
+    check_type(name, variant, Variant, what=forms, none=none)
     return variant
 
 

@@ -42,7 +42,7 @@ This is physics (layer 2): the strip (:class:`aerophoto.simulate.Strip` or
 anything with ``shots``), the terrain (:class:`aerophoto.geometry.Terrain`,
 e.g. the virtual site or :class:`aerophoto.terrain.RescaledRelief`) and the
 rendered prints are taken as arguments, never imported.  The student's
-fotoschema for a variant is built in :mod:`aerophoto.tasks.ch05`; the live
+fotoschema for a variant is built in :mod:`aerophoto.labs.ch05`; the live
 demo and the finished sheet are in :mod:`aerophoto.demos.fotoschema`.
 """
 

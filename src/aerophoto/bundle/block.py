@@ -14,7 +14,7 @@ their marks on the photos.
 :func:`simulate_measurements` images known ground points on photos of known
 orientation (the collinearity equations of :mod:`.collinearity`) and adds
 seeded Gaussian errors — the virtual site and a simulated flight provide the
-truth (:mod:`aerophoto.tasks.ch15` builds the chapter's blocks that way).
+truth (:mod:`aerophoto.labs.ch15` builds the chapter's blocks that way).
 
 Validation (a :class:`ValueError` naming the problem and the valid range):
 every array finite and of matching shapes; at least three control points with

@@ -386,15 +386,17 @@ def has_attrs(*attrs: str, what: str) -> Spec:
     return Spec(_check_attrs, attrs, what)
 
 
-def _check_shape(name, value, shape):
+def _check_shape(name, value, shape, stacked=False):
     a = check_finite_array(name, value)
-    if a.shape != shape:
-        raise ValueError(f"{name} has shape {a.shape}; expected {shape}")
+    if (a.shape[a.ndim - len(shape):] != shape or a.ndim < len(shape)) if stacked else a.shape != shape:
+        want = f"(..., {', '.join(map(str, shape))})" if stacked else str(shape)
+        raise ValueError(f"{name} has shape {a.shape}; expected {want}")
 
 
-def shape(*dims: int) -> Spec:
-    """A finite array of exactly this shape (a 3×3 rotation, a 4-number window)."""
-    return Spec(_check_shape, tuple(dims))
+def shape(*dims: int, stacked: bool = False) -> Spec:
+    """A finite array of exactly this shape (a 3×3 rotation, a 4-number window); with ``stacked`` any number of
+    leading axes before it (a stack of 2×2 covariances, ``(..., 2, 2)``)."""
+    return Spec(_check_shape, tuple(dims), stacked)
 
 
 def _check_image(name, value, ndim, nan_ok):

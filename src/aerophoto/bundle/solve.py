@@ -524,7 +524,7 @@ def rms_expectation(cov, components) -> tuple:
     return rms, sd
 
 
-@V.checked(cov_xy=V.shape(2, 2))
+@V.checked(cov_xy=V.shape(2, 2, stacked=True))
 def error_ellipse(cov_xy, p: float | None = None) -> tuple:
     """Semi-axes and orientation of the standard error ellipse (эллипс ошибок) of a 2×2 covariance.
 

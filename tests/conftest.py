@@ -73,7 +73,7 @@ def pytest_xdist_make_scheduler(config, log):
 @pytest.fixture(params=["book style", "matplotlib defaults"])
 def plot_style(request):
     """Run a figure test under the book's style (as in every notebook: a grid over the data) and under matplotlib's
-    defaults (the blitting tests: tests/test_blit.py, tests/test_blit_mosaic.py)."""
+    defaults (the blitting tests: tests/presentation/test_blit.py, tests/presentation/test_blit_mosaic.py)."""
     from aerophoto import plots
 
     if request.param == "book style":

@@ -1,4 +1,10 @@
-"""Shared test set-up: a private AEROPHOTO_HOME so tests never read a student's remembered number."""
+"""Shared test set-up: a private AEROPHOTO_HOME so tests never read a student's remembered number.
+
+The tests are laid out as the package's layers (foundation/, physics/, world/, content/, presentation/, course/,
+notebooks/, browser/).  Each folder is a package (an ``__init__.py``), so pytest puts this folder on ``sys.path``
+and ``from conftest import NOTEBOOKS`` reads this file from any of them; an area's own helpers live in its
+``conftest.py`` (``from .conftest import …``).  Basenames stay unique over the tree: SPREAD names files by them.
+"""
 
 import os
 import tempfile

@@ -1,4 +1,5 @@
-"""The graded tasks of chapters 03 and 04 (aerophoto.tasks.ch03, ch04): the guide's tables 2–7 on the student's photo.
+"""The graded tasks of chapter 03 (aerophoto.tasks.ch03): the guide's tables 2–4 on the student's photo; and the tests
+that hold chapters 03 and 04 together (one lab of sheets, aerophoto.labs.displacement).
 
 Reference answers pass for every variant; a careful student's readings (the truth with reading errors, rounded
 to 0.1 mm) pass too, visible and hidden checks; typical mistakes are named; the hidden checks catch columns that
@@ -6,7 +7,6 @@ do not follow from the student's own readings.
 """
 
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -14,19 +14,22 @@ import pytest
 from aerophoto import checks, tasks
 from aerophoto.course import score
 from aerophoto import displacement as d
-from aerophoto.tasks import ch03, ch04
+from aerophoto.tasks import ch03
 from aerophoto.labs.displacement import relief_sheet, tilt_sheet
 from aerophoto.variants import variant_for_index
 
-IDS = ("task-03-1", "task-03-2", "task-03-3", "task-04-1", "task-04-2", "task-04-3", "task-04-4")
+from .conftest import _hidden_failed
+
+IDS = ("task-03-1", "task-03-2", "task-03-3")
+IDS_03_04 = IDS + ("task-04-1", "task-04-2", "task-04-3", "task-04-4")  # the tests of chapters 03 and 04 together
 
 
 def test_the_chapters_tasks_are_registered_in_order():
     assert [t.id for t in tasks.chapter_tasks("03")] == ["task-03-1", "task-03-2", "task-03-3"]
     assert [t.id for t in tasks.chapter_tasks("04")] == ["task-04-1", "task-04-2", "task-04-3", "task-04-4"]
-    assert [t.points for t in map(tasks.get, IDS)] == [4, 4, 3, 2, 4, 4, 3]
+    assert [t.points for t in map(tasks.get, IDS_03_04)] == [4, 4, 3, 2, 4, 4, 3]
     # every table task compares lists of the guide's columns; another variant's answers are not looked for
-    for tid in IDS[:3] + IDS[4:]:
+    for tid in IDS_03_04[:3] + IDS_03_04[4:]:
         t = tasks.get(tid)
         assert not t.cross_variant and any(a.kind == "values" for a in t.spec)
 
@@ -133,11 +136,6 @@ def test_readings_beyond_the_tolerance_fail_visibly():
 
 
 # --------------------------------------------------------------------------- hidden checks
-def _hidden_failed(task_id, v, got) -> list:
-    g = score.grade_task(task_id, v, got)
-    return [name for name, ok, _, hidden in g.checks if hidden and not ok]
-
-
 @pytest.mark.parametrize("i", [0, 30, 99])
 def test_hidden_checks_catch_columns_that_do_not_follow_from_the_students_readings(i):
     v = variant_for_index(i)
@@ -184,7 +182,7 @@ def test_hidden_checks_catch_columns_that_do_not_follow_from_the_students_readin
 def test_hidden_checks_hold_for_every_variant():
     for i in range(100):
         v = variant_for_index(i)
-        for task_id in IDS:
+        for task_id in IDS_03_04:
             task = tasks.get(task_id)
             for h in task.hidden(v, task.answers(v)):
                 assert score.hidden_ok(h)[0], (task_id, i, h)
@@ -265,17 +263,7 @@ def test_inputs_are_the_students_lab_sheets():
 
 
 def test_the_task_templates_and_checks_read_the_same_names():
-    for task_id in IDS:
+    for task_id in IDS_03_04:
         task = tasks.get(task_id)
         lines = task.template().splitlines()
         assert [ln.split(" = ")[0] for ln in lines] == list(task.names)
-
-
-def test_hidden_checks_reject_malformed_values():
-    v = variant_for_index(5)
-    right = tasks.answers("task-04-3", v)
-    for bad in (None, ..., "x", [1.0] * 8, [math.nan] * 9):
-        assert "δα from your r_c and φ" in _hidden_failed("task-04-3", v, {**right, "rc_mm": bad})
-    assert ch03.numbers(np.array([1.0, 2.0]), 2).tolist() == [1.0, 2.0]
-    assert ch03.numbers(SimpleNamespace(), 2) is None
-    assert ch04.TOL_PHI_DEG == 1.0

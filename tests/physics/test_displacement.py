@@ -3,7 +3,7 @@
 The physics (aerophoto.displacement), the demo terrain (aerophoto.terrain), the explorer's exact field
 (aerophoto.demos.displacement), the audits of tables 2–7 (aerophoto.guide.ch03, ch04) and the whole procedure
 of §4 and §5 on a set of measurements (relief_work, tilt_work).  The lab sheets and graded tasks of chapters
-03–04 are tested in test_displacement_lab.py and test_displacement_tasks.py."""
+03–04 are tested in tests/content/test_labs_displacement.py, test_tasks_ch03.py and test_tasks_ch04.py."""
 
 import math
 

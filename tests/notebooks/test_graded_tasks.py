@@ -461,7 +461,7 @@ def test_the_rules_pass_the_reference_chapter_and_catch_duplicates():
 GRADED = [p for p in NOTEBOOKS if graded_tasks(read(p))]
 #: chapters whose student book runs in the sandbox in the README's test command; the others are ``exhaustive``
 #: (their own step of .ci/run). Every chapter's unanswered run is also checked for clean failures, outside the
-#: sandbox, by tests/test_no_answers_on_screen.py.
+#: sandbox, by tests/notebooks/test_no_answers_on_screen.py.
 SANDBOXED_CORE = ("00_", "05_")
 
 

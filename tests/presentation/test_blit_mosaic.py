@@ -2,7 +2,7 @@
 
 Their photo, marks and title change on every move; the axes stay put (the rough mosaic lies on a fixed board,
 the fotoschema's limits are snapped), so a move redraws only the animated artists over the cached rest.  As in
-tests/test_blit.py, after every ``demo.set(...)`` the canvas must equal a forced full draw of the same state and a
+tests/presentation/test_blit.py, after every ``demo.set(...)`` the canvas must equal a forced full draw of the same state and a
 full draw with nothing animated (the picture without blitting), and the moves that keep the axes must really be
 blitted (``blitter.n_blit`` grows).
 """
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from aerophoto import plots
-from test_blit import _buffer, _demo, _ndiff, _unanimated  # the same comparisons as the other demos
+from .test_blit import _buffer, _demo, _ndiff, _unanimated  # the same comparisons as the other demos
 
 pytestmark = pytest.mark.usefixtures("plot_style")
 

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-PKG = Path(__file__).resolve().parents[1] / "src" / "aerophoto"
+PKG = Path(__file__).resolve().parents[2] / "src" / "aerophoto"
 
 LAYERS = {
     1: ("_validate", "_chapters", "geometry", "plane", "variants"),
@@ -77,7 +77,7 @@ def _imported(path: Path) -> set[str]:
 
 def test_every_module_has_a_layer():
     unknown = sorted({_top(p) for p in _modules()} - set(LAYER_OF) - {"course_data", "data"})
-    assert not unknown, f"modules without a layer in tests/test_layers.py (and docs/CONTRIBUTING.md): {unknown}"
+    assert not unknown, f"modules without a layer in tests/course/test_layers.py (and docs/CONTRIBUTING.md): {unknown}"
 
 
 @pytest.mark.parametrize("path", _modules(), ids=lambda p: str(p.relative_to(PKG)))

@@ -1,7 +1,7 @@
 """Chapters 03 and 04: the teacher's copy shows the reference tables once the tasks pass (issue 12).
 
 (That the student book shows none of the student's own graded values before they answer is tested for every
-chapter by tests/test_no_answers_on_screen.py.)
+chapter by tests/notebooks/test_no_answers_on_screen.py.)
 
 The student book (answer cells unanswered) is run for the record book 19-0457 (variant 57) and for another
 student (19-0412, variant 12).  Every graded value of variant 57 — in every rounding a notebook could print it —

@@ -36,7 +36,7 @@ import pytest
 
 pytestmark = [pytest.mark.hub, pytest.mark.slow]
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 HUB_DIR = ROOT / "deploy" / "jupyterhub"
 IN_CI = os.environ.get("AEROPHOTO_CI") == "1"
 A = "00_start_here"

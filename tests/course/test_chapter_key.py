@@ -144,6 +144,6 @@ def test_the_demos_list_every_demo_module_on_disk_once():
 
 
 def test_every_listed_module_has_a_layer():
-    from test_layers import LAYER_OF
+    from .test_layers import LAYER_OF
 
     assert set(aerophoto._SUBMODULES) <= set(LAYER_OF)

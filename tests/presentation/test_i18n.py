@@ -1,7 +1,7 @@
 """Every user-facing string in English and Russian (aerophoto.i18n), and the glossary (issue 17, part 2).
 
 English is the code's own text (the catalogue is keyed by it) and stays the default, byte for byte: the browser
-tests and tests/test_no_answers_on_screen.py find sliders by their English labels.
+tests and tests/notebooks/test_no_answers_on_screen.py find sliders by their English labels.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ import pytest
 from aerophoto import book, i18n
 from aerophoto.i18n import glossary
 
-PKG = Path(__file__).resolve().parents[1] / "src" / "aerophoto"
+PKG = Path(__file__).resolve().parents[2] / "src" / "aerophoto"
 CYRILLIC = re.compile(r"[А-Яа-яЁё]")
 WORDS = re.compile(r"[A-Za-z]{2,}")  # a string with an English word needs a Russian entry (symbols, numbers do not)
 DEMOS = [(c.number, d.cls) for c in book.CHAPTERS for d in c.demos]
@@ -301,6 +301,6 @@ def test_the_glossary_page_is_generated_from_the_one_source():
     nb = json.loads((PKG.parents[1] / "notebooks" / book.GLOSSARY_PAGE).read_text(encoding="utf-8"))
     text = "".join("".join(c["source"]) for c in nb["cells"])
     assert book.glossary_markdown() in text
-    assert not re.match(r"^\d\d", book.GLOSSARY_PAGE)  # not a chapter (tests/test_book.py)
+    assert not re.match(r"^\d\d", book.GLOSSARY_PAGE)  # not a chapter (tests/course/test_book.py)
     assert "| resection | обратная засечка | [06 · guide §7](06_strip_triangulation.ipynb), " \
            "[10 · guide §11](10_ground_control.ipynb) |" in text

@@ -1,4 +1,5 @@
-"""Survey planning (guide §2): every formula, the guide's worked example and its audit, the layout, the demo."""
+"""Survey planning (guide §2): every formula, the guide's worked example, the layout, the demo (the audit of the
+worked example, aerophoto.guide.ch01, is tested in tests/content/test_guide.py)."""
 
 import dataclasses
 
@@ -8,7 +9,6 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from aerophoto import checks, flight
-from aerophoto import guide
 from aerophoto.tasks import ch01
 from aerophoto.variants import variant, variant_for_index
 
@@ -88,80 +88,6 @@ def test_table_is_laid_out_like_the_guide():
     assert len(t) == 16
     counts = t[t["unit"] == "—"]["value"].tolist()
     assert counts == [22, 31, 682] and all(isinstance(c, int) for c in counts)
-
-
-# --------------------------------------------------------------------------- audit (aerophoto.guide.ch01)
-def _lines_that_differ(audit):
-    """The guide's symbols of the printed lines with a factor or result that does not follow."""
-    lines = {guide.ch01.line_where(line): line.quantity for line in guide.ch01.LINES}
-    return {lines[p.where] for p in audit.discrepancies if p.where in lines}
-
-
-def test_audit_flags_exactly_the_lines_that_differ():
-    a = guide.ch01.worked_example()
-    assert len(a.table) == 16
-    assert _lines_that_differ(a) == {"Bx", "By", "K", "τ"}
-    assert set(a.table.index[~a.table["follows"].astype(bool)]) == {"Bx", "By", "K", "τ"}
-    factor = {p.where.split(", ")[1] for p in a.discrepancies if p.quantity.startswith("factor")}
-    assert factor == {"Bx", "By", "K", "τ"}
-    # the printed result does not follow from the printed factors (the one rule: 0.6 of the last digit)
-    arithmetic = set()
-    for line in guide.ch01.LINES:
-        give = a.table.loc[line.quantity, "printed factors give"]
-        if line.count:
-            wrong = np.ceil(give - 1e-9) != line.value
-        else:
-            wrong = abs(give - line.value) > 0.6 * 10.0 ** -line.decimals
-        if wrong:
-            arithmetic.add(line.quantity)
-    assert arithmetic == {"Bx", "By", "K", "τ"}
-    results = {p.where.split(", ")[1] for p in a.discrepancies
-               if not p.quantity.startswith("factor") and p.where != guide.ch01.ALLOWANCE_WHERE}
-    assert results == {"τ"}
-    assert all(len(p.reason) > 20 for p in a.discrepancies)
-    assert all(p.reason == "" for p in a.values if p.follows)
-
-
-def test_audit_numbers():
-    a = guide.ch01.worked_example()
-    t = a.table
-    # what the misprinted factors give
-    assert t.loc["Bx", "printed factors give"] == approx(0.864)     # 7.2·12000 cm
-    assert t.loc["By", "printed factors give"] == approx(1.512)     # 12.6·12000 cm
-    assert t.loc["K", "printed factors give"] == approx(30 / 1.51 + 1)   # 20.87 → would be 21
-    assert t.loc["τ", "printed factors give"] == approx(15.48)      # 0.86·3600/200
-    # the factors that follow from the line before
-    assert t.loc["Bx", "factors that follow"] == "7.0, 12000"
-    assert t.loc["By", "factors that follow"] == "12.4, 12000"
-    assert t.loc["K", "factors that follow"] == "30, 1.49"
-    assert t.loc["τ", "factors that follow"] == "0.84, 200"
-    # the correct values
-    assert t.loc["τ", "computed"] == approx(15.1632)
-    assert t.loc["τ", "as printed"] == "15.2"
-    assert t.loc["K", "as printed"] == "22" and t.loc["n", "as printed"] == "31"
-    assert t.loc["LS", "computed"] == approx(603.8647, abs=1e-4)
-    assert t.loc["TS", "computed"] == approx(3.0193, abs=1e-4)
-    # each misprinted factor against the value computed one line earlier
-    by = {(p.where, p.quantity): p for p in a.values}
-    bx = by[("step 5, Bx", "factor bx, cm")]
-    assert (bx.printed, bx.computed, bx.unit, bx.follows) == (7.2, approx(7.02), approx(0.1), False)
-    assert by[("step 6, K", "factor By, km")].computed == approx(1.4904)
-    assert by[("step 12, τ", "τ, s")].printed == 15.4 and not by[("step 12, τ", "τ, s")].follows
-    # OCR remarks are notes, not slips
-    assert "ч" in t.loc["TS", "note"] and "+ 31" in t.loc["n", "note"]
-    assert "ч" in by[("step 10, TS", "TS, h")].note
-    assert t.loc["n", "follows"] and t.loc["TS", "follows"]
-
-
-def test_audit_side_overlap_allowance_shows_both():
-    a = guide.ch01.worked_example()
-    coeff = {p.quantity: p for p in a.values if p.where == guide.ch01.ALLOWANCE_WHERE}
-    fwd = next(p for q, p in coeff.items() if "Px" in q)
-    side = next(p for q, p in coeff.items() if "Py" in q)
-    assert (fwd.printed, fwd.computed, fwd.follows) == (40, 40, True)
-    assert (side.printed, side.computed, side.follows) == (40, 70, False)
-    assert "31.75" in side.reason and "12.285" in side.reason and "1.474" in side.reason and "29.23" in side.reason
-    assert "31.75" in a.notes[0] and "1.4904" in a.notes[0] and "1.4742" in a.notes[0]
 
 
 # --------------------------------------------------------------------------- rounding

@@ -19,7 +19,7 @@ from aerophoto.course.versions import write_workbook
 from aerophoto.report.answers import UNREADABLE, evaluate_cells
 from aerophoto.variants import variant
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 RB = "19-0457"
 V = variant(RB)
 DATE = "2026-11-26"

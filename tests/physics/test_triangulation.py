@@ -276,65 +276,6 @@ def test_reduction_tables_follow_the_guide_layout():
     assert full.loc["А", "control ≤ 0.4 mm"] is None
 
 
-# ----------------------------------------------------------------------------- geometry helpers
-@settings(max_examples=40, deadline=None)
-@given(cx=st.floats(-500, 500), cy=st.floats(-500, 500), th=st.floats(-3.1, 3.1), seed=st.integers(0, 1000))
-def test_resection_recovers_a_template(cx, cy, th, seed):
-    rng = np.random.default_rng(seed)
-    K = rng.uniform(-300, 300, size=(4, 2)) + [cx, cy]
-    if np.min(np.hypot(*(K - [cx, cy]).T)) < 20:
-        K += 50.0
-    d = K - [cx, cy]
-    phi = np.arctan2(d[:, 1], d[:, 0]) - th  # directions measured on the template
-    C, theta, r = plane.resect_directions(phi, K)
-    assert np.hypot(*(C - [cx, cy])) < 1e-6
-    assert math.remainder(theta - th, 2 * math.pi) == pytest.approx(0.0, abs=1e-9)
-    assert np.max(np.abs(r)) < 1e-6
-
-
-def test_resection_with_an_initial_direction_line():
-    C0 = np.array([10.0, 5.0])
-    K = np.array([[100.0, 80.0], [120.0, -60.0], [-40.0, 0.0]])
-    phi = np.arctan2(*(K - C0).T[::-1]) - 0.3
-    C, th, r = plane.resect_directions(phi, K, line=(np.array([-40.0, 0.0]), math.atan2(5.0, 50.0)))
-    assert np.allclose(C, C0) and th == pytest.approx(0.3) and len(r) == 4
-    with pytest.raises(ValueError, match="at least 3"):
-        plane.resect_directions(phi[:2], K[:2])
-
-
-def test_error_triangle_and_ray_intersection():
-    O = np.array([[0.0, 0.0], [100.0, 0.0], [50.0, -80.0]])
-    P = np.array([50.0, 60.0])
-    ang = np.arctan2(*(P - O).T[::-1])
-    V, sides = plane.error_triangle(O, ang)
-    assert np.max(sides) < 1e-9 and np.allclose(V, P)
-    np.testing.assert_allclose(plane.intersect_rays(O, ang), P)
-    # shift the third ray sideways by 0.3 mm: a triangle appears, its side on ray 1 is 0.3/sin of the angle
-    O2 = O.copy()
-    n = np.array([-math.sin(ang[2]), math.cos(ang[2])])
-    O2[2] += 0.3 * n
-    V, sides = plane.error_triangle(O2, ang)
-    assert np.max(sides) > 0.3
-    gamma = abs(math.remainder(ang[2] - ang[1], math.pi))
-    assert sides[0] == pytest.approx(0.3 / math.sin(gamma), rel=1e-9)
-
-
-@settings(max_examples=30, deadline=None)
-@given(a=st.floats(-3.1, 3.1), tx=st.floats(-1e3, 1e3), ty=st.floats(-1e3, 1e3), s=st.floats(0.2, 5.0))
-def test_rigid_and_similarity_fits(a, tx, ty, s):
-    rng = np.random.default_rng(0)
-    A = rng.uniform(-100, 100, size=(5, 2))
-    R = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-    Bp = A @ R.T + [tx, ty]
-    T2 = plane.fit_similarity(A, Bp).matrix()  # rigid: rotation + shift (what reduce_strip lays the strip with)
-    R2, t2 = T2[:2, :2], T2[:2, 2]
-    np.testing.assert_allclose(A @ R2.T + t2, Bp, atol=1e-8)
-    S3 = plane.fit_similarity(A, s * Bp, scale=True)  # with a free scale (FreeStrip.similarity_to_truth)
-    s3, R3, t3 = S3.scale, S3.matrix()[:2, :2] / S3.scale, S3.matrix()[:2, 2]
-    assert s3 == pytest.approx(s, rel=1e-9)
-    np.testing.assert_allclose(s3 * A @ R3.T + t3, s * Bp, atol=1e-7)
-
-
 # ----------------------------------------------------------------------------- §7: from both ends
 def test_build_from_ends_zero_error_is_exact():
     poses = vertical_strip(5)

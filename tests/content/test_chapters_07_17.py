@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-NB = Path(__file__).resolve().parents[1] / "notebooks"
+NB = Path(__file__).resolve().parents[2] / "notebooks"
 
 
 def _cell(stem, cell_id):

@@ -27,7 +27,7 @@ never hold a NaN/inf where the valid example's result holds none.
 be given a valid example or a documented exemption in :data:`EXEMPT`).  Mutations that are genuinely valid
 for one function (``inf`` meaning "none") are in :data:`ALLOWED`, each with its reason.
 
-``python tests/test_bad_input.py`` prints the outcome table (clear / vague / obscure / nan / silent) per module.
+``python tests/physics/test_bad_input.py`` prints the outcome table (clear / vague / obscure / nan / silent) per module.
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from matplotlib.mathtext import MathTextParser
 
-NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "notebooks").rglob("*.ipynb"))
+NOTEBOOKS = sorted((Path(__file__).resolve().parents[2] / "notebooks").rglob("*.ipynb"))
 NOTEBOOKS = [p for p in NOTEBOOKS if ".ipynb_checkpoints" not in p.parts]
 
 # $$…$$ first, then $…$ (not \$, not part of $$); inline code spans are removed before matching.

@@ -17,7 +17,7 @@ matplotlib.use("Agg")
 
 from aerophoto.demos import plan_correction as pc  # noqa: E402
 
-NB09 = Path(__file__).resolve().parents[1] / "notebooks" / "09_plan_correction.ipynb"
+NB09 = Path(__file__).resolve().parents[2] / "notebooks" / "09_plan_correction.ipynb"
 NUM = r"(\d+\.\d+) mm"
 
 

@@ -76,12 +76,13 @@ def test_ch16_sd3_audit_numbers():
 
 def test_ch08_width_with_the_flight_scale_gets_its_hint():
     from aerophoto import checks, tasks
+    from aerophoto.course import score
     from aerophoto.variants import variant_for_index
     v = variant_for_index(17)
     lab = tasks.inputs("task-08-3", v)
     w = tasks.answers("task-08-3", v)["width_m"]
     assert abs(v.m / lab.m - 1) > 0.2  # the flight's 1:m and the photo's own scale differ
-    g = checks.grade_task("task-08-3", v, {"width_m": w * v.m / lab.m})
+    g = score.grade_task("task-08-3", v, {"width_m": w * v.m / lab.m})
     assert not g.passed and "scale of your variant's flight" in g.checks[0][2]
     text = _cell("08_interpretation", "task-08-3")
     assert "lab.m" in text and "not the 1:m of your variant" in text

@@ -84,7 +84,7 @@ def test_slips_are_named():
     a = tasks.answers("task-14-1", v)
     s = ch14.survey_inputs(v)
     with pytest.raises(checks.WrongAnswer, match="√n³"):
-        checks.check_task("task-14-1", v, **{**a, "mD_mm": 0.35 * s.mq_mm * 10**0.5})
+        checks.check_task("task-14-1", v, **{**a, "mD_mm": math.hypot(0.25, 0.16) * s.mq_mm * 10**0.5})
     with pytest.raises(checks.WrongAnswer, match="metres on the ground"):
         checks.check_task("task-14-1", v, **{**a, "mZ_m": acc.strip_errors_mm(10, s.mq_mm, f_mm=s.f_mm,
                                                                              b_mm=s.b_mm)["Z"]})

@@ -23,6 +23,7 @@ _SUBMODULES = (
     "rectification",  # the photo transformer's sequence converging on the base (chapter 11)
     "bundle_views",  # static figures of chapters 14, 15: block layout, sparsity, error ellipses, accumulation
     "block_accuracy",  # the error map of a block against its control layout and measuring error (chapter 14)
+    "block_adjustment_live",  # the bundle block adjustment of article 002: control, σ and a blunder (chapter 15)
     "dem_contours",  # contours from a DEM of the site against the true ground (chapter 16)
     "error_budget",  # the live error budget of map updating (chapter 17)
     "interpretation",  # what makes a photo readable; table 10 as an interactive key (chapter 08)

@@ -35,7 +35,7 @@ import numpy as np
 import pandas as pd
 
 from .. import triangulation as tri
-from .._validate import check_range
+from .._validate import check_int_range, check_range
 from . import own as _own
 
 __all__ = ["TIE_POINTS", "POINT_ORDER", "CENTRE", "SHEET_SIGMA_MM", "SHEET_MAX_MM", "free_scale_ratio", "LabStrip",
@@ -60,7 +60,7 @@ def free_scale_ratio(i: int) -> float:
     from the centre), 1.03 + 0.001·(i − 50) for i ≥ 50 (k − 1 from −0.029 to
     −0.073: towards it) — never near 1, where the corrections would vanish.
     """
-    i = int(i)
+    i = check_int_range("i", i, 0, 99)
     return 0.92 + 0.001 * i if i < 50 else 1.03 + 0.001 * (i - 50)
 
 

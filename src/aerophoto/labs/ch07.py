@@ -35,6 +35,7 @@ import pandas as pd
 from .. import geometry as g
 from .. import simulate as sim
 from .. import stereo as st
+from .._validate import check_int_range, check_positive
 
 __all__ = ["SIGMA_READ_MM", "SIGMA_PRICK_MM", "OBJECT_LABELS", "EXAMPLE_SEED", "PX_PERCENT", "StereoLab", "lab_for",
            "stereo_lab", "example_lab", "PairImages", "SUN", "lab_images", "HM_CLASSES", "HeightModel",
@@ -230,6 +231,9 @@ def _in_window(xy, w, margin=2.0):
 
 def lab_for(f_mm: float, m: float, seed: int) -> StereoLab:
     """The pair flown with focal length f, scale 1:m and the departures of ``seed``, and what is measured on it."""
+    check_positive("f_mm", f_mm, unit="mm", hi=2000.0)
+    check_positive("m", m, hi=1e6)
+    seed = check_int_range("seed", seed, 0, 2**32 - 1)
     from ..render import trace
     from ..site import get_site
 

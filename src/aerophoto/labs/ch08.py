@@ -23,6 +23,7 @@ import pandas as pd
 from .. import geometry as g
 from .. import interpretation as ip
 from ..site import cover as cv
+from .._validate import check_int_range
 
 __all__ = ["OBJECT_NAMES", "FLOW_OPTIONS", "STAND_OPTIONS", "N_OBJECTS", "F_MM", "N_PX", "LabSetup", "setup_for",
            "lab_setup", "EXAMPLE_I", "example_setup", "REASONS", "example_photo", "example_key", "truth", "LabPhoto",
@@ -103,6 +104,7 @@ class LabSetup:
 
 
 def setup_for(i: int) -> LabSetup:
+    i = check_int_range("i", i, 0, 10**6)
     rng = np.random.default_rng([int(i), 808])
     cond = ip.Conditions(season="summer", sun_elevation_deg=float(rng.uniform(35, 60)),
                          sun_azimuth_deg=float(rng.uniform(110, 220)), visibility_km=float(rng.uniform(20, 50)),

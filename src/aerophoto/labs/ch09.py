@@ -25,6 +25,7 @@ import pandas as pd
 
 from .. import geometry as g
 from .. import projective as pj
+from .._validate import check_int_range, check_positive, check_range
 
 __all__ = ["PLAN_M", "GRID_N", "SCENE_SIZE_M", "SPREAD", "EXAMPLE_SEED", "PlanCorrectionLab", "lab_for",
            "plan_correction_lab"]
@@ -112,6 +113,15 @@ def lab_for(seed: int, f_mm: float, m: float, alpha_deg: float, lambda_deg: floa
             offset_m=(0.0, 0.0), *, M: float = PLAN_M, spread: float = SPREAD,
             size_m: float = SCENE_SIZE_M) -> PlanCorrectionLab:
     """A plan-correction lab for any scene seed and photo (the demo and the worked example use it too)."""
+    check_int_range("seed", seed, 0, 2**32 - 1)
+    check_positive("f_mm", f_mm, unit="mm", hi=2000.0)
+    check_positive("m", m, hi=1e6)
+    check_range("alpha_deg", alpha_deg, -45.0, 45.0, unit="°")
+    check_range("lambda_deg", lambda_deg, -360.0, 360.0, unit="°")
+    check_range("kappa_deg", kappa_deg, -360.0, 360.0, unit="°")
+    check_positive("M", M, hi=1e6)
+    check_positive("spread", spread, hi=1.0)
+    check_positive("size_m", size_m, unit="m", hi=1e5)
     scene = pj.land_use_scene(seed, size_m)
     cam = g.Camera(f_mm)
     H = g.flying_height_m(f_mm, m)

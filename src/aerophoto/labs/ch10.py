@@ -22,6 +22,7 @@ import pandas as pd
 
 from .. import control as c
 from ..site import get_site
+from .._validate import check_int_range
 
 __all__ = ["GEODETIC_ORIGIN", "SIGMA_ARCSEC", "PLAN_M", "blunder_variant", "ResectionLab", "lab_from_points",
            "resection_lab"]
@@ -36,7 +37,7 @@ PLAN_M = 10000.0
 
 def blunder_variant(i: int) -> bool:
     """Every fifth variant (i ≡ 4 mod 5) has a misread β₂ that the check angle must catch."""
-    return int(i) % 5 == 4
+    return check_int_range("i", i, 0, 10**6) % 5 == 4
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,7 @@ from .. import bundle as B
 from .. import geometry as g
 from .. import simulate
 from .. import site as _site
+from .._validate import check_int_range, check_positive, check_range
 
 __all__ = ["MOUNTAIN_SITE", "F_MM", "EXAMPLE_M", "PX_PERCENT", "PY_PERCENT", "SIGMA_MM", "FIELD_SIGMA_MM",
            "CONTROL_SIGMA_M", "mountain_site", "SurveyBlock", "survey_block", "example_block", "student_block"]
@@ -140,6 +141,15 @@ def survey_block(m: float, n_strips: int, n_photos: int, *, seed: int, name: str
     control_dz_m : height blunder of one control point, m (0: none)
     tilt_deg : largest photo tilt, degrees
     """
+    check_positive("m", m, hi=1e6)
+    check_int_range("n_strips", n_strips, 1, 20)
+    check_int_range("n_photos", n_photos, 2, 40)
+    seed = check_int_range("seed", seed, 0, 2**32 - 1)
+    check_int_range("n_field", n_field, 0, 200)
+    check_positive("sigma_mm", sigma_mm, unit="mm", hi=1.0)
+    check_range("blunder_size_mm", blunder_size_mm, 0.0, 10.0, unit="mm")
+    check_range("control_dz_m", control_dz_m, -1000.0, 1000.0, unit="m")
+    check_range("tilt_deg", tilt_deg, 0.0, 10.0, unit="°")
     st = mountain_site()
     cam = g.Camera(F_MM)
     imp = simulate.Imperfections(max_tilt_deg=tilt_deg, max_crab_jitter_deg=2.0, max_height_percent=2.0,

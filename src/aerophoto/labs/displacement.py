@@ -513,6 +513,7 @@ def plan_of(kind: str, i: int, px_mm: float = 0.25, contour_step_mm: float = 2.0
     ``px_mm`` is the plan pixel, mm (0.25 mm = 2.5 m on the ground at 1:10 000).
     """
     px = check_range("px_mm", px_mm, 0.05, 2.0, unit="mm")
+    check_range("contour_step_mm", contour_step_mm, 0.1, 50.0, unit="mm")
     site = _site()
     sheet = _sheet(kind, i)
     W, Hh = sheet.plan_size_mm

@@ -36,6 +36,8 @@ import math
 import numpy as np
 
 from .. import geometry as g
+from .._validate import check_int_range, check_positive, check_range, check_type
+from ..variants import Variant
 
 __all__ = ["N_PHOTOS", "FIRST_NUMBER", "MAX_TILT_DEG", "MAX_TILT_OFFSET_MM", "SITE_MARGIN_M", "own_tilt_deg",
            "tilt_growth_m", "tilt_that_fits", "strip_position", "own_strip", "own_strip_of", "reading_rng", "read_mm"]
@@ -57,7 +59,8 @@ _STEP_ACROSS = 0.7548776662
 
 def own_tilt_deg(f_mm: float) -> float:
     """The largest tilt of a student's photos for focal length ``f_mm``: min(2°, atan(6 mm / f)), degrees."""
-    return min(MAX_TILT_DEG, math.degrees(math.atan(MAX_TILT_OFFSET_MM / float(f_mm))))
+    f = check_positive("f_mm", f_mm, unit="mm", hi=5000.0)
+    return min(MAX_TILT_DEG, math.degrees(math.atan(MAX_TILT_OFFSET_MM / f)))
 
 
 def tilt_growth_m(camera: g.Camera, m: float, tilt_deg: float) -> float:
@@ -67,6 +70,8 @@ def tilt_growth_m(camera: g.Camera, m: float, tilt_deg: float) -> float:
     towards it, it reaches H·tg(β + α) instead of H·tg β (H = f·m).  An upper
     bound for any tilt direction.
     """
+    check_type("camera", camera, g.Camera)
+    check_range("tilt_deg", tilt_deg, 0.0, 45.0, unit="°")
     H = g.flying_height_m(camera.f_mm, m)
     beta = math.atan(camera.half_mm * math.sqrt(2.0) / camera.f_mm)
     a = math.radians(float(tilt_deg))
@@ -161,7 +166,8 @@ def own_strip(variant):
 
 def reading_rng(variant, salt: int) -> np.random.Generator:
     """The random stream of one kind of reading for a variant (``salt`` tells the kinds apart)."""
-    return np.random.default_rng([int(variant.i), int(salt)])
+    check_type("variant", variant, Variant)
+    return np.random.default_rng([int(variant.i), check_int_range("salt", salt, 0, 2**32 - 1)])
 
 
 def read_mm(true_mm, rng: np.random.Generator, *, sigma_mm: float, max_mm: float, step_mm: float = 0.1) -> np.ndarray:

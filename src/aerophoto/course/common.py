@@ -178,6 +178,45 @@ def template_path() -> Path:
     return Path(__file__).resolve().parent.parent / "course_data" / "nbgrader_config.py"
 
 
+SANITIZE_PREPROCESSORS = ["aerophoto.course.restore.RestoreCells", "nbgrader.preprocessors.ClearOutput",
+                          "nbgrader.preprocessors.DeduplicateIds", "nbgrader.preprocessors.OverwriteKernelspec",
+                          "nbgrader.preprocessors.OverwriteCells", "nbgrader.preprocessors.CheckCellMetadata"]
+AUTOGRADE_PREPROCESSORS = ["aerophoto.course.execute.SandboxExecute", "nbgrader.preprocessors.IgnorePattern",
+                           "nbconvert.preprocessors.ClearMetadataPreprocessor", "nbgrader.preprocessors.LimitOutput",
+                           "nbgrader.preprocessors.SaveAutoGrades", "nbgrader.preprocessors.AssignLatePenalties",
+                           "nbgrader.preprocessors.CheckCellMetadata", "aerophoto.course.sanitize.SanitizeNotebook"]
+FEEDBACK_PREPROCESSORS = ["aerophoto.course.sanitize.SanitizeNotebook", "nbgrader.preprocessors.GetGrades",
+                          "nbconvert.preprocessors.CSSHTMLHeaderPreprocessor"]
+SANDBOX_KERNEL_MANAGER = "aerophoto.course.sandbox.SandboxKernelManager"
+
+
+def secure_nbgrader(c) -> None:
+    """The settings every nbgrader configuration the project ships makes (the course folder's, the hub's).
+
+    * ``nbgrader autograde`` and the formgrader's *Autograde* button: the graded cells restored from the
+      release first (:mod:`.restore`), the notebook run in the sandbox (:mod:`.execute`), the autograded
+      notebook cleaned of scripts before it is written (:mod:`.sanitize`);
+    * any other step that runs a notebook (``validate``, ``generate_solution``): its kernel in the sandbox;
+    * the formgrader's page and the feedback HTML: nbconvert's ``sanitize_html``, and the notebook cleaned
+      before feedback is made (nbgrader's templates render markdown uncleaned).
+    """
+    c.Autograde.sanitize_preprocessors = list(SANITIZE_PREPROCESSORS)
+    c.Autograde.autograde_preprocessors = list(AUTOGRADE_PREPROCESSORS)
+    c.Execute.kernel_manager_class = SANDBOX_KERNEL_MANAGER
+    c.HTMLExporter.sanitize_html = True
+    c.GenerateFeedback.preprocessors = list(FEEDBACK_PREPROCESSORS)
+
+
+def is_secure_config(cfg) -> bool:
+    """True when a loaded nbgrader Config runs student code only in the sandbox (see :func:`secure_nbgrader`)."""
+    pre = [p if isinstance(p, str) else f"{p.__module__}.{p.__name__}"
+           for p in cfg.Autograde.get("autograde_preprocessors", [])] if "Autograde" in cfg else []
+    kmc = cfg.Execute.get("kernel_manager_class") if "Execute" in cfg else None
+    kmc = kmc if isinstance(kmc, str) or kmc is None else f"{kmc.__module__}.{kmc.__name__}"
+    return (bool(pre) and pre[0].endswith(".SandboxExecute") and not any(p.endswith(".Execute") for p in pre)
+            and kmc == SANDBOX_KERNEL_MANAGER)
+
+
 def course_config(root: Path | None = None, timeout: int | None = None):
     """The nbgrader Config: the course folder's nbgrader_config.py (or the packaged template)."""
     from traitlets.config.loader import PyFileConfigLoader
@@ -233,18 +272,36 @@ def read_nb(path: Path):
     return nbformat.read(str(path), as_version=4)
 
 
+MAX_NOTEBOOK_MB = 64
+"""The largest submitted notebook read at all (MB); a larger file is reported corrupt, never parsed."""
+
+
 def notebook_problem(path: Path) -> str | None:
-    """None for a readable notebook (nbformat 4, or 3 which is converted), else what is wrong with the file."""
+    """None for a readable notebook (nbformat 4, or 3 which is converted), else what is wrong with the file.
+
+    Never raises: a file too large (:data:`MAX_NOTEBOOK_MB`), binary, not JSON, JSON nested too deep to
+    read, or not a valid notebook is a problem, reported in words.
+    """
     try:
+        size = Path(path).stat().st_size
+        if size > MAX_NOTEBOOK_MB * 1024 * 1024:
+            return f"too large ({size / 1024 / 1024:.0f} MB; a notebook is read up to {MAX_NOTEBOOK_MB} MB)"
         raw = Path(path).read_text(encoding="utf-8")
     except UnicodeDecodeError:
         return "not a notebook: the file is not UTF-8 text"
     except OSError as exc:
         return f"cannot be read: {exc}"
+    if "\x00" in raw:
+        return "not a notebook: the file holds binary data (NUL bytes)"
     try:
         data = json.loads(raw)
     except ValueError as exc:
-        return f"not valid JSON ({exc.msg} at line {exc.lineno}, column {exc.colno})"
+        return f"not valid JSON ({getattr(exc, 'msg', exc)} at line {getattr(exc, 'lineno', '?')}, " \
+               f"column {getattr(exc, 'colno', '?')})"
+    except RecursionError:
+        return "not a notebook: its JSON is nested too deep to read"
+    except MemoryError:
+        return "not a notebook: too large to read"
     if not isinstance(data, dict) or ("cells" not in data and "worksheets" not in data):
         return "not a notebook: valid JSON but no cells"
     try:
@@ -252,7 +309,7 @@ def notebook_problem(path: Path) -> str | None:
 
         nb = nbformat.reads(raw, as_version=4)
         nbformat.validate(nb)
-    except Exception as exc:  # nbformat raises several kinds
+    except Exception as exc:  # nbformat raises several kinds (RecursionError too)
         return f"not a valid notebook ({type(exc).__name__}: {one_line(str(exc))[:120]})"
     return None
 
@@ -260,7 +317,7 @@ def notebook_problem(path: Path) -> str | None:
 def nbformat_major(path: Path) -> int | None:
     try:
         return int(json.loads(Path(path).read_text(encoding="utf-8")).get("nbformat"))
-    except (OSError, ValueError, TypeError, AttributeError):
+    except (OSError, ValueError, TypeError, AttributeError, RecursionError, MemoryError):
         return None
 
 

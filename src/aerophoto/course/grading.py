@@ -26,8 +26,8 @@ from pathlib import Path
 
 from .common import (COURSE_ID, Flag, GradedTask, chapters, course_config, default_course_dir,
                      default_notebooks_dir, digits, ensure_path, graded_tasks, last_error, nb_bytes,
-                     nbformat_major, need_nbgrader, notebook_problem, read_nb, read_roster, stderr_to,
-                     template_path, write_atomic)
+                     is_secure_config, nbformat_major, need_nbgrader, notebook_problem, read_nb, read_roster,
+                     secure_nbgrader, stderr_to, template_path, write_atomic)
 from .sandbox import MAX_JOBS, NOBODY, Limits, sandbox_uid
 
 
@@ -135,6 +135,15 @@ class Course:
         cfg_file = self.root / "nbgrader_config.py"
         if not cfg_file.exists():
             shutil.copyfile(template_path(), cfg_file)
+        else:
+            try:
+                secure = is_secure_config(course_config(self.root))
+            except Exception:
+                secure = False
+            if not secure:
+                out(f"WARNING: {cfg_file} does not run plain nbgrader (or the formgrader's buttons) in the sandbox; "
+                    "aerophoto-course always does. Add these two lines to it: "
+                    "from aerophoto.course.common import secure_nbgrader; secure_nbgrader(c)")
         if roster is not None and not Path(roster).is_file():
             raise SystemExit(f"--roster {roster}: no such file (a CSV with columns student_id,record_book)")
         roster = Path(roster) if roster else self.root / "roster.csv"
@@ -172,23 +181,19 @@ class Course:
         return course_lock(self.root, what, wait_s=self.wait_s, out=self.out)
 
     def config(self, record_book: str | None = None):
-        from nbconvert.preprocessors import ClearMetadataPreprocessor
-        from nbgrader.preprocessors import (AssignLatePenalties, CheckCellMetadata, IgnorePattern, LimitOutput,
-                                            SaveAutoGrades)
-
         from .execute import __getattr__ as _execute_attr
 
         cfg = course_config(self.root, self.timeout)
-        cfg.Autograde.autograde_preprocessors = [_execute_attr("SandboxExecute"), IgnorePattern,
-                                                 ClearMetadataPreprocessor, LimitOutput, SaveAutoGrades,
-                                                 AssignLatePenalties, CheckCellMetadata]
+        secure_nbgrader(cfg)  # whatever the course folder's file says: sandboxed, restored, cleaned
+        pre = list(cfg.Autograde.autograde_preprocessors)
+        pre[0] = _execute_attr("SandboxExecute")
+        cfg.Autograde.autograde_preprocessors = pre
         if self._limits is not None or "limits" not in cfg.SandboxExecute:
             cfg.SandboxExecute.limits = self.limits.as_dict()
         cfg.SandboxExecute.record_book = record_book
         cfg.SandboxExecute.unsafe_no_sandbox = self.unsafe_no_sandbox
         cfg.SandboxExecute.uid = int(self.sandbox_uid)
         cfg.CourseDirectory.db_url = self.db_url
-        cfg.HTMLExporter.sanitize_html = True  # feedback shows a student's outputs: no script from them
         return cfg
 
     def coursedir(self, **attrs):

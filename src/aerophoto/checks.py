@@ -59,6 +59,7 @@ from numbers import Real
 
 from .i18n import t, translate_unit
 from .i18n import t as _t  # report() calls its loop variable t
+from .tasks.base import own_answers
 
 __all__ = [
     "WrongAnswer",
@@ -706,6 +707,10 @@ def _emit(task_id: str, values: Mapping, variant, task=None) -> None:
         from .course.probe import evidence
 
         record["evidence"] = evidence(task)
+        odd = {str(k): f"{type(x).__module__}.{type(x).__qualname__}"[:80] for k, x in values.items()
+               if type(x).__module__ == "__main__"}
+        if odd:
+            record["evidence"]["value_types"] = odd
     except Exception as exc:  # evidence is a courtesy; the values are what counts
         record["evidence"] = {"error": type(exc).__name__}
     try:
@@ -726,7 +731,8 @@ def _check_one(task, a, value, expected, slips: Mapping, variant, *, quiet: bool
     of_variant = None
     if task.cross_variant and variant is not None:
         def of_variant(w, _n=a.name):
-            return task.answers(w)[_n]
+            with own_answers():
+                return task.answers(w)[_n]
     if a.kind == "value":
         return check_value(a.name, value, expected, tol_abs=a.tol_abs, tol_rel=a.tol_rel, unit=a.unit,
                            integer=a.integer, of_variant=of_variant, variant=variant, alternatives=alt, quiet=quiet)
@@ -762,9 +768,10 @@ def check_task(task_id: str, variant, /, **values) -> None:
 
     task = _tasks.get(task_id)
     got = _task_values(task, values)
-    _emit(task.id, got, variant, task)
-    expected = task.answers(variant)
-    slips = task.slips(variant)
+    _emit(task.id, got, variant, task)  # before the reference values exist anywhere in this kernel's frames
+    with own_answers():
+        expected = task.answers(variant)
+        slips = task.slips(variant)
     for a in task.spec:
         _check_one(task, a, got[a.name], expected[a.name], slips, variant, quiet=False)
     task_passed(task.id)
@@ -849,7 +856,7 @@ def grade_task(task_id: str, variant, values: Mapping) -> TaskGrade:
     task = _tasks.get(task_id)
     got = {n: values.get(n, Ellipsis) for n in task.names}
     results = []
-    with _isolated(), contextlib.redirect_stdout(None):
+    with _isolated(), contextlib.redirect_stdout(None), own_answers():
         expected = task.answers(variant)
         slips = task.slips(variant)
         for a in task.spec:

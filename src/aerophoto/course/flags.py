@@ -111,6 +111,9 @@ _SYSTEM_CALLS = {"os.system", "os.popen", "os.fork", "os.forkpty", "os.kill", "o
                  "os.chdir", "os.remove", "os.unlink", "os.rmdir", "os.rename", "os.replace", "os.listdir",
                  "os.scandir", "os.walk", "os.chmod", "os.symlink", "os.link", "os.makedirs", "os.mkdir",
                  "os.posix_spawn", "os.posix_spawnp", "os.nice", "os.setpgrp", "os.daemon", "os._exit", "os.abort"}
+_GRADER_MODULES = {"json", "math", "cmath", "numbers", "numpy", "IPython", "ipykernel", "traitlets", "zmq",
+                   "jupyter_client", "decimal", "fractions", "operator", "functools", "types", "inspect", "os",
+                   "contextlib", "dataclasses", "collections", "copy", "re"}
 _HARMLESS_MAGICS = {"time", "timeit", "matplotlib", "precision", "who", "whos", "pwd", "pprint", "xmode",
                     "pinfo", "pinfo2", "psearch", "pdoc", "pdef", "psource"}
 _ENV_WRITERS = {"update", "pop", "popitem", "setdefault", "clear", "__setitem__", "__delitem__"}
@@ -339,6 +342,10 @@ def _code_flags(tree, *, where: str, aliases: dict, known: set, setup_cell: bool
                             if base.split(".")[0] in ("aerophoto", "checks", "tasks", "builtins", "__builtins__",
                                                       "sys") or base.startswith("get_ipython()"):
                                 hit("patched_checks", f"sets {base}.{leaf.attr}", node)
+                            elif base.split(".")[0] in _GRADER_MODULES:
+                                # the modules the check relies on (json writes the answer record, math and
+                                # numpy compare the values): replacing their functions forges the record
+                                hit("patched_checks", f"sets {base}.{leaf.attr}", node)
                             if base == "v" or base.startswith("v."):
                                 hit("variant_changed", f"sets v.{leaf.attr}", node)
                         if isinstance(leaf, ast.Subscript) and isinstance(leaf.ctx, (ast.Store, ast.Del)):
@@ -439,22 +446,33 @@ def inspect_submission(release_nb, submitted_path: Path, autograded_path: Path |
 
     sub_by_gid = cells_by_grade_id(sub)
     sub_ids = {c.get("id") for c in sub.cells}
+    restored = " (restored from the release before grading: graded as the release has it)"
     for cell in release_nb["cells"]:
         gid = nbg(cell).get("grade_id")
         if not gid or not (is_test(cell) or is_answer(cell)):
             continue
         kind = "test" if is_test(cell) else "answer"
+        same = [c for c in sub.cells if nbg(c).get("grade_id") == gid or
+                (cell.get("id") is not None and c.get("id") == cell.get("id"))]
         if gid not in sub_by_gid:
             if cell.get("id") in sub_ids:
                 flags.append(Flag(f"{kind}_cell_stripped",
-                                  f"{gid}: the cell is there but its nbgrader metadata was removed"
-                                  + ("; it scores 0" if kind == "test" else "")))
+                                  f"{gid}: the cell is there but its nbgrader metadata was removed{restored}"))
             else:
                 flags.append(Flag(f"{kind}_cell_deleted",
                                   f"{gid}: the cell was deleted" + ("; it scores 0" if kind == "test" else "")))
-        elif kind == "test" and norm_src(source(sub_by_gid[gid])) != norm_src(source(cell)):
-            flags.append(Flag("test_cell_edited", f"{gid}: the locked test cell was edited "
-                                                  "(nbgrader restored the original before grading)"))
+            continue
+        if kind == "test" and len(same) > 1:
+            flags.append(Flag("test_cell_edited", f"{gid}: the locked test cell is there {len(same)} times (copied); "
+                                                  f"the copies were removed{restored}"))
+        mine = same[0]
+        if kind == "test" and norm_src(source(mine)) != norm_src(source(cell)):
+            flags.append(Flag("test_cell_edited", f"{gid}: the locked test cell was edited{restored}"))
+        keys = ("grade", "solution", "locked", "points", "grade_id")
+        changed = [k for k in keys if nbg(mine).get(k) != nbg(cell).get(k)] if nbg(mine) else []
+        if changed:
+            flags.append(Flag(f"{kind}_cell_edited",
+                              f"{gid}: the cell's nbgrader metadata was changed ({', '.join(changed)}){restored}"))
 
     flags += behaviour_flags(release_nb, sub)
 

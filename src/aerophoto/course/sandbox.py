@@ -55,6 +55,10 @@ class Limits:
     tmpfs_mb : size of the working folder ``/sbx`` and of ``/tmp`` (each)
     output_mb : outputs kept per notebook on the instructor's side (more is dropped, flagged)
     message_mb : the largest single message accepted from the kernel (a larger one ends the connection)
+    record_kb : the largest answer record a check cell may emit (a larger one is dropped: the task scores 0,
+        flagged); the records of a notebook together are kept up to ``output_mb`` beside the other outputs
+    notebook_s : wall time the notebook's cells may run in all (beside the per-cell timeout; kernel starts and
+        the grader's replays not counted): the cells after it are not run (flagged), and no cell runs past it
     """
 
     memory_mb: int = 3072
@@ -65,6 +69,8 @@ class Limits:
     tmpfs_mb: int = 256
     output_mb: float = 4.0
     message_mb: int = 32
+    record_kb: int = 256
+    notebook_s: int = 1200
 
     def replace(self, **kw) -> Limits:
         return replace(self, **kw)
@@ -149,6 +155,14 @@ def _tool(name: str) -> str | None:
 
 # --------------------------------------------------------------------------------------------------
 # the file system the kernel sees
+
+
+def _package_parent() -> str | None:
+    """The folder holding the running ``aerophoto`` package, unless it is the Python's own site-packages."""
+    import aerophoto
+
+    here = Path(aerophoto.__file__).resolve().parent.parent
+    return None if here.name in ("site-packages", "dist-packages") else str(here)
 
 
 def _python_roots() -> list[Path]:
@@ -247,6 +261,9 @@ class Box:
             "MKL_NUM_THREADS": "1",
             "AEROPHOTO_HOME": "/sbx/.aerophoto",
         }
+        src = _package_parent()
+        if src is not None:  # the aerophoto this grader runs (a checkout on PYTHONPATH too; bound read-only)
+            env["PYTHONPATH"] = src
         env.update({k: str(v) for k, v in extra.items() if v is not None})
         return env
 

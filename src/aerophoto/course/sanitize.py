@@ -30,6 +30,7 @@ import html
 import re
 
 from nbconvert.preprocessors import Preprocessor
+from traitlets import Bool
 
 __all__ = ["clean_html", "sanitize_notebook", "sanitize_file", "SanitizeNotebook", "is_clean"]
 
@@ -235,7 +236,10 @@ def sanitize_file(path) -> int:
 
 
 class SanitizeNotebook(Preprocessor):
-    """nbconvert/nbgrader preprocessor: :func:`sanitize_notebook` on the whole notebook."""
+    """nbconvert/nbgrader preprocessor: :func:`sanitize_notebook` on the whole notebook (on unless switched off:
+    nbconvert's preprocessors are off by default, and nbgrader registers its lists without enabling them)."""
+
+    enabled = Bool(True).tag(config=True)
 
     def preprocess(self, nb, resources):
         sanitize_notebook(nb)

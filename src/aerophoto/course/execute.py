@@ -204,9 +204,27 @@ def _build():
                 finally:
                     self.nb.cells[i] = original
 
+        def _default_record_book(self, resources) -> None:
+            """Run by plain nbgrader (the formgrader's button): the student's number from the course's roster."""
+            if self.record_book:
+                return
+            student = str(((resources or {}).get("nbgrader") or {}).get("student") or "")
+            if not student:
+                return
+            from .common import digits, read_roster
+
+            root = self.config.CourseDirectory.get("root") if "CourseDirectory" in self.config else None
+            roster = Path(str(root or ".")) / "roster.csv"
+            try:
+                found = read_roster(roster).get(student) if roster.is_file() else None
+            except (OSError, ValueError):
+                found = None
+            self.record_book = found or (student if len(digits(student)) >= 2 else None)
+
         def preprocess(self, nb, resources=None, km=None):
             from nbclient.client import NotebookClient
 
+            self._default_record_book(resources)
             NotebookClient.__init__(self, nb, km)
             self.reset_execution_trackers()
             self._check_assign_resources(resources)

@@ -28,7 +28,7 @@ import nbformat
 import pytest
 
 from aerophoto import course, nbtools
-from aerophoto.course.sandbox import Limits
+from aerophoto.course.limits import Limits
 from aerophoto.course.versions import strip_solutions
 from conftest import NOTEBOOKS
 
@@ -520,7 +520,8 @@ def test_every_nbgrader_config_the_project_ships_runs_student_code_in_the_sandbo
     import subprocess
     import sys
 
-    from aerophoto.course.common import course_config, is_secure_config
+    from aerophoto.course.common import course_config
+    from aerophoto.course.nbconfig import is_secure_config
     from traitlets.config.loader import PyFileConfigLoader
 
     c = hostile[0]

@@ -9,7 +9,7 @@ import copy
 import nbformat
 from nbformat.v4 import new_code_cell, new_markdown_cell, new_notebook, new_output, new_raw_cell
 
-from aerophoto.checks import ANSWERS_MIME
+from aerophoto.course.wire import ANSWERS_MIME
 from aerophoto.course.restore import restore_cells
 from aerophoto.course.sanitize import _md2html, clean_html, is_clean, sanitize_notebook
 

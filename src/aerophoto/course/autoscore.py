@@ -2,7 +2,7 @@
 
 nbgrader's ``SaveAutoGrades`` writes the score the student's kernel gave itself (a check cell that did not
 raise is full marks).  :class:`TrustedScores`, right after it in ``Autograde.autograde_preprocessors`` (every
-configuration the project ships: :func:`aerophoto.course.common.secure_nbgrader`), replaces those scores with
+configuration the project ships: :func:`aerophoto.course.nbconfig.secure_nbgrader`), replaces those scores with
 the trusted check's (:func:`aerophoto.course.trusted.grade_executed`, in this process, for the student's own
 variant) — so the formgrader's *Autograde* button and a plain ``nbgrader autograde`` leave the same scores in
 gradebook.db as ``aerophoto-course autograde`` (which switches this off and does the same with its report).

@@ -14,9 +14,12 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from .limits import GRADING
+
 COURSE_ID = "aerophoto"
-DEFAULT_TIMEOUT_S = 120
-"""Per-cell execution limit (seconds) while grading or checking; nbgrader's own default is 30 s."""
+DEFAULT_TIMEOUT_S = GRADING.cell_s
+"""Per-cell execution limit (seconds) while grading or checking (:attr:`.limits.Limits.cell_s`); nbgrader's own
+default is 30 s."""
 
 SID_RE = re.compile(r"^\w[\w.@-]*$")
 _LOG = logging.getLogger("aerophoto.course")
@@ -176,65 +179,6 @@ class Flag:
 
 def template_path() -> Path:
     return Path(__file__).resolve().parent.parent / "course_data" / "nbgrader_config.py"
-
-
-SANITIZE_PREPROCESSORS = ["aerophoto.course.restore.RestoreCells", "nbgrader.preprocessors.ClearOutput",
-                          "nbgrader.preprocessors.DeduplicateIds", "nbgrader.preprocessors.OverwriteKernelspec",
-                          "nbgrader.preprocessors.OverwriteCells", "nbgrader.preprocessors.CheckCellMetadata"]
-AUTOGRADE_PREPROCESSORS = ["aerophoto.course.execute.SandboxExecute", "nbgrader.preprocessors.IgnorePattern",
-                           "nbconvert.preprocessors.ClearMetadataPreprocessor", "nbgrader.preprocessors.LimitOutput",
-                           "nbgrader.preprocessors.SaveAutoGrades", "aerophoto.course.autoscore.TrustedScores",
-                           "nbgrader.preprocessors.AssignLatePenalties",
-                           "nbgrader.preprocessors.CheckCellMetadata", "aerophoto.course.sanitize.SanitizeNotebook"]
-FEEDBACK_PREPROCESSORS = ["aerophoto.course.sanitize.SanitizeNotebook", "nbgrader.preprocessors.GetGrades",
-                          "nbconvert.preprocessors.CSSHTMLHeaderPreprocessor"]
-SOLUTION_PREPROCESSORS = ["nbgrader.preprocessors.IncludeHeaderFooter", "nbgrader.preprocessors.LockCells",
-                          "nbgrader.preprocessors.ClearOutput", "nbgrader.preprocessors.ClearMarkScheme",
-                          "aerophoto.course.execute.SandboxExecute"]
-
-
-def secure_nbgrader(c) -> None:
-    """The settings every nbgrader configuration the project ships makes (the course folder's, the hub's).
-
-    * ``nbgrader autograde`` and the formgrader's *Autograde* button: the graded cells restored from the
-      release first (:mod:`.restore`), the notebook run in the sandbox (:mod:`.execute`), the trusted scores
-      written over the kernel's (:mod:`.autoscore`), the autograded notebook cleaned of scripts before it is
-      written (:mod:`.sanitize`);
-    * the other steps that run a notebook: ``generate_solution`` (its preprocessors, configured) and
-      ``validate`` — nbgrader 0.9.6's ``Validator.preprocessors`` is not configurable and its ``Execute`` is
-      given its kernel manager as an argument (so ``Execute.kernel_manager_class`` would be ignored): the
-      Validator's default list is replaced in the running nbgrader, with the sandboxed Execute;
-    * the formgrader's page and the feedback HTML: nbconvert's ``sanitize_html``, and the notebook cleaned
-      before feedback is made (nbgrader's templates render markdown uncleaned).
-    """
-    c.Autograde.sanitize_preprocessors = list(SANITIZE_PREPROCESSORS)
-    c.Autograde.autograde_preprocessors = list(AUTOGRADE_PREPROCESSORS)
-    c.GenerateSolution.preprocessors = list(SOLUTION_PREPROCESSORS)
-    c.HTMLExporter.sanitize_html = True
-    c.GenerateFeedback.preprocessors = list(FEEDBACK_PREPROCESSORS)
-    sandbox_validator()
-
-
-def sandbox_validator() -> None:
-    """nbgrader's Validator (``nbgrader validate``, the Validate button) runs notebooks in the sandbox."""
-    from nbgrader.preprocessors import CheckCellMetadata, ClearOutput
-    from nbgrader.validator import Validator
-
-    from .execute import __getattr__ as _execute_attr
-
-    Validator.class_traits()["preprocessors"].default_value = [CheckCellMetadata, ClearOutput,
-                                                               _execute_attr("SandboxExecute")]
-
-
-def is_secure_config(cfg) -> bool:
-    """True when a loaded nbgrader Config runs student code only in the sandbox (see :func:`secure_nbgrader`)."""
-    def names(section, key):
-        return [p if isinstance(p, str) else getattr(p, "__name__", str(p))
-                for p in (cfg[section].get(key, []) if section in cfg else [])]
-
-    auto, sol = names("Autograde", "autograde_preprocessors"), names("GenerateSolution", "preprocessors")
-    return all(bool(pre) and any(p.endswith("SandboxExecute") for p in pre)
-               and not any(p == "Execute" or p.endswith(".Execute") for p in pre) for pre in (auto, sol))
 
 
 def course_config(root: Path | None = None, timeout: int | None = None):

@@ -4,7 +4,7 @@ nbgrader is the engine for the workflow and the gradebook; what is added around 
 
 * the student book is the repository's ``notebooks/``; ``generate`` writes nbgrader's source from it with
   reference solutions computed by the package (:func:`~.versions.source_version`);
-* every submission runs in the sandbox (:mod:`.sandbox`, :class:`~.execute.SandboxExecute`), and the score
+* every submission runs in the sandbox (:mod:`.sandbox`, :class:`~.sandbox_execute.SandboxExecute`), and the score
   written into nbgrader's gradebook is the trusted one (:mod:`.trusted`);
 * a lock on the course folder (:func:`course_lock`): a second grading run waits (or refuses) instead of
   corrupting the first; ``import`` writes each file atomically;
@@ -26,9 +26,11 @@ from pathlib import Path
 
 from .common import (COURSE_ID, Flag, GradedTask, chapters, course_config, default_course_dir,
                      default_notebooks_dir, digits, ensure_path, graded_tasks, last_error, nb_bytes,
-                     is_secure_config, nbformat_major, need_nbgrader, notebook_problem, read_nb, read_roster,
-                     secure_nbgrader, stderr_to, template_path, write_atomic)
-from .sandbox import MAX_JOBS, NOBODY, Limits, sandbox_uid
+                     nbformat_major, need_nbgrader, notebook_problem, read_nb, read_roster, stderr_to,
+                     template_path, write_atomic)
+from .nbconfig import is_secure_config, secure_nbgrader
+from .bwrap import MAX_JOBS, NOBODY, sandbox_uid
+from .limits import Limits
 
 
 class CourseBusy(RuntimeError):
@@ -143,7 +145,7 @@ class Course:
             if not secure:
                 out(f"WARNING: {cfg_file} does not run plain nbgrader (or the formgrader's buttons) in the sandbox; "
                     "aerophoto-course always does. Add these two lines to it: "
-                    "from aerophoto.course.common import secure_nbgrader; secure_nbgrader(c)")
+                    "from aerophoto.course.nbconfig import secure_nbgrader; secure_nbgrader(c)")
         if roster is not None and not Path(roster).is_file():
             raise SystemExit(f"--roster {roster}: no such file (a CSV with columns student_id,record_book)")
         roster = Path(roster) if roster else self.root / "roster.csv"
@@ -175,18 +177,18 @@ class Course:
             return self._limits
         cfg = course_config(self.root)
         lim = cfg.SandboxExecute.get("limits") if "SandboxExecute" in cfg else None
-        return Limits(**lim) if isinstance(lim, dict) else Limits()
+        return Limits.of(lim)
 
     def lock(self, what: str):
         return course_lock(self.root, what, wait_s=self.wait_s, out=self.out)
 
     def config(self, record_book: str | None = None):
-        from .execute import __getattr__ as _execute_attr
+        from .sandbox_execute import SandboxExecute
 
         cfg = course_config(self.root, self.timeout)
         secure_nbgrader(cfg)  # whatever the course folder's file says: sandboxed, restored, cleaned
         pre = list(cfg.Autograde.autograde_preprocessors)
-        pre[0] = _execute_attr("SandboxExecute")
+        pre[0] = SandboxExecute
         cfg.Autograde.autograde_preprocessors = pre
         if self._limits is not None or "limits" not in cfg.SandboxExecute:
             cfg.SandboxExecute.limits = self.limits.as_dict()
@@ -552,7 +554,7 @@ class Course:
 
     def _trusted(self, sid: str, a: str) -> list:
         """The trusted check of one autograded submission: scores into the gradebook, a report beside."""
-        from .execute import EVENTS
+        from .sandbox_execute import EVENTS
         from .trusted import grade_executed, write_scores
 
         rb = self.record_book(sid)

@@ -26,10 +26,10 @@ c.CourseDirectory.course_id = "aerophoto"
 
 # Every nbgrader command run from this folder — and the formgrader's Autograde and Generate Feedback buttons —
 # runs students' code only in the grading sandbox and shows their notebooks cleaned of scripts
-# (aerophoto.course.common.secure_nbgrader: Autograde's preprocessors, Execute's kernel manager,
+# (aerophoto.course.nbconfig.secure_nbgrader: Autograde's preprocessors, Execute's kernel manager,
 # HTMLExporter.sanitize_html, GenerateFeedback's preprocessors).  Without aerophoto importable here nbgrader
 # refuses to start rather than run a submission unsandboxed.  Keep this line.
-from aerophoto.course.common import secure_nbgrader  # noqa: E402
+from aerophoto.course.nbconfig import secure_nbgrader  # noqa: E402
 
 secure_nbgrader(c)
 

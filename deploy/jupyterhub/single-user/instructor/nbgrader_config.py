@@ -13,8 +13,8 @@ c.Exchange.path_includes_course = False
 c.ExchangeCollect.check_owner = True
 # The formgrader's buttons run nbgrader in this server: student code only in the grading sandbox (no course
 # folder, no network, nobody's rights), every notebook shown cleaned of scripts (formgrader and feedback) —
-# the same settings as the course folder's own nbgrader_config.py (aerophoto.course.common.secure_nbgrader).
-# The trusted scores and the flags come only from `aerophoto-course autograde` — grade with that.
-from aerophoto.course.common import secure_nbgrader  # noqa: E402
+# the same settings as the course folder's own nbgrader_config.py (aerophoto.course.nbconfig.secure_nbgrader).
+# The trusted scores are written by either; the flags and the report come from `aerophoto-course autograde`.
+from aerophoto.course.nbconfig import secure_nbgrader  # noqa: E402
 
 secure_nbgrader(c)

@@ -250,7 +250,7 @@ class SandboxExecute(Execute):
         # the notebook's limit counts the time its cells run (not kernel starts, not the grader's replays)
         budget, spent = float(self.the_limits.notebook_s), [0.0]
         cells = self.nb.cells
-        start, failed, restarts, ran_any = 0, set(), 0, False
+        start, failed, restarts, ran_any, start_failures = 0, set(), 0, False, 0
         while start < len(cells) and spent[0] < budget:
             index = start
             try:
@@ -282,7 +282,14 @@ class SandboxExecute(Execute):
             except Exception as exc:  # a dead or unresponsive kernel: note it, go on with a new one
                 if not ran_any and index == start == 0 and not isinstance(exc, (DeadKernelError,
                                                                                 CellTimeoutError)):
-                    raise  # the sandbox itself did not start: that is the grader's failure, not the student's
+                    # the sandbox itself did not start — no student code has run yet: once more (a loaded
+                    # machine), then it is the grader's failure, not the student's
+                    self.km, self.kc = None, None
+                    start_failures += 1
+                    if start_failures > 1:
+                        raise
+                    time.sleep(1.0)
+                    continue
                 self._kernel_died(exc, index)
                 failed.add(index)
                 restarts += 1

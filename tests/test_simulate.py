@@ -179,7 +179,7 @@ def test_bad_block_input():
         sim.fly_block(CAM, 12000, 60, 30, 4, 0)
     with pytest.raises(ValueError, match="side"):
         sim.fly_block(CAM, 12000, 60, 30, 4, 2, side="up")
-    with pytest.raises(ValueError, match="camera"):
+    with pytest.raises(TypeError, match="camera"):  # a wrong object is a TypeError naming the parameter
         sim.fly_strip("f=100", 12000, 60, 4)
 
 

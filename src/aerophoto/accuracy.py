@@ -33,15 +33,19 @@ Formula (10.21) as reconstructed
 The article then replaces d by the errors of a single model (its formula
 8.40, not reproduced) and prints, for n = 10, m_q = 0.01 mm, f = b = 70 mm:
 m_X = m_Z = 0.08 mm, m_D = 0.11 mm, m_Y = 0.05 mm in the photo scale.  The
-coefficients that reproduce those numbers with the n³/3 form of (10.20) are
+coefficients that reproduce m_X, m_Y, m_Z with the n³/3 form of (10.20) are
 
     m_X = 0.25·m·m_q·√n³,  m_Y = 0.16·m·m_q·√n³,  m_Z = 0.25·m·m_q·(f/b)·√n³,
-    m_D = 0.35·m·m_q·√n³                                              (10.21)
+    m_D = √(0.25² + 0.16²)·m·m_q·√n³ = 0.297·m·m_q·√n³                (10.21)
 
-(0.25 = √6/√96: a single model's X error of √6·m_q, halved over n/2 links;
-0.35 ≈ 0.25·√2).  They also reproduce the article's two design examples —
-n = 8 bases between plan control and 2–3 bases between height control
-(:func:`plan_bases`, :func:`height_bases`) — see :mod:`aerophoto.guide.ch14`.
+(0.25 = √6/√96: a single model's X error of √6·m_q, halved over n/2 links).
+m_D is read as the article's legend names it, the plan error √(m_X² + m_Y²):
+then the design examples follow as printed — n = 8.6 → 8 bases between plan
+control, 2–3 between height control (:func:`plan_bases`, :func:`height_bases`)
+— and only the example's printed m_D = 0.11 mm (= √2·m_X, 0.094 mm by the
+legend) is a slip.  The other reading, m_D = √2·m_X = 0.35·m·m_q·√n³
+(:data:`COEFF_D_SQRT2`), keeps the 0.11 but then gives 7.7 → 7 bases, not the
+printed 8 — two numbers at odds instead of one; see :mod:`aerophoto.guide.ch14`.
 
 Monte Carlo and covariance
 --------------------------
@@ -62,6 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_int_range, check_positive, check_range
 from .bundle import collinearity as _col
@@ -70,14 +75,17 @@ from .bundle import solve as _solve
 from .bundle.block import simulate_measurements
 
 __all__ = [
-    "COEFF_10_21", "squares_sum", "free_strip_factor", "middle_factor_article", "middle_factor_exact",
+    "COEFF_10_21", "COEFF_D_SQRT2", "squares_sum", "free_strip_factor", "middle_factor_article", "middle_factor_exact",
     "strip_errors_mm", "allowed_height_error_m", "plan_bases", "height_bases", "whole_bases",
     "StripMonteCarlo", "strip_monte_carlo", "fit_accumulation", "control_rows", "BlockPrecision",
     "block_precision", "block_vs_strip", "block_monte_carlo",
 ]
 
-#: the coefficients of the reconstructed formula (10.21), photo-scale errors per m_q·√n³ (Z also × f/b)
-COEFF_10_21 = {"X": 0.25, "Y": 0.16, "Z": 0.25, "D": 0.35}
+#: the coefficients of the reconstructed formula (10.21), photo-scale errors per m_q·√n³ (Z also × f/b);
+#: m_D is the plan error √(m_X² + m_Y²) (the article's legend): 0.297
+COEFF_10_21 = {"X": 0.25, "Y": 0.16, "Z": 0.25, "D": math.hypot(0.25, 0.16)}
+#: the other reading of m_D: √2·m_X (the article's printed 0.11 mm in its example), coefficient 0.35
+COEFF_D_SQRT2 = 0.35
 
 MAX_N = 1000
 
@@ -164,8 +172,9 @@ def allowed_height_error_m(contour_interval_m: float) -> float:
 def plan_bases(m: float, M: float, mq_mm: float, *, mD_map_mm: float = 0.3) -> float:
     """Real n at which the plan error m_D of (10.21) reaches ``mD_map_mm`` on the map of scale 1:M.
 
-    m_D(photo) = 0.35·m_q·√n³ and m_D(map) = m_D(photo)·m/M  →  n = (mD_map·M/(m·0.35·m_q))^(2/3).
-    Article 001: m = 20 000, M = 10 000, m_q = 0.02 mm, m_D ≤ 0.3 mm → n ≈ 7.7 (printed: 8).
+    m_D(photo) = 0.297·m_q·√n³ and m_D(map) = m_D(photo)·m/M  →  n = (mD_map·M/(m·0.297·m_q))^(2/3).
+    Article 001: m = 20 000, M = 10 000, m_q = 0.02 mm, m_D ≤ 0.3 mm → n ≈ 8.6 (printed: 8; with the other
+    reading m_D = √2·m_X, coefficient :data:`COEFF_D_SQRT2` = 0.35, n ≈ 7.7).
     """
     m = check_positive("m", m, hi=1e7)
     M = check_positive("M", M, hi=1e7)
@@ -196,7 +205,7 @@ def whole_bases(n_real: float) -> int:
 
 # =========================================================================== Monte Carlo of strips
 def _rot_b(opk):  # (R, 3) → (R, 3, 3)
-    return _col.rotation_opk(opk[:, 0], opk[:, 1], opk[:, 2])
+    return _col._rotation_opk(opk[:, 0], opk[:, 1], opk[:, 2])
 
 
 def _rays_b(R, xy, f):
@@ -327,17 +336,23 @@ class StripMonteCarlo:
         return np.sqrt(np.mean(self.mid_m**2, axis=0)) / self.scale_m
 
     def table(self) -> pd.DataFrame:
-        """One row per strip length n: free-strip end errors and both-ends middle errors, mm at the photo scale."""
+        """One row per k: the free strip's errors at the point of photo k (n = k − 1 links beyond the controlled
+        first model) and the middle errors of a strip of k bases held at both ends (where simulated), mm at the
+        photo scale.  The index is labelled with both meanings: it is a photo number for the free-strip columns
+        and a strip length for the middle ones."""
         f = self.rms_free_mm()
         rows = []
         mid = dict(zip(self.mid_n.tolist(), self.rms_mid_mm()))
         for k in range(1, self.n_bases + 1):
             mm = mid.get(k, [np.nan] * 3)
             rows.append((k, *f[k - 1], *mm))
-        cols = ["n", "free X, mm", "free Y, mm", "free Z, mm", "middle X, mm", "middle Y, mm", "middle Z, mm"]
-        return pd.DataFrame(rows, columns=cols).set_index("n")
+        cols = ["k: photo (free) / bases (both ends)", "free, at photo k: X, mm", "free, at photo k: Y, mm",
+                "free, at photo k: Z, mm", "both ends, k bases, middle: X, mm", "both ends, k bases, middle: Y, mm",
+                "both ends, k bases, middle: Z, mm"]
+        return pd.DataFrame(rows, columns=cols).set_index(cols[0])
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), terrain=V.terrain(none=True))
 def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.01 / math.sqrt(2.0),
                       n_runs: int = 100, seed: int = 0, d_mm: float | None = None, halfway: bool = False,
                       margin_mm: float = 3.0) -> StripMonteCarlo:
@@ -381,13 +396,13 @@ def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.0
     half = camera.half_mm - margin_mm
     obs = {}
     for j in range(len(poses)):
-        xy = _col.project(np.repeat(eo[j:j + 1], len(pts), axis=0), pts, f)
+        xy = _col._project(np.repeat(eo[j:j + 1], len(pts), axis=0), pts, f)
         inside = np.flatnonzero(np.all(np.abs(xy) <= half, axis=1))
         obs[j] = (inside, xy[inside])
     rng = np.random.default_rng(seed)
     noisy = {j: xy[None] + sig * rng.standard_normal((runs,) + xy.shape) for j, (k, xy) in obs.items()}
     # the strip's own frame: photo 0 fixed as in truth (a similarity to the control fixes the datum anyway)
-    R0 = np.repeat(_col.rotation_opk(*eo[0, 3:])[None], runs, axis=0)
+    R0 = np.repeat(_col._rotation_opk(*eo[0, 3:])[None], runs, axis=0)
     S0 = np.repeat(eo[0:1, :3], runs, axis=0)
     Rs, Ss = [R0], [S0]
     models = []  # per model j = 1 … n: (point indices, coordinates (runs, k, 3))
@@ -447,6 +462,7 @@ def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.0
     return StripMonteCarlo(n, sig, scale_m, free, mid, mid_n, b_mm, f)
 
 
+@V.checked(n=V.array(ndim=1, min_len=2), rms=V.array(ndim=1, min_len=2), law=V.function('a function n → factor'))
 def fit_accumulation(n, rms, law) -> tuple:
     """Least-squares coefficient d of ``rms ≈ d·law(n)`` through the origin, and the log-log slope of rms.
 
@@ -518,6 +534,8 @@ class BlockPrecision:
                 "height max, m": float(self.sigma_Z_m[t].max())}
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), photo_strip=V.indices(),
+           photo_order=V.indices(), terrain=V.terrain(none=True))
 def block_precision(camera: g.Camera, poses, photo_strip, photo_order, terrain, *, every: int = 4,
                     layout: str = "rows", sigma_mm: float = 0.01, control_factor: float = 1.0,
                     d_mm: float | None = None, halfway_mm: float | None = None, points_m=None) -> BlockPrecision:
@@ -575,6 +593,7 @@ def block_precision(camera: g.Camera, poses, photo_strip, photo_order, terrain, 
                           eo[:, :3], rows)
 
 
+@V.checked(strip_precision=BlockPrecision, block_precision_=BlockPrecision)
 def block_vs_strip(strip_precision: BlockPrecision, block_precision_: BlockPrecision) -> dict:
     """How much better the block is: ratios strip/block of the RMS plan and height errors of tie points."""
     a, b = strip_precision.summary(), block_precision_.summary()
@@ -582,6 +601,8 @@ def block_vs_strip(strip_precision: BlockPrecision, block_precision_: BlockPreci
 
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), photo_strip=V.indices(),
+           photo_order=V.indices(), terrain=V.terrain(none=True), seed=V.whole(0, 2**32 - 1))
 def block_monte_carlo(camera: g.Camera, poses, photo_strip, photo_order, terrain, *, every: int = 4,
                       layout: str = "rows", sigma_mm: float = 0.01, control_factor: float = 1.0, n_runs: int = 20,
                       seed: int = 0, points_m=None) -> dict:

@@ -32,11 +32,13 @@ class Limits:
     shm_mb : size of a private ``/dev/shm`` (None: none is mounted)
     output_mb : outputs kept per notebook on the instructor's side (more is dropped, flagged)
     message_mb : the largest single message accepted from the kernel (a larger one ends the connection)
-    cell_s : wall time of one cell, s (nbclient's per-cell timeout; ``aerophoto-course --timeout``'s default)
+    cell_s : the default wall time of one cell, s (``aerophoto-course --timeout``'s default,
+        :data:`~.common.DEFAULT_TIMEOUT_S`); the time a run uses is nbclient's ``timeout`` (``--timeout``,
+        ``c.ExecutePreprocessor.timeout`` in the course's config)
     record_kb : the largest answer record a check cell may emit (a larger one is dropped: the task scores 0,
         flagged); a notebook's records together are kept up to ``output_mb``, beside its other outputs
-    notebook_s : wall time a notebook's cells may run in all, s (beside ``cell_s``; kernel starts and the grader's
-        replays not counted): the cells after it are not run (flagged), and no cell runs past it
+    notebook_s : wall time a notebook's cells may run in all, s (beside the per-cell time; kernel starts and the
+        grader's replays not counted): the cells after it are not run (flagged), and no cell runs past it
     """
 
     memory_mb: int | None = 3072

@@ -18,7 +18,7 @@ undefined).  So the exterior orientation of a photo (элементы внешн
 (продольный угол наклона), κ the swing/heading (угол поворота).  For a vertical photo
 R = R_z(κ) and κ is :attr:`aerophoto.geometry.Pose.kappa_deg` in radians.
 :func:`eo_from_pose` converts a Pose through :func:`aerophoto.geometry.rotation_matrix`
-(so the two models are one; ``tests/test_bundle.py`` checks (1) against
+(so the two models are one; ``tests/physics/test_bundle.py`` checks (1) against
 ``ground_to_photo``).
 """
 

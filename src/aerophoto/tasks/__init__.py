@@ -41,7 +41,7 @@ __all__ = ["Answer", "Hidden", "Task", "KINDS", "get", "all_tasks", "chapter_tas
 def chapter_modules() -> Mapping[str, str]:
     """The chapter modules by notebook number, ``{"00": "ch00", …}`` (read-only): the modules ``chNN`` on disk.
 
-    The naming rule (:mod:`aerophoto._chapters`) replaces a list kept by hand (tests/test_chapter_key.py checks
+    The naming rule (:mod:`aerophoto._chapters`) replaces a list kept by hand (tests/course/test_chapter_key.py checks
     one module per chapter of :data:`aerophoto.book.CHAPTERS`); read on first use, importing the package reads
     nothing.  ``CHAPTER_MODULES`` is the same mapping.
     """

@@ -247,7 +247,7 @@ def _one_class(n: int, launch, hc, h, browser) -> dict:
     try:
         result["hub_start_s"] = round(hub.seconds_to_start, 2)
         with ThreadPoolExecutor(8) as pool:
-            users = list(pool.map(lambda s: hc.HubUser(hub.url, s[0], hub.student_password).login(), students))
+            users = list(pool.map(lambda s: hc.HubUser(hub.url, s[0], hub.password(s[0])).login(), students))
         t0 = time.perf_counter()
         for u in users:
             u.request_server()
@@ -285,7 +285,7 @@ def _one_class(n: int, launch, hc, h, browser) -> dict:
         watcher = threading.Thread(target=all_opened, daemon=True)
         watcher.start()
         try:
-            result["browser"] = _browser_student(h, hub, b_user.name, hub.student_password, browser, go, opened)
+            result["browser"] = _browser_student(h, hub, b_user.name, hub.password(b_user.name), browser, go, opened)
         finally:
             stop.set()
             done.wait(timeout=600)

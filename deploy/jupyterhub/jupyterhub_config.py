@@ -6,8 +6,10 @@
 # What it sets up:
 #   * JupyterHub 6 from PyPI (requirements.txt beside this file) and its proxy, configurable-http-proxy from npm
 #     (package.json / package-lock.json beside this file: `npm ci` here);
-#   * an authenticator: a shared password for students and an admin password for the instructor (for a demo
-#     and the tests) — switch to the university's login with AEROPHOTO_HUB_AUTH=lti13 or ldap (below);
+#   * an authenticator: by default each student and instructor logs in with a password of their own, made from
+#     the roster (roster_auth.py beside this file; only hashes are stored) — or the university's log-in with
+#     AEROPHOTO_HUB_AUTH=lti13, ldap or pam; one password shared by the class only behind the explicit
+#     AEROPHOTO_HUB_AUTH=shared-password, for a demonstration (any student can then log in as any other);
 #   * the spawner (aerophoto_hub.py): each user's server in bubblewrap as their own uid, with their own home,
 #     the book's Python read-only, nbgrader's exchange shared, a private /tmp, a memory limit per process;
 #   * roles: the instructors' group gets the formgrader and the course folder ~/course, and may see the class
@@ -26,8 +28,9 @@
 #                              instructor's first start)
 #   AEROPHOTO_HUB_INSTRUCTORS  comma-separated hub names of the instructors [teacher]
 #   AEROPHOTO_HUB_ADMINS       comma-separated hub admins (with shared-password the instructors are admins too)
-#   AEROPHOTO_HUB_AUTH         shared-password | lti13 | ldap | pam [shared-password]
-#   AEROPHOTO_HUB_STUDENT_PASSWORD (≥ 8 characters), AEROPHOTO_HUB_INSTRUCTOR_PASSWORD (≥ 32) for shared-password
+#   AEROPHOTO_HUB_AUTH         roster-passwords | lti13 | ldap | pam | shared-password [roster-passwords]
+#   AEROPHOTO_HUB_PASSWORDS    roster-passwords: the hashes file written by roster_auth.py [<state>/passwords.json]
+#   AEROPHOTO_HUB_STUDENT_PASSWORD (≥ 8 characters), AEROPHOTO_HUB_INSTRUCTOR_PASSWORD (≥ 32): shared-password only
 #   AEROPHOTO_HUB_STUDENT_MEM [3G], AEROPHOTO_HUB_INSTRUCTOR_MEM [4G]   address space per process
 #   AEROPHOTO_HUB_CULL_TIMEOUT [3600] s idle before a server is stopped;  AEROPHOTO_HUB_CULL_EVERY [300] s
 #   AEROPHOTO_HUB_KERNEL_CULL [1200] s idle before a kernel is shut down (its tab closed)
@@ -94,13 +97,24 @@ c.JupyterHub.last_activity_interval = int(env("ACTIVITY_INTERVAL", "300"))
 c.JupyterHub.tornado_settings = {"slow_spawn_timeout": 0}
 
 # --- who may log in ----------------------------------------------------------------------------------------
-auth = env("AUTH", "shared-password")
+auth = env("AUTH", "roster-passwords")
 c.Authenticator.username_pattern = NAME_RE.pattern
 c.Authenticator.admin_users = {n.strip() for n in env("ADMINS", "").split(",") if n.strip()}
-if auth == "shared-password":
-    # Built into JupyterHub (≥ 5.3): students share one password, the instructors (hub admins) use another of
-    # ≥ 32 characters, so a student cannot log in as the instructor.  Any student can log in as any other
-    # student, though: for a demonstration and the tests, never for a graded course.
+if auth == "roster-passwords":
+    # Each name of the roster and each instructor has a password of their own (roster_auth.py makes them and
+    # stores only scrypt hashes, read at every log-in): a student's password opens that student's account only.
+    passwords = Path(env("PASSWORDS", STATE / "passwords.json"))
+    if not passwords.is_file():
+        raise SystemExit(f"AEROPHOTO_HUB_AUTH=roster-passwords: no passwords file {passwords}; make it with "
+                         f"python {HERE / 'roster_auth.py'} --roster ROSTER.csv --instructors "
+                         f"{','.join(INSTRUCTORS)} --passwords {passwords} --credentials credentials.csv")
+    c.JupyterHub.authenticator_class = "roster_auth.RosterPasswordAuthenticator"
+    c.RosterPasswordAuthenticator.passwords_file = str(passwords)
+    c.Authenticator.allowed_users = set(STUDENTS) | set(INSTRUCTORS)
+elif auth == "shared-password":
+    # Only when asked for by name, for a demonstration: built into JupyterHub (≥ 5.3), students share one
+    # password, the instructors (hub admins) use another of ≥ 32 characters, so a student cannot log in as the
+    # instructor.  Any student can log in as any other student, though: never for a graded course.
     c.JupyterHub.authenticator_class = "shared-password"
     c.Authenticator.admin_users |= set(INSTRUCTORS)  # the admin password is the instructors' (hub admins here)
     c.SharedPasswordAuthenticator.user_password = env("STUDENT_PASSWORD")
@@ -130,7 +144,8 @@ elif auth == "pam":
     c.AerophotoSpawner.system_users = True
     c.Authenticator.allowed_users = set(STUDENTS) | set(INSTRUCTORS)
 else:
-    raise SystemExit(f"AEROPHOTO_HUB_AUTH = {auth!r} is not valid; expected shared-password, lti13, ldap or pam")
+    raise SystemExit(f"AEROPHOTO_HUB_AUTH = {auth!r} is not valid; expected roster-passwords, lti13, ldap, pam "
+                     "or shared-password")
 
 c.JupyterHub.load_groups = {
     "instructors": {"users": INSTRUCTORS},

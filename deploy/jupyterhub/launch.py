@@ -97,7 +97,7 @@ class Hub:
     """
 
     def __init__(self, students, instructors=("teacher",), *, state: Path | None = None, port: int | None = None,
-                 settings: dict | None = None, log_path: Path | None = None):
+                 settings: dict | None = None, log_path: Path | None = None, shared_password: bool = False):
         self.students = [(str(n), str(rb)) for n, rb in students]
         self.instructors = list(instructors)
         self._own_state = state is None
@@ -105,13 +105,22 @@ class Hub:
         self.port = port or free_port()
         self.api_port = free_port()
         self.proxy_api_port = free_port()
-        self.student_password = secrets.token_urlsafe(12)
+        self.shared_password = bool(shared_password)
+        # each student's and instructor's own password (roster_auth.py), or one for the class (--shared-password)
+        self.student_password = secrets.token_urlsafe(12) if self.shared_password else None
         self.instructor_password = secrets.token_urlsafe(32)
+        self.passwords = {n: (self.student_password or secrets.token_urlsafe(12)) for n, _ in self.students}
+        self.passwords.update({n: self.instructor_password if k == 0 else secrets.token_urlsafe(32)
+                               for k, n in enumerate(self.instructors)})
         self.admin_token = secrets.token_hex(32)
         self.settings = dict(settings or {})
         self.log_path = log_path or self.state / "jupyterhub.log"
         self.proc: subprocess.Popen | None = None
         self._log = None
+
+    def password(self, name: str) -> str:
+        """The log-in password of hub user ``name``."""
+        return self.passwords[name]
 
     @property
     def url(self) -> str:
@@ -130,12 +139,22 @@ class Hub:
             "AEROPHOTO_HUB_API_PORT": str(self.api_port), "AEROPHOTO_HUB_PROXY_API_PORT": str(self.proxy_api_port),
             "AEROPHOTO_HUB_ROSTER": str(roster),
             "AEROPHOTO_HUB_INSTRUCTORS": ",".join(self.instructors),
-            "AEROPHOTO_HUB_STUDENT_PASSWORD": self.student_password,
-            "AEROPHOTO_HUB_INSTRUCTOR_PASSWORD": self.instructor_password,
+            "AEROPHOTO_HUB_PASSWORDS": str(self.state / "passwords.json"),
             "AEROPHOTO_HUB_ADMIN_TOKEN": self.admin_token,
             "PATH": f"{Path(sys.executable).parent}:{env.get('PATH', '/usr/bin:/bin')}",
             "PYTHONUNBUFFERED": "1",
         })
+        if self.shared_password:
+            env.update({"AEROPHOTO_HUB_AUTH": "shared-password",
+                        "AEROPHOTO_HUB_STUDENT_PASSWORD": self.student_password,
+                        "AEROPHOTO_HUB_INSTRUCTOR_PASSWORD": self.instructor_password})
+        else:
+            sys.path.insert(0, str(HERE))
+            from roster_auth import set_passwords
+
+            (self.state / "passwords.json").unlink(missing_ok=True)
+            set_passwords(self.state / "passwords.json", self.passwords)
+            env["AEROPHOTO_HUB_AUTH"] = "roster-passwords"
         env.update({f"AEROPHOTO_HUB_{k}": str(v) for k, v in self.settings.items()})
         return env
 
@@ -274,6 +293,9 @@ def main(argv=None) -> int:
     ap.add_argument("--students", type=int, default=3, help=f"demo students (1–{len(DEMO_STUDENTS)}, default 3)")
     ap.add_argument("--roster", type=Path, default=None, help="CSV student_id,record_book instead of demo students")
     ap.add_argument("--instructor", default="teacher")
+    ap.add_argument("--shared-password", action="store_true",
+                    help="one password for every student (a demonstration only: any student can log in as any "
+                         "other); default: a password of their own for each")
     args = ap.parse_args(argv)
     if os.geteuid() != 0:
         print("the course hub runs as root (it starts each user's server as that user's uid): sudo python "
@@ -291,13 +313,17 @@ def main(argv=None) -> int:
         students = DEMO_STUDENTS[: max(1, min(len(DEMO_STUDENTS), args.students))]
     if args.fresh:
         shutil.rmtree(args.state, ignore_errors=True)
-    hub = Hub(students, [args.instructor], state=args.state, port=args.port)
+    hub = Hub(students, [args.instructor], state=args.state, port=args.port, shared_password=args.shared_password)
     hub.log_path = args.state / "jupyterhub.log"
     print(f"starting the course hub (state: {args.state}, log: {hub.log_path}) …", flush=True)
     hub.start()
     print(f"\n  {hub.url}/hub/login\n")
     print(f"  instructor: {args.instructor:<12} password {hub.instructor_password}")
-    print(f"  students:   {', '.join(n for n, _ in students)}  — password {hub.student_password}")
+    if args.shared_password:
+        print(f"  students:   {', '.join(n for n, _ in students)}  — shared password {hub.student_password}")
+    else:
+        for n, _ in students:
+            print(f"  student:    {n:<12} password {hub.password(n)}")
     print("\n  The instructor's Lab has the Nbgrader menu (formgrader, course list) and a terminal for:")
     print("    aerophoto-course generate --assignment 00_start_here && nbgrader release_assignment 00_start_here")
     print("    nbgrader collect 00_start_here && aerophoto-course autograde --jobs 2 && aerophoto-course gradebook")

@@ -67,6 +67,7 @@ from .course.probe import evidence as _evidence
 from .course.verdict import TOL_COEFF, TOL_PHOTO_MM, TOL_REL, Verdict
 from .i18n import t
 from .i18n import t as _t  # report() calls its loop variable t
+from .tasks.base import own_answers
 
 __all__ = [
     "WrongAnswer",
@@ -376,6 +377,10 @@ def _emit(task_id: str, values: Mapping, variant, task=None) -> None:
     record = _wire.encode_answers(task_id, values, variant)
     try:
         record["evidence"] = _evidence(task)
+        odd = {str(k): f"{type(x).__module__}.{type(x).__qualname__}"[:80] for k, x in values.items()
+               if type(x).__module__ == "__main__"}
+        if odd:  # an answer of a class the notebook defined (a float whose __float__ reads the check's frame)
+            record["evidence"]["value_types"] = odd
     except Exception as exc:  # evidence is a courtesy; the values are what counts
         record["evidence"] = {"error": type(exc).__name__}
     try:
@@ -416,9 +421,12 @@ def check_task(task_id: str, variant, /, **values) -> None:
 
     task = _tasks.get(task_id)
     got = _task_values(task, values)
-    _emit(task.id, got, variant, task)
-    expected = task.answers(variant)
-    slips = task.slips(variant)
-    for a in task.spec:
-        _check_one(task, a, got[a.name], expected[a.name], slips, variant, quiet=False)
+    _emit(task.id, got, variant, task)  # before the reference values exist anywhere in this kernel's frames
+    # the check's own use of the reference values (its expected values, a slip's or another variant's) is not
+    # recorded as a student's call; the values scored were written (with what was called before) above
+    with own_answers():
+        expected = task.answers(variant)
+        slips = task.slips(variant)
+        for a in task.spec:
+            _check_one(task, a, got[a.name], expected[a.name], slips, variant, quiet=False)
     task_passed(task.id)

@@ -270,6 +270,24 @@ def test_scan_takes_the_newest_of_several_files(tmp_path):
     assert scan.duplicates == [(new, [old])]
 
 
+def test_a_number_claimed_from_two_peoples_folders_is_taken_from_neither(tmp_path):
+    ex = tmp_path / "export"
+    _files(ex, ["Anna Victim_9001_assignsubmission_file_/19-0530_00_start_here.ipynb",
+                "Boris Attacker_9002_assignsubmission_file_/19-0530_00_start_here.ipynb",
+                "19-0531_00_start_here.ipynb", "group 1/19-0531_00_start_here.ipynb",
+                "Carl Own_9003_assignsubmission_file_/19-0532_00_start_here.ipynb",
+                "Dina Other_9004_assignsubmission_file_/19-0533_00_start_here.ipynb",
+                "19-0534_00_start_here.ipynb", "19-0534/00_start_here.ipynb"])
+    scan = scan_submissions(ex, ["00_start_here"], roster={"9003": "19-0532", "9004": "19-0599"})
+    assert sorted(scan.conflicts) == [("19-0530", "00_start_here"), ("19-0531", "00_start_here"),
+                                      ("19-0533", "00_start_here")]
+    assert len(scan.conflicts[("19-0530", "00_start_here")]) == 2
+    (_, _, why), = scan.conflicts[("19-0533", "00_start_here")]  # Dina's folder, the roster says 19-0599
+    assert "9004" in why and "19-0533" in why
+    # the student's own places (a participant the roster maps to the number, the top and their folder) are fine
+    assert sorted(scan.found) == [("19-0532", "00_start_here"), ("19-0534", "00_start_here")]
+
+
 # ------------------------------------------------------------------------------------ import: atomic, nbformat 3
 
 

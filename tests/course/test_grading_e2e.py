@@ -64,7 +64,7 @@ EXPECTED = {
     "19-0408": ("exception before the answer", 0.0, ["answer_error", "no_answer_record"]),
     "19-0409": ("edited test cell", 0.0, ["test_cell_edited"]),
     "19-0410": ("deleted test cell", 0.0, ["no_answer_record", "test_cell_deleted"]),
-    "19-0411": ("stripped test cell", 0.0, ["no_answer_record", "test_cell_stripped"]),
+    "19-0411": ("stripped test cell (restored from the release, graded)", 3.0, ["test_cell_stripped"]),
     "19-0412": ("nothing", 0.0, ["missing"]),
     "19-0413": ("corrupted file", 0.0, ["corrupt"]),
     "19-0414": ("correct, saved as nbformat 3", 3.0, []),

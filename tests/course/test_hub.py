@@ -297,8 +297,9 @@ def _course_run(hub):
         ev["phases"][name] = round(time.perf_counter() - t0, 1)
 
     teacher = hc.HubUser(hub.url, "teacher", hub.instructor_password).login()
-    users = {n: hc.HubUser(hub.url, n, hub.student_password).login() for n in ("petrov", "sidorova", "idler")}
-    ev["student_as_teacher"] = _login_status(hub.url, "teacher", hub.student_password)
+    users = {n: hc.HubUser(hub.url, n, hub.password(n)).login() for n in ("petrov", "sidorova", "idler")}
+    ev["student_as_teacher"] = _login_status(hub.url, "teacher", hub.password("petrov"))
+    ev["student_as_student"] = _login_status(hub.url, "sidorova", hub.password("petrov"))
     teacher.request_server()
     for u in users.values():
         u.request_server()
@@ -313,7 +314,7 @@ def _course_run(hub):
         ev["release"] = out
         phase("generated and released")
         ev["t0"] = time.perf_counter()
-        _browser_student(page, hub, hub.student_password, ev)
+        _browser_student(page, hub, hub.password("ivanova"), ev)
         phase("ivanova submitted in the browser")
         for name, answer in (("petrov", _answer_petrov()), ("sidorova", _answer_sidorova())):
             users[name].start_server()
@@ -330,7 +331,7 @@ def _course_run(hub):
         phase("collected, graded, feedback released")
         _browser_feedback(page, ev)
         ev["feedback"] = {}
-        ivanova = hc.HubUser(hub.url, "ivanova", hub.student_password).login()
+        ivanova = hc.HubUser(hub.url, "ivanova", hub.password("ivanova")).login()
         for name, user in (("ivanova", ivanova), ("petrov", users["petrov"]), ("sidorova", users["sidorova"])):
             user.start_server()  # a server culled while the class was graded starts again
             if name != "ivanova":
@@ -486,12 +487,12 @@ def test_roles_over_http(course_run):
         "petrov→user list": 403,
         "teacher→formgrader": 200,
         "teacher→user list": 200,
-        # with the shared-password log-in the instructor is the hub's admin (his own password): JupyterHub's admins
-        # may open any server; with LTI or LDAP the instructor role only sees the class (jupyterhub_config.py)
-        "teacher→petrov's files": 200,
+        # the default log-in (a password per user) makes no one the hub's admin: the instructor role sees the class
+        # and stops/starts its servers, but opens no student's files (jupyterhub_config.py)
+        "teacher→petrov's files": 403,
     }
-    assert course_run["student_as_teacher"] == 403  # the students' password does not open the instructor's account
-
+    assert course_run["student_as_teacher"] == 403  # a student's password does not open the instructor's account
+    assert course_run["student_as_student"] == 403  # ... nor another student's
 
 def test_idle_servers_and_kernels_are_culled(course_run):
     assert course_run["idler_running"] is False

@@ -24,7 +24,10 @@ copy), :mod:`.limits` (what a sandbox may use), :mod:`.bwrap` (the one bubblewra
 :mod:`.sandbox` (the host side of a sandbox), :mod:`.sandbox_kernel` (the kernel manager),
 :mod:`.sandbox_execute` (nbgrader's Execute in the sandbox), :mod:`.outcomes` (nbgrader's view of an executed
 notebook), :mod:`.flags`, :mod:`.lms`, :mod:`.grading` (the course folder, the lock), :mod:`.reports`,
-:mod:`.check`, :mod:`.cli`.  Importing this package is cheap; the parts load on first use.
+:mod:`.check`, :mod:`.cli`; around nbgrader's own steps, in every configuration the project ships
+(:mod:`.nbconfig`): :mod:`.restore` (check cells back from the release before nbgrader reads a notebook),
+:mod:`.autoscore` (the trusted scores over the kernel's), :mod:`.sanitize` (what the instructor is shown,
+cleaned of scripts).  Importing this package is cheap; the parts load on first use.
 
 **The answer's road** from the notebook to the gradebook runs one way.  In the student's kernel
 :mod:`aerophoto.checks` uses the kernel-side parts — :mod:`.wire` (the answer record; the standard library

@@ -236,18 +236,36 @@ def read_nb(path: Path):
     return nbformat.read(str(path), as_version=4)
 
 
+MAX_NOTEBOOK_MB = 64
+"""The largest submitted notebook read at all (MB); a larger file is reported corrupt, never parsed."""
+
+
 def notebook_problem(path: Path) -> str | None:
-    """None for a readable notebook (nbformat 4, or 3 which is converted), else what is wrong with the file."""
+    """None for a readable notebook (nbformat 4, or 3 which is converted), else what is wrong with the file.
+
+    Never raises: a file too large (:data:`MAX_NOTEBOOK_MB`), binary, not JSON, JSON nested too deep to
+    read, or not a valid notebook is a problem, reported in words.
+    """
     try:
+        size = Path(path).stat().st_size
+        if size > MAX_NOTEBOOK_MB * 1024 * 1024:
+            return f"too large ({size / 1024 / 1024:.0f} MB; a notebook is read up to {MAX_NOTEBOOK_MB} MB)"
         raw = Path(path).read_text(encoding="utf-8")
     except UnicodeDecodeError:
         return "not a notebook: the file is not UTF-8 text"
     except OSError as exc:
         return f"cannot be read: {exc}"
+    if "\x00" in raw:
+        return "not a notebook: the file holds binary data (NUL bytes)"
     try:
         data = json.loads(raw)
     except ValueError as exc:
-        return f"not valid JSON ({exc.msg} at line {exc.lineno}, column {exc.colno})"
+        return f"not valid JSON ({getattr(exc, 'msg', exc)} at line {getattr(exc, 'lineno', '?')}, " \
+               f"column {getattr(exc, 'colno', '?')})"
+    except RecursionError:
+        return "not a notebook: its JSON is nested too deep to read"
+    except MemoryError:
+        return "not a notebook: too large to read"
     if not isinstance(data, dict) or ("cells" not in data and "worksheets" not in data):
         return "not a notebook: valid JSON but no cells"
     try:
@@ -255,7 +273,7 @@ def notebook_problem(path: Path) -> str | None:
 
         nb = nbformat.reads(raw, as_version=4)
         nbformat.validate(nb)
-    except Exception as exc:  # nbformat raises several kinds
+    except Exception as exc:  # nbformat raises several kinds (RecursionError too)
         return f"not a valid notebook ({type(exc).__name__}: {one_line(str(exc))[:120]})"
     return None
 
@@ -263,7 +281,7 @@ def notebook_problem(path: Path) -> str | None:
 def nbformat_major(path: Path) -> int | None:
     try:
         return int(json.loads(Path(path).read_text(encoding="utf-8")).get("nbformat"))
-    except (OSError, ValueError, TypeError, AttributeError):
+    except (OSError, ValueError, TypeError, AttributeError, RecursionError, MemoryError):
         return None
 
 

@@ -29,6 +29,49 @@ from pathlib import Path
 from .common import (Flag, cells_by_grade_id, digits, is_answer, is_test, nbg, norm_src, notebook_problem,
                      read_nb, source)
 
+# ----------------------------------------------------------------------------------------------- reading code
+
+MAX_CELL_CHARS = 1_000_000
+"""A cell's code longer than this is not analysed (flagged ``code_unreadable``)."""
+
+
+def parse_code(src: str):
+    """``(tree, None)`` for a cell's code, or ``(None, why)``: never raises.
+
+    IPython's own syntax (``!cmd``, ``%magic``, ``%%cell magic``) is first turned into the Python IPython runs
+    (``get_ipython().system(...)``), so what it does is seen.  Code nested too deep to parse (RecursionError),
+    too long or otherwise unreadable is reported, not raised: one notebook never stops the scan of a class.
+    """
+    if not isinstance(src, str):
+        return None, "the cell's source is not text"
+    if len(src) > MAX_CELL_CHARS:
+        return None, f"the cell holds {len(src):,} characters (more than {MAX_CELL_CHARS:,} are not analysed)"
+    text = src
+    try:
+        if any(line.lstrip().startswith(("!", "%")) for line in src.splitlines()) or "?" in src:
+            from IPython.core.inputtransformer2 import TransformerManager
+
+            text = TransformerManager().transform_cell(src)
+    except Exception:  # IPython's transformer failed: parse the text as it is
+        text = src
+    try:
+        return ast.parse(text), None
+    except SyntaxError as exc:
+        return None, f"not valid Python ({exc.msg})"
+    except (RecursionError, MemoryError) as exc:
+        return None, f"the code is nested too deep to read ({type(exc).__name__})"
+    except (ValueError, TypeError) as exc:  # NUL bytes and the like
+        return None, f"the code cannot be read ({type(exc).__name__})"
+
+
+def _dump(node) -> str | None:
+    """``ast.dump`` of a statement, None when it is nested too deep to dump."""
+    try:
+        return ast.dump(node)
+    except (RecursionError, MemoryError):
+        return None
+
+
 # ----------------------------------------------------------------------------------------------- the record book
 
 
@@ -39,10 +82,9 @@ def parse_record_book(nb) -> tuple[str, object]:
     setup = next((c for c in cells if c.get("id") == "setup"), cells[0] if cells else None)
     if setup is None:
         return "missing", None
-    try:
-        tree = ast.parse(source(setup))
-    except SyntaxError as exc:
-        return "unreadable", f"the setup cell is not valid Python ({exc.msg})"
+    tree, why = parse_code(source(setup))
+    if tree is None:
+        return "unreadable", f"the setup cell: {why}"
     for node in tree.body:
         if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "RECORD_BOOK" for t in node.targets):
             if isinstance(node.value, ast.Constant):
@@ -69,6 +111,11 @@ _SYSTEM_CALLS = {"os.system", "os.popen", "os.fork", "os.forkpty", "os.kill", "o
                  "os.chdir", "os.remove", "os.unlink", "os.rmdir", "os.rename", "os.replace", "os.listdir",
                  "os.scandir", "os.walk", "os.chmod", "os.symlink", "os.link", "os.makedirs", "os.mkdir",
                  "os.posix_spawn", "os.posix_spawnp", "os.nice", "os.setpgrp", "os.daemon", "os._exit", "os.abort"}
+_GRADER_MODULES = {"json", "math", "cmath", "numbers", "numpy", "IPython", "ipykernel", "traitlets", "zmq",
+                   "jupyter_client", "decimal", "fractions", "operator", "functools", "types", "inspect", "os",
+                   "contextlib", "dataclasses", "collections", "copy", "re"}
+_HARMLESS_MAGICS = {"time", "timeit", "matplotlib", "precision", "who", "whos", "pwd", "pprint", "xmode",
+                    "pinfo", "pinfo2", "psearch", "pdoc", "pdef", "psource"}
 _ENV_WRITERS = {"update", "pop", "popitem", "setdefault", "clear", "__setitem__", "__delitem__"}
 _VARIANT_CALLS = {"aerophoto.setup", "aerophoto.book.setup", "aerophoto.variants.variant",
                   "aerophoto.variants.variant_for_index", "aerophoto.book.remember_record_book"}
@@ -151,12 +198,52 @@ def _const_str(node) -> str | None:
 
 def code_flags(src: str, *, where: str, answer_cell: bool, aliases: dict, known: set,
                setup_cell: bool = False) -> list[Flag]:
-    """Behaviour flags of one cell's code (statements in ``known``, the release's own, are skipped)."""
-    try:
-        tree = ast.parse(src)
-    except SyntaxError:
+    """Behaviour flags of one cell's code (statements in ``known``, the release's own, are skipped).
+
+    ``answer_cell`` is kept for callers; every cell a student wrote is scanned alike.  Code that cannot be
+    read (nested too deep, too long) is flagged ``code_unreadable``; plain syntax errors are not (the kernel
+    reports them when the cell runs).
+    """
+    tree, why = parse_code(src)
+    if tree is None:
+        if why and not why.startswith("not valid Python"):
+            return [Flag("code_unreadable", f"{where}: {why}; the cell was not analysed")]
         return []
-    aliases = {**aliases, **_aliases(tree)}
+    try:
+        aliases = {**aliases, **_aliases(tree)}
+        _assigned_aliases(tree, aliases)
+        return _code_flags(tree, where=where, aliases=aliases, known=known, setup_cell=setup_cell)
+    except (RecursionError, MemoryError) as exc:
+        return [Flag("code_unreadable", f"{where}: the code is nested too deep to analyse ({type(exc).__name__})")]
+
+
+def _assigned_aliases(tree, aliases: dict) -> dict:
+    """Add the names bound to a module, a function or an attribute chain by plain assignment (``_a = aerophoto``,
+    ``t = aerophoto.tasks``, ``f = getattr(aerophoto, "tasks")``), in order, to ``aliases`` (changed in place)."""
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Assign, ast.AnnAssign, ast.NamedExpr)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            value = node.value
+            if value is None:
+                continue
+            origin = None
+            if isinstance(value, (ast.Name, ast.Attribute)):
+                origin = _resolve(value, aliases)
+            elif isinstance(value, ast.Call) and _resolve(value.func, aliases) == "getattr" and \
+                    len(value.args) >= 2 and _const_str(value.args[1]) is not None:
+                base = _resolve(value.args[0], aliases)
+                origin = f"{base}.{_const_str(value.args[1])}" if base else None
+            imported = {str(val).split(".")[0] for val in aliases.values()}
+            if not origin or origin.split(".")[0] not in imported:
+                continue  # a local value (x = y, h = v.f_mm): not an alias of anything imported
+            for t in targets:
+                for leaf in ([t] if not isinstance(t, (ast.Tuple, ast.List)) else []):
+                    if isinstance(leaf, ast.Name) and leaf.id != origin:
+                        aliases[leaf.id] = origin
+    return aliases
+
+
+def _code_flags(tree, *, where: str, aliases: dict, known: set, setup_cell: bool) -> list[Flag]:
     answers = package_answer_functions()
     hits: dict[str, list[str]] = {}
 
@@ -167,7 +254,7 @@ def code_flags(src: str, *, where: str, answer_cell: bool, aliases: dict, known:
             hits[code].append(text)
 
     for stmt in tree.body:
-        if ast.dump(stmt) in known:
+        if _dump(stmt) in known:
             continue
         if setup_cell and isinstance(stmt, ast.Assign) and isinstance(stmt.value, ast.Constant) and \
                 [getattr(t, "id", None) for t in stmt.targets] == ["RECORD_BOOK"]:
@@ -203,7 +290,7 @@ def code_flags(src: str, *, where: str, answer_cell: bool, aliases: dict, known:
                     hit("patched_checks", f"uses {name}", node)
                 if name == "sys.excepthook":
                     hit("exception_hooks", "uses sys.excepthook", node)
-                if answer_cell and any(name == a or name.startswith(a + ".") for a in answers):
+                if any(name == a or name.startswith(a + ".") for a in answers):
                     hit("uses_package_answers", f"uses {name}", node)
             if isinstance(node, ast.Call):
                 fn = _resolve(node.func, aliases) or ""
@@ -225,6 +312,15 @@ def code_flags(src: str, *, where: str, answer_cell: bool, aliases: dict, known:
                     # the check cells are the release's own (skipped above): a student's own call of a check
                     # can only serve to probe or fake a pass
                     hit("patched_checks", f"calls {fn}() in their own code", node)
+                if fn in ("get_ipython().system", "get_ipython().getoutput", "get_ipython().system_piped",
+                          "get_ipython().system_raw"):
+                    hit("system_access", "runs a shell command (!cmd)", node)
+                if fn in ("get_ipython().run_line_magic", "get_ipython().run_cell_magic"):
+                    magic = _const_str(node.args[0]) if node.args else None
+                    if magic not in _HARMLESS_MAGICS:
+                        hit("dynamic_code", f"uses the magic %{magic or '?'}", node)
+                if fn in ("get_ipython().run_cell", "get_ipython().ex", "get_ipython().ev"):
+                    hit("dynamic_code", f"calls {fn}()", node)
                 if fn in _SYSTEM_CALLS or fn.startswith(("os.exec", "os.spawn", "subprocess.", "socket.",
                                                          "sqlite3.", "multiprocessing.", "ctypes.", "shutil.")):
                     hit("system_access", f"calls {fn}()", node)
@@ -250,6 +346,10 @@ def code_flags(src: str, *, where: str, answer_cell: bool, aliases: dict, known:
                             if base.split(".")[0] in ("aerophoto", "checks", "tasks", "builtins", "__builtins__",
                                                       "sys") or base.startswith("get_ipython()"):
                                 hit("patched_checks", f"sets {base}.{leaf.attr}", node)
+                            elif base.split(".")[0] in _GRADER_MODULES:
+                                # the modules the check relies on (json writes the answer record, math and
+                                # numpy compare the values): replacing their functions forges the record
+                                hit("patched_checks", f"sets {base}.{leaf.attr}", node)
                             if base == "v" or base.startswith("v."):
                                 hit("variant_changed", f"sets v.{leaf.attr}", node)
                         if isinstance(leaf, ast.Subscript) and isinstance(leaf.ctx, (ast.Store, ast.Del)):
@@ -269,17 +369,19 @@ def behaviour_flags(release_nb, sub) -> list[Flag]:
     release_code = [source(c) for c in release_nb["cells"] if c.get("cell_type") == "code"]
     known = set()
     for src in release_code:
-        try:
-            known |= {ast.dump(s) for s in ast.parse(src).body}
-        except SyntaxError:
-            pass
+        tree, _ = parse_code(src)
+        if tree is not None:
+            known |= {d for d in map(_dump, tree.body) if d is not None}
     aliases: dict = {}
     for c in list(release_nb["cells"]) + list(sub["cells"]):
         if c.get("cell_type") == "code":
-            try:
-                aliases.update(_aliases(ast.parse(source(c))))
-            except SyntaxError:
-                pass
+            tree, _ = parse_code(source(c))
+            if tree is not None:
+                try:
+                    aliases.update(_aliases(tree))
+                    _assigned_aliases(tree, aliases)  # a name bound in one cell is used in the next
+                except (RecursionError, MemoryError):
+                    pass
     code_cells = [c for c in sub["cells"] if c.get("cell_type") == "code"]
     setup = next((c for c in code_cells if c.get("id") == "setup"), code_cells[0] if code_cells else None)
     flags = []
@@ -302,11 +404,14 @@ def answer_code(nb) -> str:
         if not is_answer(cell):
             continue
         src = source(cell)
+        tree, _ = parse_code(src)
         try:
-            body = [s for s in ast.parse(src).body
+            if tree is None:
+                raise SyntaxError
+            body = [s for s in tree.body
                     if not (isinstance(s, ast.Assign) and isinstance(s.value, ast.Constant) and s.value.value is ...)]
             parts.append("\n".join(ast.unparse(s) for s in body))
-        except SyntaxError:
+        except (SyntaxError, RecursionError, MemoryError, ValueError):
             parts.append(" ".join(src.split()))
     return "\n#--\n".join(parts)
 
@@ -345,22 +450,33 @@ def inspect_submission(release_nb, submitted_path: Path, autograded_path: Path |
 
     sub_by_gid = cells_by_grade_id(sub)
     sub_ids = {c.get("id") for c in sub.cells}
+    restored = " (restored from the release before grading: graded as the release has it)"
     for cell in release_nb["cells"]:
         gid = nbg(cell).get("grade_id")
         if not gid or not (is_test(cell) or is_answer(cell)):
             continue
         kind = "test" if is_test(cell) else "answer"
+        same = [c for c in sub.cells if nbg(c).get("grade_id") == gid or
+                (cell.get("id") is not None and c.get("id") == cell.get("id"))]
         if gid not in sub_by_gid:
             if cell.get("id") in sub_ids:
                 flags.append(Flag(f"{kind}_cell_stripped",
-                                  f"{gid}: the cell is there but its nbgrader metadata was removed"
-                                  + ("; it scores 0" if kind == "test" else "")))
+                                  f"{gid}: the cell is there but its nbgrader metadata was removed{restored}"))
             else:
                 flags.append(Flag(f"{kind}_cell_deleted",
                                   f"{gid}: the cell was deleted" + ("; it scores 0" if kind == "test" else "")))
-        elif kind == "test" and norm_src(source(sub_by_gid[gid])) != norm_src(source(cell)):
-            flags.append(Flag("test_cell_edited", f"{gid}: the locked test cell was edited "
-                                                  "(nbgrader restored the original before grading)"))
+            continue
+        if kind == "test" and len(same) > 1:
+            flags.append(Flag("test_cell_edited", f"{gid}: the locked test cell is there {len(same)} times (copied); "
+                                                  f"the copies were removed{restored}"))
+        mine = same[0]
+        if kind == "test" and norm_src(source(mine)) != norm_src(source(cell)):
+            flags.append(Flag("test_cell_edited", f"{gid}: the locked test cell was edited{restored}"))
+        keys = ("grade", "solution", "locked", "points", "grade_id")
+        changed = [k for k in keys if nbg(mine).get(k) != nbg(cell).get(k)] if nbg(mine) else []
+        if changed:
+            flags.append(Flag(f"{kind}_cell_edited",
+                              f"{gid}: the cell's nbgrader metadata was changed ({', '.join(changed)}){restored}"))
 
     flags += behaviour_flags(release_nb, sub)
 

@@ -28,6 +28,7 @@ from .common import (COURSE_ID, Flag, GradedTask, chapters, course_config, defau
                      default_notebooks_dir, digits, ensure_path, graded_tasks, last_error, nb_bytes,
                      nbformat_major, need_nbgrader, notebook_problem, read_nb, read_roster, stderr_to,
                      template_path, write_atomic)
+from .nbconfig import is_secure_config, secure_nbgrader
 from .bwrap import MAX_JOBS, NOBODY, sandbox_uid
 from .limits import Limits
 
@@ -136,6 +137,15 @@ class Course:
         cfg_file = self.root / "nbgrader_config.py"
         if not cfg_file.exists():
             shutil.copyfile(template_path(), cfg_file)
+        else:
+            try:
+                secure = is_secure_config(course_config(self.root))
+            except Exception:
+                secure = False
+            if not secure:
+                out(f"WARNING: {cfg_file} does not run plain nbgrader (or the formgrader's buttons) in the sandbox; "
+                    "aerophoto-course always does. Add these two lines to it: "
+                    "from aerophoto.course.nbconfig import secure_nbgrader; secure_nbgrader(c)")
         if roster is not None and not Path(roster).is_file():
             raise SystemExit(f"--roster {roster}: no such file (a CSV with columns student_id,record_book)")
         roster = Path(roster) if roster else self.root / "roster.csv"
@@ -173,23 +183,20 @@ class Course:
         return course_lock(self.root, what, wait_s=self.wait_s, out=self.out)
 
     def config(self, record_book: str | None = None):
-        from nbconvert.preprocessors import ClearMetadataPreprocessor
-        from nbgrader.preprocessors import (AssignLatePenalties, CheckCellMetadata, IgnorePattern, LimitOutput,
-                                            SaveAutoGrades)
-
         from .sandbox_execute import SandboxExecute
 
         cfg = course_config(self.root, self.timeout)
-        cfg.Autograde.autograde_preprocessors = [SandboxExecute, IgnorePattern,
-                                                 ClearMetadataPreprocessor, LimitOutput, SaveAutoGrades,
-                                                 AssignLatePenalties, CheckCellMetadata]
+        secure_nbgrader(cfg)  # whatever the course folder's file says: sandboxed, restored, cleaned
+        pre = list(cfg.Autograde.autograde_preprocessors)
+        pre[0] = SandboxExecute
+        cfg.Autograde.autograde_preprocessors = pre
         if self._limits is not None or "limits" not in cfg.SandboxExecute:
             cfg.SandboxExecute.limits = self.limits.as_dict()
         cfg.SandboxExecute.record_book = record_book
+        cfg.TrustedScores.enabled = False  # _trusted() does it, with the report beside
         cfg.SandboxExecute.unsafe_no_sandbox = self.unsafe_no_sandbox
         cfg.SandboxExecute.uid = int(self.sandbox_uid)
         cfg.CourseDirectory.db_url = self.db_url
-        cfg.HTMLExporter.sanitize_html = True  # feedback shows a student's outputs: no script from them
         return cfg
 
     def coursedir(self, **attrs):
@@ -216,9 +223,10 @@ class Course:
     def students(self) -> list[str]:
         """Everyone known: the roster, the submitted folders and the gradebook."""
         ids = set(self.roster)
-        sub = self.root / "submitted"
-        if sub.is_dir():
-            ids |= {d.name for d in sub.iterdir() if d.is_dir() and not d.name.startswith(".")}
+        for folder in ("submitted", "conflicts"):
+            sub = self.root / folder
+            if sub.is_dir():
+                ids |= {d.name for d in sub.iterdir() if d.is_dir() and not d.name.startswith(".")}
         if (self.root / "gradebook.db").exists():
             from nbgrader.api import Gradebook
 
@@ -320,8 +328,10 @@ class Course:
         with self.lock("import"):
             scan = scan_submissions(folder, self.assignments(), self.roster)
             counts = {"new": 0, "updated": 0, "unchanged": 0}
+            self._keep_conflicts(scan, folder)
             for n, ((sid, a), src) in enumerate(sorted(scan.found.items()), 1):
                 dest = self.path("submitted", a, sid)
+                shutil.rmtree(self.root / "conflicts" / sid / a, ignore_errors=True)  # resolved by this export
                 try:
                     data = src.read_bytes()
                     note = ""
@@ -341,10 +351,10 @@ class Course:
                     else:
                         counts["new"] += 1
                     write_atomic(dest, data)  # modified now: newer than any earlier grading of this student
-                except OSError as exc:
-                    scan.failed.append((src, str(exc)))
-                    self.out(f"[{n}/{len(scan.found)}] {sid} · {a} ← {src.relative_to(folder)} — FAILED: {exc} "
-                             "(nothing written for it)")
+                except Exception as exc:  # one file never stops the batch (unreadable, a full disk, ...)
+                    scan.failed.append((src, f"{type(exc).__name__}: {exc}"))
+                    self.out(f"[{n}/{len(scan.found)}] {sid} · {a} ← {src.relative_to(folder)} — FAILED: "
+                             f"{type(exc).__name__}: {exc} (nothing written for it)")
                     continue
                 problem = notebook_problem(dest)
                 note += f" — WARNING: {problem} (copied; it will be flagged)" if problem else ""
@@ -354,10 +364,38 @@ class Course:
                          + ", ".join(str(o.relative_to(folder)) for o in others))
             for p, why in scan.unrecognised:
                 self.out(f"unrecognised: {p.relative_to(folder)} — {why}")
+            for (sid, a), files in sorted(scan.conflicts.items()):
+                self.out(f"CLAIMED TWICE: {sid} · {a} — none taken, kept in conflicts/{sid}/{a}/ and flagged: "
+                         + "; ".join(f"{p.relative_to(folder)} ({why})" for p, _, why in files))
             self.out(f"import: {counts['new']} new, {counts['updated']} updated, {counts['unchanged']} unchanged, "
                      f"{len(scan.unrecognised)} unrecognised file(s)"
+                     + (f", {len(scan.conflicts)} claimed twice (kept aside)" if scan.conflicts else "")
                      + (f", {len(scan.failed)} FAILED" if scan.failed else ""))
             return scan
+
+    def _keep_conflicts(self, scan, folder: Path) -> None:
+        """Each file of a number claimed twice copied to ``conflicts/<student>/<chapter>/`` with ``conflict.json``."""
+        for (sid, a), files in sorted(scan.conflicts.items()):
+            where = self.root / "conflicts" / sid / a
+            shutil.rmtree(where, ignore_errors=True)
+            record = {"student": sid, "assignment": a, "imported_at": time.time(), "files": []}
+            for k, (src, owner, why) in enumerate(files, 1):
+                name = f"{k}.ipynb"
+                try:
+                    write_atomic(where / name, src.read_bytes())
+                except OSError as exc:
+                    name = f"not copied: {exc}"
+                record["files"].append({"source": str(src.relative_to(folder)), "folder": owner, "why": why,
+                                        "copy": name})
+            write_atomic(where / "conflict.json", (json.dumps(record, indent=1) + "\n").encode("utf-8"))
+
+    def conflict(self, student: str, assignment: str) -> dict | None:
+        """The record of a number claimed twice in the last import (see :mod:`.lms`), or None."""
+        p = self.root / "conflicts" / student / assignment / "conflict.json"
+        try:
+            return json.loads(p.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return None
 
     # autograde ---------------------------------------------------------------------------------
     def submissions(self, students=None, assignments=None) -> list[tuple[str, str]]:
@@ -425,8 +463,39 @@ class Course:
                 self._trusted(sid, a)
         except Exception as exc:  # never stop the batch
             r.status, r.error = "failed", f"{type(exc).__name__}: {exc}"
+        if r.status == "failed":
+            try:
+                self._zero(sid, a, r.error)
+            except Exception as exc:  # noqa: BLE001 — said, never raised
+                r.error += f" (and its scores could not be set to 0: {type(exc).__name__}: {exc})"
         r.seconds = time.perf_counter() - t0
         return r
+
+    def _zero(self, sid: str, a: str, why: str) -> None:
+        """A submission that could not be graded: 0 for every task in nbgrader's gradebook (never the score its
+        kernel gave itself) and a report saying why — gradebook.db, grades.csv, formgrader and feedback agree."""
+        from nbgrader.api import Gradebook, MissingEntry
+
+        from .trusted import Verdict
+
+        if (self.root / "gradebook.db").exists():
+            with Gradebook(self.db_url, COURSE_ID) as gb:
+                try:
+                    sub = gb.find_submission(a, sid)
+                except MissingEntry:
+                    sub = None
+                if sub is not None:
+                    for nb in sub.notebooks:
+                        for g in nb.grades:
+                            g.auto_score = 0.0
+                            g.needs_manual_grade = False
+                    gb.db.commit()
+        message = f"not graded ({why}); scored 0"
+        verdicts = [Verdict(t.task, t.check_id, float(t.points), message=message,
+                            flags=[Flag("not_graded", f"{t.task}: {message}")]) for t in self._release_tasks(a)]
+        report = {"student": sid, "assignment": a, "record_book": self.record_book(sid), "graded_at": time.time(),
+                  "failed": why, "verdicts": [v.as_dict() for v in verdicts], "events": []}
+        write_atomic(self.report_path(a, sid), (json.dumps(report, indent=1) + "\n").encode("utf-8"))
 
     def _finish(self, r: GradeResult) -> GradeResult:
         """Score and flags of a result, read from the gradebook and the reports (in the lock holder's process)."""
@@ -530,7 +599,25 @@ class Course:
         return self._same_code[assignment]
 
     def flags(self, student: str, assignment: str) -> list[Flag]:
-        """The flags of one student's chapter: structure, behaviour, the trusted check, the sandbox's events."""
+        """The flags of one student's chapter: structure, behaviour, the trusted check, the sandbox's events.
+
+        Never raises: whatever a submission holds, reading it ends in flags (``flags_failed`` when the reading
+        itself failed), so one notebook cannot stop autograde or the gradebook of a class.
+        """
+        try:
+            flags = self._flags(student, assignment)
+        except Exception as exc:  # RecursionError, MemoryError (a subclass of Exception), a bug: say so
+            flags = [Flag("flags_failed", f"the submission could not be inspected ({type(exc).__name__}: "
+                                          f"{str(exc)[:160]}); look at it yourself")]
+        record = self.conflict(student, assignment)
+        if record:
+            flags.append(Flag("claimed_twice", f"{assignment}: the last import found this number claimed from "
+                              f"several places ({'; '.join(f['source'] for f in record.get('files', []))}); none "
+                              f"was taken — see conflicts/{student}/{assignment}/conflict.json, rename the right "
+                              "file and import again"))
+        return flags
+
+    def _flags(self, student: str, assignment: str) -> list[Flag]:
         from .flags import inspect_submission
 
         release = self.path("release", assignment)
@@ -550,8 +637,9 @@ class Course:
             except (OSError, ValueError):
                 data = {}
             for e in data.get("events", []):
-                if e.get("kind") in ("kernel_died", "output_truncated", "not_run"):
-                    code = "output_truncated" if e["kind"] == "output_truncated" else "kernel_died"
+                if e.get("kind") in ("kernel_died", "output_truncated", "not_run", "notebook_timeout"):
+                    code = {"output_truncated": "output_truncated",
+                            "notebook_timeout": "notebook_time_limit"}.get(e["kind"], "kernel_died")
                     flags.append(Flag(code, f"cell {e.get('cell')}: {e.get('message')}"))
             for vd in data.get("verdicts", []):
                 flags += [Flag(c, m) for c, m in vd.get("flags", [])]

@@ -35,6 +35,10 @@ class Limits:
     cell_s : the default wall time of one cell, s (``aerophoto-course --timeout``'s default,
         :data:`~.common.DEFAULT_TIMEOUT_S`); the time a run uses is nbclient's ``timeout`` (``--timeout``,
         ``c.ExecutePreprocessor.timeout`` in the course's config)
+    record_kb : the largest answer record a check cell may emit (a larger one is dropped: the task scores 0,
+        flagged); a notebook's records together are kept up to ``output_mb``, beside its other outputs
+    notebook_s : wall time a notebook's cells may run in all, s (beside the per-cell time; kernel starts and the
+        grader's replays not counted): the cells after it are not run (flagged), and no cell runs past it
     """
 
     memory_mb: int | None = 3072
@@ -47,6 +51,8 @@ class Limits:
     output_mb: float = 4.0
     message_mb: int = 32
     cell_s: int = 120
+    record_kb: int = 256
+    notebook_s: int = 1200
 
     def replace(self, **kw) -> Limits:
         return replace(self, **kw)

@@ -11,6 +11,15 @@ ignored):
 * Moodle's per-participant folders ``<Full Name>_<participant no.>_assignsubmission_file_/`` — the file's own
   record-book number wins; a bare ``<chapter>.ipynb`` there is filed under the participant number or name
   only if the roster lists it (a participant number is not a record-book number).
+
+**A number claimed twice.**  Several files for one student and chapter from the student's own places (the
+top folder, where files are named by student id; a folder named after the student; a Moodle participant the
+roster maps to the student) are versions of one submission — the newest is taken and the others reported.
+Files for one student and chapter from places of *different* people (two Moodle participants, a group folder
+and the student's own) are two people claiming one record-book number — which one is the student's cannot be
+told from the export, so neither is taken: all go to ``Scan.conflicts`` (the course keeps them aside in
+``conflicts/`` and flags the student ``claimed_twice``).  So does a file in a Moodle participant folder whose
+participant the roster maps to another student than the number in the file's name.
 """
 
 from __future__ import annotations
@@ -34,6 +43,7 @@ class Scan:
     duplicates: list = field(default_factory=list)     # (Path kept, [Paths ignored])
     unrecognised: list = field(default_factory=list)   # (Path, reason)
     failed: list = field(default_factory=list)         # (Path, why): could not be written (import)
+    conflicts: dict = field(default_factory=dict)      # (student_id, assignment) → [(Path, owner, why)]: kept aside
 
 
 def _looks_like_record_book(text: str) -> bool:
@@ -82,7 +92,7 @@ def scan_submissions(folder, assignments, roster: dict | None = None) -> Scan:
             where = "" if len(rel.parts) == 1 else f" (in the folder {rel.parts[0]})"
             scan.unrecognised.append((p, f"name is not <student_id>_<chapter>.ipynb for a known chapter{where}"))
             continue
-        sid = None
+        sid, owner, claimed_by = None, "(the export's top folder)" if len(rel.parts) == 1 else rel.parts[0], None
         if len(rel.parts) == 1:
             if prefix is None:
                 scan.unrecognised.append((p, "a chapter without a student id: name it <student_id>_<chapter>.ipynb"))
@@ -91,6 +101,9 @@ def scan_submissions(folder, assignments, roster: dict | None = None) -> Scan:
         else:
             top = rel.parts[0]
             moodle = _MOODLE.match(top)
+            if moodle:  # whom the roster says this participant is (None: not listed)
+                pid, person = moodle.group("pid"), moodle.group("name")
+                claimed_by = next((k for k in (pid, person, person.replace(" ", "_")) if k in roster), None)
             if prefix is not None and (_looks_like_record_book(_from_prefix(prefix)) or prefix in roster
                                        or prefix == top):
                 sid = _from_prefix(prefix)
@@ -117,10 +130,36 @@ def scan_submissions(folder, assignments, roster: dict | None = None) -> Scan:
             scan.unrecognised.append((p, f"student id {sid!r} has characters nbgrader cannot use "
                                          "(letters, digits, . _ @ - only)"))
             continue
-        candidates.setdefault((sid, nb_name), []).append(p)
-    for key, paths in sorted(candidates.items()):
-        paths = sorted(paths, key=lambda q: (q.stat().st_mtime, str(q)))
+        if claimed_by is not None and claimed_by != sid and roster.get(claimed_by) != sid and \
+                _digits(roster.get(claimed_by)) != _digits(sid):
+            scan.conflicts.setdefault((sid, nb_name), []).append(
+                (p, owner, f"in the folder of {claimed_by} (roster), but named for {sid}"))
+            continue
+        if len(rel.parts) == 1 or rel.parts[0] == sid or claimed_by == sid or (
+                claimed_by is not None and _digits(roster.get(claimed_by)) == _digits(sid)):
+            owner = sid  # the student's own place: the top folder (files named by id), their folder, their participant
+        candidates.setdefault((sid, nb_name), []).append((p, owner))
+    for key, found in sorted(candidates.items()):
+        owners = sorted({o for _, o in found})
+        if len(owners) > 1 or key in scan.conflicts:
+            places = sorted(set(owners) | {o for _, o, _ in scan.conflicts.get(key, [])})
+            for p, o in found:
+                scan.conflicts.setdefault(key, []).append(
+                    (p, o, f"{key[0]} · {key[1]} is claimed from {len(places)} folders: {', '.join(places)}"))
+            continue
+        paths = sorted((p for p, _ in found), key=lambda q: (_mtime(q), str(q)))
         scan.found[key] = paths[-1]
         if len(paths) > 1:
             scan.duplicates.append((paths[-1], paths[:-1]))
     return scan
+
+
+def _mtime(p: Path) -> float:
+    try:
+        return p.stat().st_mtime
+    except OSError:
+        return 0.0
+
+
+def _digits(text) -> str:
+    return re.sub(r"\D", "", str(text or ""))

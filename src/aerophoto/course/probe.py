@@ -107,6 +107,13 @@ def evidence(task=None) -> dict:
         if tasks is not None:
             patched += _patched_functions(tasks, ("get", "answers", "chapter_tasks"), tasks.__file__)
     ev["patched"] = patched
+    base = sys.modules.get("aerophoto.tasks.base")
+    if base is not None and (getattr(base, "_OWN", [0]) != [0] or type(getattr(base, "_ANSWER_CALLS", None)) is not list):
+        patched.append("aerophoto.tasks.base (the record of answer calls)")  # checked outside any own_answers()
+    if base is not None and callable(getattr(base, "answer_calls", None)):
+        calls = base.answer_calls()
+        if calls:
+            ev["answer_calls"] = sorted(set(map(str, calls)))[:20] + ([f"… {len(calls)} calls"] if len(calls) > 20 else [])
     return ev
 
 

@@ -101,6 +101,15 @@ def require() -> None:
 # the host side of one sandbox
 
 
+def _package_parent() -> str | None:
+    """The folder holding the running ``aerophoto`` package (bound read-only by :func:`.bwrap.python_roots`),
+    unless it is the Python's own site-packages: a checkout run through PYTHONPATH is the one its kernels import."""
+    import aerophoto
+
+    here = Path(aerophoto.__file__).resolve().parent.parent
+    return None if here.name in ("site-packages", "dist-packages") else str(here)
+
+
 def _font_cache() -> Path | None:
     """matplotlib's font list of this machine (copied in, so a kernel does not rebuild it: ~1 s)."""
     try:
@@ -181,6 +190,9 @@ class Box:
             "MKL_NUM_THREADS": "1",
             "AEROPHOTO_HOME": "/sbx/.aerophoto",
         }
+        src = _package_parent()
+        if src is not None:  # the aerophoto this grader runs (a checkout on PYTHONPATH too; bound read-only)
+            env["PYTHONPATH"] = src
         env.update({k: str(v) for k, v in extra.items() if v is not None})
         return env
 

@@ -48,7 +48,7 @@ EVENTS: dict = {}
 class Event:
     """Something the grader did to keep going: a dead kernel, a cell cut short, outputs dropped."""
 
-    kind: str          # kernel_died, timeout, not_run, output_truncated
+    kind: str          # kernel_died, timeout, not_run, output_truncated, notebook_timeout
     cell: str          # cell id
     message: str
 
@@ -95,24 +95,59 @@ class SandboxExecute(Execute):
         return await super()._async_handle_timeout(timeout, cell)
 
     # outputs ------------------------------------------------------------------------------------
-    def output(self, outs, msg, display_id, cell_index):
-        content = msg.get("content", {})
+    def _over_cap(self, content, cell_index) -> bool:
+        """Count one output against the caps; True when it is to be dropped.  Everything the kernel emits counts:
+        an answer record may be at most ``record_kb`` and the records of a notebook ``output_mb`` together,
+        beside the other outputs' ``output_mb``."""
         data = content.get("data") if isinstance(content, dict) else None
         is_record = isinstance(data, dict) and ANSWERS_MIME in data
-        size = len(json.dumps(content, default=str)) if isinstance(content, dict) else 0
-        limit = self.the_limits.output_mb * 1024 * 1024
-        if not is_record and self._output_bytes + size > limit:
+        try:
+            size = len(json.dumps(content, default=str)) if isinstance(content, dict) else 0
+        except (ValueError, RecursionError):
+            size = 1 << 40
+        lim = self.the_limits
+        limit = lim.output_mb * 1024 * 1024
+        cell = self.nb.cells[cell_index]
+        if is_record:
+            if size > lim.record_kb * 1024 or self._record_bytes + size > limit:
+                self._dropped += size
+                self._event("output_truncated", cell, f"an answer record of {size / 1024:.0f} KB (the limit is "
+                                                      f"{lim.record_kb} KB) was dropped")
+                return True
+            self._record_bytes += size
+            return False
+        if self._output_bytes + size > limit:
             self._dropped += size
             if cell_index not in self._truncated:
                 self._truncated.add(cell_index)
-                cell = self.nb.cells[cell_index]
+                self._truncation_note.append(cell_index)
+                self._event("output_truncated", cell, f"more than {lim.output_mb:g} MB of output")
+            return True
+        self._output_bytes += size
+        return False
+
+    def output(self, outs, msg, display_id, cell_index):
+        if self._over_cap(msg.get("content", {}), cell_index):
+            if self._truncation_note and self._truncation_note[-1] == cell_index:
+                self._truncation_note.pop()
                 note = (f"[the grader kept the first {self.the_limits.output_mb:g} MB of this notebook's "
                         "output; the rest was dropped]")
                 outs.append(NotebookNode(output_type="stream", name="stdout", text=note + "\n"))
-                self._event("output_truncated", cell, f"more than {self.the_limits.output_mb:g} MB of output")
             return None
-        self._output_bytes += size
         return super().output(outs, msg, display_id, cell_index)
+
+    def _update_display_id(self, display_id, msg):
+        # an update of an earlier display replaces its data: counted against the same cap
+        index = getattr(self, "_cell_index", 0) or 0
+        if self._over_cap(msg.get("content", {}), min(index, len(self.nb.cells) - 1)):
+            return None
+        return super()._update_display_id(display_id, msg)
+
+    async def async_execute_cell(self, cell, cell_index, execution_count=None, store_history=True):
+        self._cell_index = cell_index
+        return await super().async_execute_cell(cell, cell_index, execution_count, store_history)
+
+    execute_cell = run_sync(async_execute_cell)
 
     # the run ------------------------------------------------------------------------------------
     def _event(self, kind, cell, message):
@@ -170,15 +205,53 @@ class SandboxExecute(Execute):
                 if is_test(cells[j]):
                     self._event("not_run", cells[j], "the kernel died too often before this cell")
 
+    def _notebook_time_up(self, budget: float) -> None:
+        """Every code cell not run yet gets an error output; the first one an event (the flag)."""
+        said = False
+        for cell in self.nb.cells:
+            if cell.get("cell_type") != "code" or not str(cell.get("source", "")).strip():
+                continue
+            if cell.get("execution_count") is None and not cell.get("outputs"):
+                cell.setdefault("outputs", []).append(_error_output(
+                    "NotRun", f"not run: the notebook used up its time limit ({budget:g} s)"))
+                if not said:
+                    self._event("notebook_timeout", cell, f"the notebook ran past its time limit ({budget:g} s); "
+                                                          "this cell and the ones after it were not run")
+                    said = True
+
+    def _default_record_book(self, resources) -> None:
+        """Run by plain nbgrader (the formgrader's button): the student's number from the course's roster."""
+        if self.record_book:
+            return
+        student = str(((resources or {}).get("nbgrader") or {}).get("student") or "")
+        if not student:
+            return
+        from pathlib import Path
+
+        from .common import digits, read_roster
+
+        root = self.config.CourseDirectory.get("root") if "CourseDirectory" in self.config else None
+        roster = Path(str(root or ".")) / "roster.csv"
+        try:
+            found = read_roster(roster).get(student) if roster.is_file() else None
+        except (OSError, ValueError):
+            found = None
+        self.record_book = found or (student if len(digits(student)) >= 2 else None)
+
     def preprocess(self, nb, resources=None, km=None):
+        self._default_record_book(resources)
         NotebookClient.__init__(self, nb, km)
         self.reset_execution_trackers()
         self._check_assign_resources(resources)
         self.events, self._output_bytes, self._dropped, self._truncated = [], 0, 0, set()
+        self._record_bytes, self._truncation_note = 0, []
         t0 = time.perf_counter()
+        cell_timeout = self.timeout
+        # the notebook's limit counts the time its cells run (not kernel starts, not the grader's replays)
+        budget, spent = float(self.the_limits.notebook_s), [0.0]
         cells = self.nb.cells
-        start, failed, restarts, ran_any = 0, set(), 0, False
-        while start < len(cells):
+        start, failed, restarts, ran_any, start_failures = 0, set(), 0, False, 0
+        while start < len(cells) and spent[0] < budget:
             index = start
             try:
                 with self.setup_kernel():
@@ -189,7 +262,17 @@ class SandboxExecute(Execute):
                         self._replay(start, failed)
                     for index in range(start, len(cells)):
                         self._timed_out = False
-                        self.preprocess_cell(cells[index], resources, index)
+                        left = budget - spent[0]
+                        if left <= 0:
+                            break
+                        # no cell runs past the notebook's own limit
+                        self.timeout = max(1, min(int(cell_timeout or left), int(left) + 1)) \
+                            if cell_timeout else max(1, int(left) + 1)
+                        t_cell = time.perf_counter()
+                        try:
+                            self.preprocess_cell(cells[index], resources, index)
+                        finally:
+                            spent[0] += time.perf_counter() - t_cell
                         ran_any = True
                         cell = cells[index]
                         if any(o.get("ename") == "CellTimeoutError" for o in cell.get("outputs", [])
@@ -199,7 +282,14 @@ class SandboxExecute(Execute):
             except Exception as exc:  # a dead or unresponsive kernel: note it, go on with a new one
                 if not ran_any and index == start == 0 and not isinstance(exc, (DeadKernelError,
                                                                                 CellTimeoutError)):
-                    raise  # the sandbox itself did not start: that is the grader's failure, not the student's
+                    # the sandbox itself did not start — no student code has run yet: once more (a loaded
+                    # machine), then it is the grader's failure, not the student's
+                    self.km, self.kc = None, None
+                    start_failures += 1
+                    if start_failures > 1:
+                        raise
+                    time.sleep(1.0)
+                    continue
                 self._kernel_died(exc, index)
                 failed.add(index)
                 restarts += 1
@@ -207,6 +297,9 @@ class SandboxExecute(Execute):
                 if restarts > self.max_restarts:
                     self._not_run(start, restarts)
                     break
+        self.timeout = cell_timeout
+        if spent[0] >= budget:
+            self._notebook_time_up(budget)
         self.set_widgets_metadata()
         self.seconds = time.perf_counter() - t0
         key = _key(resources)

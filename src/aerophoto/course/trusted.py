@@ -94,6 +94,14 @@ def evidence_flags(record: dict, expected_record_book: str | None, where: str) -
              for k in _HOOK_KEYS if ev.get(k)]
     if hooks:
         flags.append(Flag("exception_hooks", f"{where}: " + "; ".join(hooks)))
+    calls = ev.get("answer_calls") or []
+    if calls:
+        flags.append(Flag("uses_package_answers", f"{where}: the student's code asked the package for the reference "
+                                                  f"answers in the kernel ({', '.join(map(str, calls))[:160]})"))
+    odd = ev.get("value_types") or {}
+    if odd:
+        flags.append(Flag("tampered", f"{where}: answers of a class defined in the notebook, not numbers: "
+                                      + ", ".join(f"{k} ({v})" for k, v in dict(odd).items())[:200]))
     patched = ev.get("patched") or []
     if patched:
         flags.append(Flag("patched_checks", f"{where}: replaced in the kernel: {', '.join(map(str, patched))[:200]}"))
@@ -114,66 +122,93 @@ def evidence_flags(record: dict, expected_record_book: str | None, where: str) -
 
 
 def grade_executed(nb, record_book: str | None, *, tasks=None) -> list[Verdict]:
-    """The trusted verdict on every task of an executed notebook (see the module notes)."""
+    """The trusted verdict on every task of an executed notebook (see the module notes).
+
+    Never raises for what a submission holds: a task whose record cannot be read or graded (a malformed or
+    forged record, a value that breaks the reading) scores 0 with a flag saying why (``unreadable_record``).
+    """
     tasks = list(tasks) if tasks is not None else graded_tasks(nb)
     v = variant_of(record_book)
-    records = answer_records(nb)
-    outcomes = {o.task: o for o in executed_outcomes(nb)[0]}
+    try:
+        records = answer_records(nb)
+    except Exception as exc:
+        records, broken = {}, f"{type(exc).__name__}: {str(exc)[:120]}"
+    else:
+        broken = None
+    try:
+        outcomes = {o.task: o for o in executed_outcomes(nb)[0]}
+    except Exception:
+        outcomes = {}
     verdicts = []
     for t in tasks:
         out = outcomes.get(t.task)
         vd = Verdict(t.task, t.check_id, float(t.points), in_kernel=None if out is None else out.passed)
-        recs = records.get(t.check_id, [])
-        where = t.task
-        if v is None:
-            vd.message = "no record-book number for this student: the variant, and so the answers, are unknown"
+        if broken is not None:
+            vd.message = f"the answer records could not be read ({broken}); scored 0"
+            vd.flags.append(Flag("unreadable_record", f"{t.task}: {vd.message}"))
             verdicts.append(vd)
             continue
-        if not recs:
-            why = out.message if out is not None and not out.passed else "the check cell ran no check"
-            if out is None:
-                why = "the check cell is missing"
-            vd.message = f"no answers recorded by the check cell ({why}); scored 0"
-            vd.flags.append(Flag("no_answer_record", f"{where}: {vd.message}"))
-            if out is not None and out.passed:
-                vd.flags.append(Flag("tampered", f"{where}: nbgrader saw the check cell pass, but the check never "
-                                                 "ran on the answers"))
-            verdicts.append(vd)
-            continue
-        rec = recs[0]
-        if len(recs) > 1:
-            vd.flags.append(Flag("tampered", f"{where}: {len(recs)} answer records in one check cell (the check "
-                                             "writes one)"))
-        task_id, values = decode_answers(rec)
-        if task_id != t.task:
-            vd.flags.append(Flag("tampered", f"{where}: the answer record names {task_id!r}"))
-        vd.record = rec
         try:
-            grade = grade_task(t.task, v, values)
-        except Exception as exc:  # the task itself could not be graded: the grader's problem, say so
-            vd.message = f"could not be graded ({type(exc).__name__}: {exc})"
-            vd.flags.append(Flag("not_graded", f"{where}: {vd.message}"))
-            verdicts.append(vd)
-            continue
-        scale = t.points / grade.points if grade.points else 0.0
-        vd.score = round(grade.score * scale, 6)
-        vd.passed = grade.passed
-        vd.message = grade.first_failure
-        claimed = rec.get("variant")
-        other_variant = isinstance(claimed, int) and claimed != v.i
-        if out is not None and out.passed and not grade.visible_ok and not other_variant:
-            vd.flags.append(Flag("tampered", f"{where}: nbgrader saw the check pass in the student's kernel, but "
-                                             f"the submitted values fail it ({grade.first_failure[:120]})"))
-        elif out is not None and not out.passed and grade.visible_ok and out.ename == "WrongAnswer" and \
-                not other_variant:
-            vd.flags.append(Flag("tampered", f"{where}: the check failed in the student's kernel, but the "
-                                             "submitted values pass it"))
-        if other_variant:
-            vd.flags.append(Flag("variant_mismatch", f"{where}: the kernel ran variant {claimed:02d}; the "
-                                                     f"student's is {v.i:02d} (graded for {v.i:02d})"))
-        vd.flags.extend(evidence_flags(rec, record_book, where))
+            _grade_task(vd, t, v, out, records.get(t.check_id, []), record_book)
+        except Exception as exc:  # the submission's record broke the reading: 0, and say why
+            vd = Verdict(t.task, t.check_id, float(t.points), in_kernel=None if out is None else out.passed)
+            vd.message = (f"the answer record could not be read or graded ({type(exc).__name__}: "
+                          f"{str(exc)[:120]}); scored 0")
+            vd.flags.append(Flag("unreadable_record", f"{t.task}: {vd.message}"))
         verdicts.append(vd)
     return verdicts
+
+
+def _grade_task(vd: Verdict, t, v, out, recs: list, record_book) -> None:
+    """Fill ``vd``, the trusted verdict on task ``t`` from its answer records ``recs`` (may raise: the caller
+    scores a task whose reading raised 0)."""
+    where = t.task
+    if v is None:
+        vd.message = "no record-book number for this student: the variant, and so the answers, are unknown"
+        return
+    if not recs:
+        why = out.message if out is not None and not out.passed else "the check cell ran no check"
+        if out is None:
+            why = "the check cell is missing"
+        vd.message = f"no answers recorded by the check cell ({why}); scored 0"
+        vd.flags.append(Flag("no_answer_record", f"{where}: {vd.message}"))
+        if out is not None and out.passed:
+            vd.flags.append(Flag("tampered", f"{where}: nbgrader saw the check cell pass, but the check never "
+                                             "ran on the answers"))
+        return
+    rec = recs[0]
+    if len(recs) > 1:
+        vd.flags.append(Flag("tampered", f"{where}: {len(recs)} answer records in one check cell (the check "
+                                         "writes one)"))
+    if not isinstance(rec.get("values"), dict) or not all(isinstance(k, str) for k in rec["values"]):
+        raise TypeError("the record's values are not a mapping of answer names")
+    task_id, values = decode_answers(rec)
+    if task_id != t.task:
+        vd.flags.append(Flag("tampered", f"{where}: the answer record names {task_id!r}"))
+    vd.record = rec
+    try:
+        grade = grade_task(t.task, v, values)
+    except Exception as exc:  # the task itself could not be graded: the grader's problem, say so
+        vd.message = f"could not be graded ({type(exc).__name__}: {exc})"
+        vd.flags.append(Flag("not_graded", f"{where}: {vd.message}"))
+        return
+    scale = t.points / grade.points if grade.points else 0.0
+    vd.score = round(grade.score * scale, 6)
+    vd.passed = grade.passed
+    vd.message = grade.first_failure
+    claimed = rec.get("variant")
+    other_variant = isinstance(claimed, int) and claimed != v.i
+    if out is not None and out.passed and not grade.visible_ok and not other_variant:
+        vd.flags.append(Flag("tampered", f"{where}: nbgrader saw the check pass in the student's kernel, but "
+                                         f"the submitted values fail it ({grade.first_failure[:120]})"))
+    elif out is not None and not out.passed and grade.visible_ok and out.ename == "WrongAnswer" and \
+            not other_variant:
+        vd.flags.append(Flag("tampered", f"{where}: the check failed in the student's kernel, but the "
+                                         "submitted values pass it"))
+    if other_variant:
+        vd.flags.append(Flag("variant_mismatch", f"{where}: the kernel ran variant {claimed:02d}; the "
+                                                 f"student's is {v.i:02d} (graded for {v.i:02d})"))
+    vd.flags.extend(evidence_flags(rec, record_book, where))
 
 
 def write_scores(db_url: str, assignment: str, student: str, notebook: str, verdicts) -> None:

@@ -24,6 +24,15 @@ c = get_config()  # noqa: F821  (provided by nbgrader's config loader)
 
 c.CourseDirectory.course_id = "aerophoto"
 
+# Every nbgrader command run from this folder — and the formgrader's Autograde and Generate Feedback buttons —
+# runs students' code only in the grading sandbox and shows their notebooks cleaned of scripts
+# (aerophoto.course.nbconfig.secure_nbgrader: Autograde's preprocessors, Execute's kernel manager,
+# HTMLExporter.sanitize_html, GenerateFeedback's preprocessors).  Without aerophoto importable here nbgrader
+# refuses to start rather than run a submission unsandboxed.  Keep this line.
+from aerophoto.course.nbconfig import secure_nbgrader  # noqa: E402
+
+secure_nbgrader(c)
+
 # Each cell of a submission may run this long (seconds) before the kernel is interrupted and the cell
 # recorded as failed (CellTimeoutError); the rest of the notebook still runs.  nbgrader's default is 30 s;
 # the book's heaviest cells (rendering the virtual site) take a few seconds on a slow machine.

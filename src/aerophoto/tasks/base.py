@@ -23,11 +23,50 @@ and hidden checks on values extracted from a sandboxed run.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import math
+import os
 from dataclasses import dataclass
 from typing import ClassVar
 
-__all__ = ["Answer", "Hidden", "Task", "KINDS", "submitted_number"]
+__all__ = ["Answer", "Hidden", "Task", "KINDS", "submitted_number", "answer_calls", "own_answers"]
+
+# ------------------------------------------------------------------ answers asked for while the instructor grades
+_ANSWER_CALLS: list = []   # task ids whose answers() was called outside a check, in a grading kernel
+_OWN = [0]                 # > 0 while a check computes its own reference values
+
+
+def answer_calls() -> list:
+    """The tasks whose reference answers student code asked for in this kernel while grading (a copy).
+
+    Recorded only with ``AEROPHOTO_GRADING`` set (the grader's sandbox); a check's own use of them
+    (:func:`own_answers`) is not recorded.  The check cell's answer record carries the list, and the grader flags
+    it (``uses_package_answers``), however the call was made (an alias, an extra cell, a float subclass whose
+    ``__float__`` reads the check's frame).
+    """
+    return list(_ANSWER_CALLS)
+
+
+@contextlib.contextmanager
+def own_answers():
+    """The checks' own calls of :meth:`Task.answers` (and ``slips``) are made inside this: not recorded."""
+    _OWN[0] += 1
+    try:
+        yield
+    finally:
+        _OWN[0] -= 1
+
+
+def _recorded(fn):
+    @functools.wraps(fn)
+    def answers(self, v, *args, **kwargs):
+        if not _OWN[0] and os.environ.get("AEROPHOTO_GRADING"):
+            _ANSWER_CALLS.append(str(getattr(self, "id", "?")))
+        return fn(self, v, *args, **kwargs)
+
+    answers._aerophoto_recorded = True
+    return answers
 
 KINDS = ("value", "count", "values", "bool", "choice")
 
@@ -135,6 +174,12 @@ class Task:
     #: the book's instruments for this task, so calling them in an answer cell is not flagged
     #: ``uses_package_answers`` (:func:`aerophoto.course.flags.package_answer_functions`)
     tools: ClassVar[tuple] = ()
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        fn = cls.__dict__.get("answers")
+        if fn is not None and not getattr(fn, "_aerophoto_recorded", False):
+            cls.answers = _recorded(fn)  # see answer_calls()
 
     @property
     def chapter(self) -> str:

@@ -11,15 +11,10 @@ c.Exchange.path_includes_course = False
 # collect: warn when a submission's owner (uid) is not the student it claims to be (the hub's passwd names
 # every user); read the warnings of `nbgrader collect`
 c.ExchangeCollect.check_owner = True
-# The formgrader's "Autograde" button runs nbgrader in this server: at least run the students' code in the
-# grading sandbox (no course folder, no network, nobody's rights).  The trusted scores and the flags come only
-# from `aerophoto-course autograde` — grade with that.
-c.Autograde.autograde_preprocessors = [
-    "aerophoto.course.sandbox_execute.SandboxExecute",
-    "nbgrader.preprocessors.IgnorePattern",
-    "nbconvert.preprocessors.ClearMetadataPreprocessor",
-    "nbgrader.preprocessors.LimitOutput",
-    "nbgrader.preprocessors.SaveAutoGrades",
-    "nbgrader.preprocessors.AssignLatePenalties",
-    "nbgrader.preprocessors.CheckCellMetadata",
-]
+# The formgrader's buttons run nbgrader in this server: student code only in the grading sandbox (no course
+# folder, no network, nobody's rights), every notebook shown cleaned of scripts (formgrader and feedback) —
+# the same settings as the course folder's own nbgrader_config.py (aerophoto.course.nbconfig.secure_nbgrader).
+# The trusted scores are written by either; the flags and the report come from `aerophoto-course autograde`.
+from aerophoto.course.nbconfig import secure_nbgrader  # noqa: E402
+
+secure_nbgrader(c)

@@ -25,6 +25,7 @@ from matplotlib.collections import LineCollection
 from .. import dem
 from .. import plots
 from ..i18n import t
+from ..i18n.numbers import fmt, fmt_count, fmt_spec
 from ..widgets import LiveDemo, Param
 
 __all__ = ["SHEETS", "INTERVALS", "SheetCache", "sheet_cache", "ContourFrame", "contour_frame", "ContourView",
@@ -195,20 +196,21 @@ class ContourView:
             self.valley_lc.set_segments([])
             self.ridge_lc.set_segments([])
         self.nodes.set_offsets(r.dem.nodes_m[:, :2] - (x0, y0))
-        self.title.set_text(t("h = {h:g} m: RMS of contour heights {rms:.3f} m ({n} nodes)", h=r.interval_m,
-                              rms=r.accuracy.rms_m, n=r.dem.n_nodes))
+        self.title.set_text(t("h = {h} m: RMS of contour heights {rms} m ({n} nodes)", h=fmt_spec(r.interval_m, "{:g}"),
+                              rms=fmt(r.accuracy.rms_m, 3), n=fmt_count(r.dem.n_nodes)))
 
 
 def legend_html() -> str:
     items = ((_C["blue"], "solid", "contours from the DEM"), (_C["grey"], "dashed", "true contours"),
              (_VALLEY, "solid", "thalwegs (тальвеги)"), (_RIDGE, "solid", "watersheds (водоразделы)"))
     rows = "".join(f"<div><span style='display:inline-block;width:28px;border-top:3px {ls} {col};"
-                   f"vertical-align:middle;margin-right:6px'></span>{lab}</div>" for col, ls, lab in items)
+                   f"vertical-align:middle;margin-right:6px'></span>{t(lab)}</div>" for col, ls, lab in items)
     bar = ("<span style='display:inline-block;width:120px;height:10px;vertical-align:middle;margin:0 4px;"
            "background:linear-gradient(to right,#053061,#4393c3,#f7f7f7,#d6604d,#67001f)'></span>")
-    return (f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{rows}"
-            f"<div>colour: DEM − true height, −{ERROR_CLIM_M:g} m{bar}+{ERROR_CLIM_M:g} m (red: DEM too high)</div>"
-            "<div>● DEM nodes</div></div>")
+    lim = fmt_spec(ERROR_CLIM_M, "{:g}")
+    return (f"<div class='aerophoto-legend' style='font-size:15px;line-height:1.5;margin-bottom:6px'>{rows}"
+            f"<div>{t('colour: DEM − true height, −{lim} m', lim=lim)}{bar}{t('+{lim} m (red: DEM too high)', lim=lim)}"
+            f"</div><div>● {t('DEM nodes')}</div></div>")
 
 
 class ContourDemo(LiveDemo):

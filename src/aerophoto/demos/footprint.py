@@ -235,7 +235,7 @@ class FootprintDemo(LiveDemo):
 
     def render(self, result):
         self.view.update(result)
-        self.table.value = plots.html_table(result.table(), caption="Elements of the photo", float_format="{:,.1f}")
+        self.table.value = plots.html_table(result.table(), caption="Elements of the photo", float_format="{:.3g}")
 
 
 def own_footprint(variant, passed):

@@ -39,6 +39,7 @@ from matplotlib.collections import LineCollection
 
 from .. import geometry as g
 from .. import plots
+from ..i18n import t as _t  # functions here name a local t
 from .. import quality as q
 from .. import simulate as sim
 from ..widgets import TABLE_DELAY_S, LiveDemo, Param, table_after_picture  # noqa: F401 (TABLE_DELAY_S: importable from here, as before)
@@ -275,7 +276,7 @@ def verdict_html(report: q.QualityReport, *, conclusion: bool = True) -> str:
     if conclusion:
         text = _html.escape(report.conclusion())
         out += (f"<div style='max-width:420px;font-size:12px;white-space:pre-wrap;margin-top:6px'>"
-                f"<b>Conclusion</b>\n{text}</div>")
+                f"<b>{_t('Conclusion')}</b>\n{text}</div>")
     return out
 
 
@@ -402,8 +403,8 @@ class RoughMosaicView:
             else:
                 t.set_visible(False)
         n_fail = len(rep.failures())
-        self.title.set_text("Rough mosaic (накидной монтаж): " + ("all criteria met" if n_fail == 0 else
-                                                                   f"{n_fail} check{'s' if n_fail > 1 else ''} failed"))
+        self.title.set_text(_t("Rough mosaic (накидной монтаж): all criteria met") if n_fail == 0 else
+                            _t("Rough mosaic (накидной монтаж): checks failed: {n}", n=n_fail))
 
 
 class QualityDemo(LiveDemo):

@@ -32,6 +32,7 @@ from .. import plots
 from .. import projective as pj
 from .. import rectify as rf
 from ..i18n import t as _t  # functions here name a local t
+from ..i18n.numbers import fmt
 from ..widgets import LiveDemo, Param
 
 __all__ = ["EXAMPLE", "TransformerResult", "transformer_model", "TransformerView", "TransformerDemo",
@@ -152,7 +153,7 @@ class TransformerResult:
         s = self.current
         st = s.state
         conv = self.run.converged_step
-        rows = [("motion", "", f"{self.step}: {s.name} (cycle {s.cycle})"),
+        rows = [("motion", "", _t("{step}: {name} (cycle {cycle})", step=self.step, name=_t(s.name), cycle=s.cycle)),
                 ("what the operator does", "", rf.STEP_NAMES[s.name]),
                 ("screen tilt ε", "°", f"{st.eps_deg:.3f}"),
                 ("tilt direction λ_t", "°", f"{st.tilt_dir_deg % 360:.1f}"),
@@ -160,8 +161,8 @@ class TransformerResult:
                 ("enlargement s", "", f"{st.scale:.4f}")]
         names = ("1", "2", "3", "4", "centre")
         rows += [(f"residual at {n}", "mm", f"{d:.2f}") for n, d in zip(names, s.lengths_mm)]
-        rows.append(("largest residual vs 0.4 mm", "", f"{s.max_residual_mm:.2f} — "
-                     + ("within" if s.max_residual_mm <= rf.TOLERANCE_MM else "not yet")))
+        rows.append(("largest residual vs 0.4 mm", "", fmt(s.max_residual_mm, 2) + " — "
+                     + _t("within" if s.max_residual_mm <= rf.TOLERANCE_MM else "not yet")))
         rows.append(("converged at step", "", "—" if conv is None else f"{conv}"))
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
@@ -251,8 +252,8 @@ class TransformerView:
             self.hh.set_data([], [])
             self.hh_pts.set_data([], [])
         # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
-        self.ax.title.set_text(_t("Step {step}: {name} — misses ×{k}, largest {largest:.2f} mm", step=r.step,
-                                  name=_t(s.name), k=k, largest=s.max_residual_mm))
+        self.ax.title.set_text(_t("Step {step}: {name} — misses ×{k}, largest {largest} mm", step=r.step,
+                                  name=_t(s.name), k=k, largest=fmt(s.max_residual_mm, 2)))
 
 
 class TransformerDemo(LiveDemo):
@@ -290,7 +291,12 @@ class TransformerDemo(LiveDemo):
         self.table.value = plots.html_table(result.table(), caption="The screen")
 
     def on_slider(self) -> str:
-        """Photo sliders: a preview render at once, the full resolution when the slider rests (the step slider is cheap)."""
+        """Photo sliders: a preview render at once, the full resolution when the slider rests.  The step slider is
+        discrete and cheap: every step is drawn at full resolution at once (no blurred frame, no status line)."""
+        if self.moved == "step":
+            self.cancel_later()
+            self.update()
+            return ""
         return self.preview_then_full(0.25)
 
 

@@ -1,0 +1,82 @@
+"""Every registry demo built in Russian shows no English word: figure texts, legends, keys, tables, status.
+
+Symbols stay as they are (f, m, p_x, RGB, roman numerals of control points); words are caught by the pattern
+below, outside mathtext ($…$) and a short allowlist of symbols and abbreviations.  The one part not yet in
+Russian is listed in NOT_YET with the reason; the test fails when it grows and when it is fixed (then remove it).
+"""
+
+from __future__ import annotations
+
+import html
+import importlib
+import re
+
+import pytest
+
+from aerophoto import book, i18n
+
+WORD = re.compile(r"\b[A-Za-z]{3,}\b")
+ROMAN = re.compile(r"^[IVX]+$")
+#: symbols and abbreviations that are the same in both languages (subscripts of symbols, the colour model)
+ALLOW = {"max", "min", "tmax", "RGB", "TM", "Bx", "By", "Lx", "Ly", "LS", "TS"}
+#: what is still English, by chapter, and why (remove the entry once it is translated)
+NOT_YET = {
+    "02": ("the written conclusion of the quality report is English prose composed by aerophoto.quality (layer 2), "
+           "which cannot use the catalogue; its sentences need templates there", 4),
+}
+DEMOS = [(c.number, d.cls) for c in book.CHAPTERS for d in c.demos]
+
+
+def _english(text: str) -> list[str]:
+    text = re.sub(r"\$[^$]*\$", "", text)
+    return [w for w in WORD.findall(text) if w not in ALLOW and not ROMAN.match(w)]
+
+
+def _shown_texts(demo) -> list[str]:
+    out = []
+    for a in demo.fig.findobj(lambda a: hasattr(a, "get_text") and type(a).__name__ != "Figure"):
+        if a.get_visible() and a.get_text():
+            out.append(a.get_text())
+    for name in ("table", "legend", "status"):
+        s = re.sub(r"<style.*?</style>", "", getattr(demo, name).value, flags=re.S)
+        out += [html.unescape(x).strip() for x in re.split(r"<[^>]+>", s) if x.strip()]
+    return out
+
+
+@pytest.fixture(autouse=True)
+def _russian(monkeypatch):
+    monkeypatch.delenv("AEROPHOTO_LANG", raising=False)
+    i18n.set_language("ru")
+    yield
+    i18n.set_language(None)
+
+
+@pytest.mark.parametrize(("number", "cls"), DEMOS, ids=[f"{n}-{c.rsplit('.', 1)[1]}" for n, c in DEMOS])
+def test_a_demo_in_russian_shows_no_english_word(number, cls):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    module, name = cls.rsplit(".", 1)
+    demo = getattr(importlib.import_module(module), name)()
+    try:
+        demo.widget()
+        english = sorted({t for t in _shown_texts(demo) if _english(t)})
+    finally:
+        demo.close()
+    if number in NOT_YET:
+        why, n = NOT_YET[number]
+        assert 0 < len(english) <= n, f"chapter {number}: {english} (known: {why})"
+    else:
+        assert not english, f"chapter {number} {name} in Russian shows English: {english}"
+
+
+def test_units_and_numbers_in_russian():
+    from aerophoto.demos.footprint import FootprintDemo
+
+    demo = FootprintDemo()
+    try:
+        table = demo.table.value
+    finally:
+        demo.close()
+    assert " м<" in table or ">м<" in table and ">m<" not in table   # the unit is м
+    assert "1,200" not in table and "1200,0" in table or "1\u202f200" not in table  # decimal comma

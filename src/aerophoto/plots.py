@@ -645,7 +645,7 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL) -> bool:
 
 
 #: a symbol with a subscript in a label: p_x, m_z, λ_t, h_max (not a word joined by underscores: guide_table)
-_SUBSCRIPT = re.compile(r"(?<![\w\\$])([A-Za-zα-ωΑ-ΩΔ])_(\{[^}]{1,8}\}|[A-Za-z0-9α-ω]{1,4})(?![\w$])")
+_SUBSCRIPT = re.compile(r"(?<![\w\\$])([A-Za-zα-ωΑ-ΩΔ])_(\{[^}]{1,10}\}|[A-Za-z0-9α-ω]{1,8})(?![\w$])")
 
 
 def html_subscripts(text: str) -> str:
@@ -693,15 +693,18 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=Non
     from .i18n.numbers import fmt_count, fmt_spec, localise
 
     def fmt(v, unit: bool = False):
+        """(cell HTML, whether it is a number: a number never breaks across lines)"""
         if unit and isinstance(v, str) and translate_unit(v) != v:
-            return _html.escape(translate_unit(v))  # a unit column: m → м (the catalogue's "m" is the scale's m)
+            return _html.escape(translate_unit(v)), True  # a unit column: m → м (the catalogue's "m" is the scale's)
         if v is None or isinstance(v, (bool, np.bool_)):
-            return _html.escape(_tr(str(v)))
+            return _html.escape(_tr(str(v))), False
         if isinstance(v, (int, np.integer)):
-            return fmt_count(v)
+            return fmt_count(v), True
         if isinstance(v, (float, np.floating)):
-            return fmt_spec(v, float_format)
-        return html_subscripts(localise(_tr(str(v))))
+            return fmt_spec(v, float_format), True
+        text = _tr(str(v))
+        shown = localise(text)
+        return html_subscripts(shown), shown != text or len(text) <= 12
 
     hl = None if highlight is None else np.asarray(highlight, dtype=bool)
     head = "".join(f"<th scope='col'>{html_subscripts(_tr(str(c)))}</th>" for c in df.columns)
@@ -722,7 +725,8 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=Non
             if int_cols is not None and int_cols[j] and isinstance(v, (float, np.floating)) and float(v).is_integer():
                 v = int(v)
             style = ' style="background:#F0E442"' if hl is not None and hl[i, j] else ""
-            cells.append(f"<td{style}>{fmt(v, unit=units[j])}</td>")
+            text, short = fmt(v, unit=units[j])
+            cells.append(f"<td{style}{' class=' + chr(39) + 'num' + chr(39) if short else ''}>{text}</td>")
         rows.append(f"<tr><th scope='row'>{html_subscripts(localise(_tr(labels[i])))}</th>{''.join(cells)}</tr>")
     cap = f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{html_subscripts(_tr(caption))}</caption>" if caption else ""
     foot = ""
@@ -785,6 +789,9 @@ def legend_html(ax, *, remove: bool = True) -> str:
                         glyph = {"●": "○", "■": "□", "▲": "△", "▼": "▽", "◆": "◇"}.get(glyph, glyph)
                 elif h.get_linestyle() in ("--", "dashed", ":", "dotted", "-.", "dashdot"):
                     glyph = "┅" if h.get_linestyle() in (":", "dotted") else "╍"
+            elif getattr(h, "get_array", lambda: None)() is not None and getattr(h, "cmap", None) is not None:
+                colour = to_hex(h.cmap(0.6))  # colour-mapped points: a colour of their own map, not the default blue
+                glyph = "●"
             else:
                 for getter in ("get_edgecolor", "get_facecolor", "get_color"):
                     c = getattr(h, getter, lambda: None)()
@@ -796,7 +803,7 @@ def legend_html(ax, *, remove: bool = True) -> str:
         except (TypeError, ValueError):
             pass
         items.append(f"<span style='white-space:nowrap;margin-right:12px'><span style='color:{colour};{style}"
-                     f"font-size:17px'>{glyph}</span> {_html.escape(label)}</span> ")
+                     f"font-size:17px'>{glyph}</span> {html_subscripts(label)}</span> ")
     if not items:
         return ""
     return f"<div class='aerophoto-legend' style='font-size:14px;line-height:1.6;margin:4px 0'>{''.join(items)}</div>"

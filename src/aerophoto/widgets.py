@@ -235,7 +235,8 @@ _DEMO_CSS = """<style>
 .aerophoto-demo .widget-label, .aerophoto-demo .widget-readout, .aerophoto-demo .widget-html-content,
 .aerophoto-demo .widget-button, .aerophoto-demo select { font-size: 15px; }
 .aerophoto-demo .aerophoto-hint { font-size: 15px; margin-bottom: 4px; max-width: 1200px; }
-.aerophoto-demo .aerophoto-table td { white-space: nowrap; }
+.aerophoto-demo .aerophoto-table td.num { white-space: nowrap; }
+.aerophoto-demo .aerophoto-table tbody th { text-align: left; font-weight: normal; }
 .aerophoto-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip: rect(0 0 0 0); white-space: nowrap; }
 </style>"""
 
@@ -322,10 +323,13 @@ class LiveDemo:
         self._layout = None
         self.build()
         translate_figure(self.fig)  # titles, axis labels, legends in the reader's language (aerophoto.i18n)
-        from .plots import fast_frames, freeze_layout, legend_html
+        from .plots import fast_frames, figure_subscripts, freeze_layout, legend_html
+
 
         #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)
         self.legend = w.HTML(legend_html(self.fig) if self.legend_beside else "")
+        if getattr(self, "fig", None) is not None:
+            figure_subscripts(self.fig)  # p_x → $p_{x}$: symbols' subscripts set as subscripts, not underscores
         if self.fixed_layout:
             freeze_layout(self.fig)
         fast_frames(self.fig)  # cheaper PNG frames to the browser (ipympl only)

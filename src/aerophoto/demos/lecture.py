@@ -31,7 +31,8 @@ LECTURE_CSS = """<style>
 .aerophoto-lecture .widget-slider, .aerophoto-lecture .widget-dropdown { margin-top: 1px; margin-bottom: 1px; }
 .aerophoto-lecture .aerophoto-table { font-size: 15px !important; line-height: 1.3; }
 .aerophoto-lecture .aerophoto-table td, .aerophoto-lecture .aerophoto-table th { padding: 1px 6px; }
-.aerophoto-lecture .aerophoto-table td { white-space: nowrap; }
+.aerophoto-lecture .aerophoto-table td.num { white-space: nowrap; }
+.aerophoto-lecture .aerophoto-table tbody th { text-align: left; font-weight: normal; }
 .aerophoto-lecture .aerophoto-table ul { margin-top: 2px !important; font-size: 15px; }
 .aerophoto-lecture .widget-html-content { line-height: 1.3; }
 .aerophoto-lecture .aerophoto-lecture-title { font-size: 20px; font-weight: bold; margin: 0 0 2px 0; }
@@ -158,7 +159,10 @@ def lecture_view(demo, title: str = "", subtitle: str = "", *, full_screen: bool
     band = w.HBox(_columns(demo), layout=w.Layout(flex_flow="row wrap", align_items="flex-start",
                                                    margin="0 0 4px 0"))
     head = html.escape(title or t(demo.title))
-    sub = f" <span>{html.escape(subtitle)}</span>" if subtitle else ""
+    # the subtitle's parts ("… · the guide's example (variant 00)") never break inside: a line never starts with
+    # "(variant 00)" alone
+    parts = [f"<span style='white-space:nowrap'>{html.escape(p)}</span>" for p in subtitle.split(" · ")] if subtitle else []
+    sub = f" <span>{' · '.join(parts)}</span>" if parts else ""
     top = w.HBox([w.HTML(f"{LECTURE_CSS}{FLUID_CSS}<div class='aerophoto-lecture-title' role='heading' aria-level='2'>"
                          f"{head}{sub}</div>", layout=w.Layout(flex="1 1 auto")), projector, reset],
                  layout=w.Layout(align_items="center", justify_content="space-between"))

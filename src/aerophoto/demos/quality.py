@@ -48,8 +48,10 @@ __all__ = ["QualityResult", "quality_model", "rough_mosaic_raster", "board_exten
            "QualityDemo", "verdict_html", "crab_limit_plot", "table_after_picture"]
 
 #: tints of ground covered by 1, 2, 3, 4+ prints (RGB 0…1) and their weight
-_TINTS = {1: ((1.0, 1.0, 1.0), 0.0), 2: ((0.34, 0.71, 0.91), 0.30), 3: ((0.0, 0.45, 0.70), 0.40),
-          4: ((0.80, 0.47, 0.65), 0.45)}
+# the number of prints over a point as a lightness ramp (light blue, blue, navy): apart by CIEDE2000 ≥ 14 from
+# each other and from the grey photo under deuteranopia and protanopia too (tests/test_colours.py)
+_TINTS = {1: ((1.0, 1.0, 1.0), 0.0), 2: ((0.80, 0.92, 1.0), 0.55), 3: ((0.0, 0.45, 0.70), 0.50),
+          4: ((0.0, 0.12, 0.30), 0.60)}
 _FAIL = plots.COLORS["vermillion"]
 _STRIP_COLORS = (plots.COLORS["blue"], plots.COLORS["green"], plots.COLORS["orange"], plots.COLORS["purple"])
 

@@ -39,6 +39,7 @@ def _shown_texts(demo) -> list[str]:
             out.append(a.get_text())
     for name in ("table", "legend", "status"):
         s = re.sub(r"<style.*?</style>", "", getattr(demo, name).value, flags=re.S)
+        s = re.sub(r"<sub>[^<]*</sub>", "", s)  # a symbol's subscript (m_interp, r_max) is part of the symbol
         out += [html.unescape(x).strip() for x in re.split(r"<[^>]+>", s) if x.strip()]
     return out
 
@@ -71,6 +72,7 @@ def test_a_demo_in_russian_shows_no_english_word(number, cls):
 
 
 def test_units_and_numbers_in_russian():
+    """Chapter 00's table in Russian: the unit м, the decimal comma, a true minus, 12 000 grouped, 1200 not."""
     from aerophoto.demos.footprint import FootprintDemo
 
     demo = FootprintDemo()
@@ -78,5 +80,7 @@ def test_units_and_numbers_in_russian():
         table = demo.table.value
     finally:
         demo.close()
-    assert " м<" in table or ">м<" in table and ">m<" not in table   # the unit is м
-    assert "1,200" not in table and "1200,0" in table or "1\u202f200" not in table  # decimal comma
+    assert "<td class='num'>м</td>" in table and "<td class='num'>m</td>" not in table
+    assert ">1200<" in table and ">12\u202f000<" in table      # H = f·m = 1200 m; the scale 1:12 000
+    assert ">5,24<" in table and ">−2,62<" in table             # on and oc, mm: decimal comma, minus sign
+    assert "1,200" not in table and "1200.0" not in table

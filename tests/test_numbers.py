@@ -97,3 +97,23 @@ def test_math_subscripts():
     assert plots.math_subscripts("m_z = 0.5 m") == "$m_{z}$ = 0.5 m"
     assert plots.math_subscripts("$p_x$") == "$p_x$"                     # mathtext already
     assert plots.math_subscripts("guide_table") == "guide_table"         # not a symbol
+
+
+def test_o_n_c_labels_never_overlap():
+    """Chapter 03/00: the o, n, c labels stay apart at every tilt (they overlapped from α ≈ 2.5°)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from aerophoto.demos.displacement import ReliefDemo
+
+    demo = ReliefDemo()
+    try:
+        for alpha in (0.0, 1.0, 2.5, 4.0, 10.0):
+            demo.set(alpha_deg=alpha)
+            demo.fig.canvas.draw()
+            r = demo.fig.canvas.get_renderer()
+            boxes = {k: demo.view.marks[k][1].get_window_extent(r) for k in ("o", "n", "c")}
+            for a, b in (("o", "n"), ("o", "c"), ("n", "c")):
+                assert not boxes[a].overlaps(boxes[b]), (alpha, a, b, boxes[a], boxes[b])
+    finally:
+        demo.close()

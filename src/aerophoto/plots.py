@@ -44,6 +44,7 @@ __all__ = [
     "figure_subscripts",
     "legend_html",
     "mark_points",
+    "move_onc",
     "photo_frame",
 ]
 
@@ -645,7 +646,7 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL) -> bool:
 
 
 #: a symbol with a subscript in a label: p_x, m_z, λ_t, h_max (not a word joined by underscores: guide_table)
-_SUBSCRIPT = re.compile(r"(?<![\w\\$])([A-Za-zα-ωΑ-ΩΔ])_(\{[^}]{1,10}\}|[A-Za-z0-9α-ω]{1,8})(?![\w$])")
+_SUBSCRIPT = re.compile(r"(?<![\w\\$])([A-Za-zα-ωΑ-ΩΔ])_(\{[^}]{1,10}\}|[A-Za-z0-9α-ω]{1,8})(?![A-Za-z0-9_α-ω$])")
 
 
 def html_subscripts(text: str) -> str:
@@ -818,6 +819,23 @@ def photo_frame(ax, camera, *, color=None, label="photo frame", lw=1.5):
     ax.set_xlabel("x, mm")
     ax.set_ylabel("y, mm")
     return line
+
+
+def move_onc(marks: dict, o, n, c, u, *, offset_pt: float = 13.0) -> None:
+    """Move the o, n, c marks of :func:`mark_points` to the photo points ``o``, ``n``, ``c`` (mm), their labels fanned
+    out so that they never overlap: the three lie on the principal vertical (unit direction ``u``), n furthest from
+    o, so o's label goes behind o, n's beyond n and c's across the line (with α = 0 all three coincide)."""
+    o, n, c = (np.asarray(p, float) for p in (o, n, c))
+    d = n - o
+    ahead = d / np.hypot(*d) if np.hypot(*d) > 1e-9 else np.asarray(u, float)
+    across = np.array([-ahead[1], ahead[0]])
+    for name, pt, way in (("o", o, -ahead), ("n", n, ahead), ("c", c, across)):
+        marker, label = marks[name]
+        marker.set_data([pt[0]], [pt[1]])
+        label.xy = (pt[0], pt[1])
+        label.set_horizontalalignment("center")
+        label.set_verticalalignment("center")
+        label.xyann = (float(offset_pt * way[0]), float(offset_pt * way[1]))
 
 
 def mark_points(ax, points: dict, *, size=9):

@@ -343,18 +343,7 @@ class DisplacementView:
         self.pv.set_data([-L * u[0], L * u[0]], [-L * u[1], L * u[1]])
         c = field.c_mm
         self.iso.set_data([c[0] - L * v[0], c[0] + L * v[0]], [c[1] - L * v[1], c[1] + L * v[1]])
-        # the labels fan out so that they never overlap: n, c and o lie on the principal vertical, n furthest from
-        # o, so o's label goes behind o, n's beyond n and c's across the line (with α = 0 all three coincide)
-        d = np.asarray(field.n_mm, float) - np.asarray(field.o_mm, float)
-        ahead = d / np.hypot(*d) if np.hypot(*d) > 1e-9 else np.asarray(u, float)
-        across = np.array([-ahead[1], ahead[0]])
-        for name, pt, way in (("o", field.o_mm, -ahead), ("n", field.n_mm, ahead), ("c", field.c_mm, across)):
-            marker, label = self.marks[name]
-            marker.set_data([pt[0]], [pt[1]])
-            label.xy = (pt[0], pt[1])
-            label.set_horizontalalignment("center")
-            label.set_verticalalignment("center")
-            label.xyann = (float(13 * way[0]), float(13 * way[1]))
+        plots.move_onc(self.marks, field.o_mm, field.n_mm, field.c_mm, u)  # labels fanned out: never overlapping
         what = {"both": "relief and tilt", "relief": "relief", "tilt": "tilt"}[show]
         self.title.set_text(t("Photo, mm — {what} displacement, arrows ×{k}", what=t(what), k=k))
         return k

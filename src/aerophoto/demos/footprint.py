@@ -195,10 +195,7 @@ class FootprintView:
         L = r.camera.half_mm * 1.4
         self.pv.set_data([-L * u[0], L * u[0]], [-L * u[1], L * u[1]])
         self.iso.set_data([r.c_mm[0] - L * v[0], r.c_mm[0] + L * v[0]], [r.c_mm[1] - L * v[1], r.c_mm[1] + L * v[1]])
-        for name, pt in (("o", r.o_mm), ("n", r.n_mm), ("c", r.c_mm)):
-            marker, label = self.marks[name]
-            marker.set_data([pt[0]], [pt[1]])
-            label.xy = (pt[0], pt[1])
+        plots.move_onc(self.marks, r.o_mm, r.n_mm, r.c_mm, u)  # labels fanned out: never overlapping
 
 
 class FootprintDemo(LiveDemo):

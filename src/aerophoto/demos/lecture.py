@@ -44,6 +44,7 @@ LECTURE_CSS = """<style>
 .aerophoto-projector .aerophoto-lecture-title span, .aerophoto-projector .aerophoto-status
   { font-size: 19px !important; }
 .aerophoto-projector .aerophoto-lecture-title { font-size: 24px; }
+.jp-RenderedHTMLCommon a, .jp-RenderedMarkdown a { text-decoration: underline; }
 .aerophoto-projector .widget-label { min-width: 0; }
 </style>"""
 
@@ -166,7 +167,6 @@ def lecture_view(demo, title: str = "", subtitle: str = "", *, full_screen: bool
     top = w.HBox([w.HTML(f"{LECTURE_CSS}{FLUID_CSS}<div class='aerophoto-lecture-title' role='heading' aria-level='2'>"
                          f"{head}{sub}</div>", layout=w.Layout(flex="1 1 auto")), projector, reset],
                  layout=w.Layout(align_items="center", justify_content="space-between"))
-    width_px = int(round(demo.fig.get_figwidth() * demo.fig.dpi))
     # the figure takes its natural width where there is room and shrinks with the page where there is not (never a
     # horizontal scroll bar); the side column keeps at least 280 px for the key, the status and the table
     figure = w.Box([demo.figure_widget()], layout=w.Layout(flex="0 1 auto", min_width="0"))
@@ -174,7 +174,7 @@ def lecture_view(demo, title: str = "", subtitle: str = "", *, full_screen: bool
     side = w.VBox([demo.legend, demo.status, demo.table],
                   layout=w.Layout(margin="0 0 0 12px", flex="1 1 280px", min_width="280px"))
     main = w.HBox([figure, side], layout=w.Layout(align_items="flex-start"))
-    view = w.VBox([top, band, main], layout=w.Layout(width="100%", max_width=f"{max(width_px + 700, 1270)}px",
+    view = w.VBox([top, band, main], layout=w.Layout(width="100%",
                                                      min_height=f"{SCREEN_HEIGHT_PX}px" if full_screen else None))
     view.add_class("aerophoto-demo")
     view.add_class("aerophoto-lecture")

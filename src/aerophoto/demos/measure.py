@@ -304,7 +304,10 @@ class MeasureTool:
                        f"{html.escape(_HELP)}</div>")]
         self._widgets = {"point": point, "readout": readout, "status": status, "table": table, "code": code}
         right = w.VBox(side, layout=w.Layout(width="350px", margin="0 0 0 12px"))
-        layout = w.HBox([plots.figure_widget(self.fig), right], layout=w.Layout(align_items="flex-start"))
+        # the panel goes under the picture where the column is too narrow for both (JupyterLab beside its file
+        # browser): never clipped; the picture keeps its size (clicks are read in its pixels)
+        layout = w.HBox([plots.figure_widget(self.fig), right],
+                        layout=w.Layout(align_items="flex-start", flex_flow="row wrap"))
         self._widgets["layout"] = layout
         self._widgets["readout"].value = "<b>cursor</b>: move the mouse over the picture"
         self._refresh()

@@ -72,6 +72,8 @@ def test_language_in_use_is_the_default():
     ("(6.1)", "(6.1)", "(6.1)"),              # formula numbers stay
     ("2.5e-05", "2.5e-05", "2.5e-05"),
     ("-", "-", "-"),
+    ("-1.80 %", f"{MINUS}1.80 %", f"{MINUS}1,80 %"),
+    ("2.5°", "2.5°", "2,5°"),
 ])
 def test_localise_whole_cells_only(cell, en, ru):
     assert localise(cell, lang="en") == en

@@ -171,14 +171,14 @@ def fmt_spec(x, spec: str = "{:.4g}", *, lang: str | None = None) -> str:
 
 
 # a cell that is a number as Python writes it: -12043.5, 1,200.00, 11934.0, 12 043 (not 1a–4a, §6.1, 2.5e-05)
-_NUMBER = re.compile(r"^(?P<scale>1:)?(?P<sign>[-−])?(?P<int>\d{1,3}(?:[, \u202f\u2009]\d{3})+|\d+)(?:\.(?P<frac>\d+))?$")
+_NUMBER = re.compile(r"^(?P<scale>1:)?(?P<sign>[-−])?(?P<int>\d{1,3}(?:[, \u202f\u2009]\d{3})+|\d+)(?:\.(?P<frac>\d+))?(?P<suffix>\s?[%°″‰])?$")
 
 
 def localise(text: str, *, lang: str | None = None) -> str:
     """A table cell that is a plain number, rewritten by the book's rule (``-0.00`` → ``0.00``, ``1,200.00`` →
     ``1200.00``, ``12043`` → ``12 043``, hyphen → minus, the decimal comma in Russian); any other text unchanged.
 
-    A scale ``1:12000`` → ``1:12 000``.  Only a whole cell is a number: ``1a–4a``, ``(6.1)`` and text with words stay as they are.
+    A scale ``1:12000`` → ``1:12 000``; a sign after the number stays (``-1.80 %`` → ``−1.80 %``).  Only a whole cell is a number: ``1a–4a``, ``(6.1)`` and text with words stay as they are.
     """
     if not isinstance(text, str) or not text:
         return text
@@ -188,4 +188,5 @@ def localise(text: str, *, lang: str | None = None) -> str:
     int_part = re.sub(r"[, \u202f\u2009]", "", m.group("int"))
     if len(int_part) > 1 and int_part.startswith("0"):
         return text  # 007: a code, not a number
-    return (m.group("scale") or "") + _assemble(bool(m.group("sign")), int_part, m.group("frac") or "", _lang(lang))
+    return ((m.group("scale") or "") + _assemble(bool(m.group("sign")), int_part, m.group("frac") or "", _lang(lang))
+            + (m.group("suffix") or ""))

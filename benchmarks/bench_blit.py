@@ -1,4 +1,4 @@
-"""Kernel side of a slider move with and without blitting (LiveDemo.animated, plots.Blitter), same run.
+"""Kernel side of a slider move with and without blitting (LiveDemo.animated, blit.Blitter), same run.
 
     python benchmarks/run.py blit
 

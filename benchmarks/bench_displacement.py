@@ -98,7 +98,7 @@ def _lab(quick: bool) -> dict:
 
     from aerophoto.demos.measure import photo_tool, plan_tool
     from aerophoto.site import get_site
-    from aerophoto.tasks import displacement_lab as lab
+    from aerophoto.labs import displacement as lab
 
     t0 = time.perf_counter()
     get_site()

@@ -13,7 +13,7 @@ def run(quick: bool = False) -> dict:
     import matplotlib.pyplot as plt
 
     from aerophoto import flight
-    from aerophoto.guide import s02
+    from aerophoto import guide
     from aerophoto.demos.flight_plan import FlightPlanDemo
     from aerophoto.variants import variant_for_index
 
@@ -22,7 +22,7 @@ def run(quick: bool = False) -> dict:
     out = {
         "plan_variant00": measure(lambda: flight.plan(v0), n),
         "plan_and_layout_variant99": measure(lambda: flight.layout(flight.plan(v99)), n),
-        "audit": measure(s02.worked_example, max(5, n // 10)),
+        "audit": measure(guide.ch01.worked_example, max(5, n // 10)),
     }
     # the demo: recompute + move artists (what a slider callback does before the draw), then one draw
     cases = {

@@ -50,7 +50,7 @@ def _kernel_start(n: int) -> dict:
     from nbclient import NotebookClient
 
     from aerophoto import nbtools
-    from aerophoto.course.execute import run_sandboxed
+    from aerophoto.course.sandbox_execute import run_sandboxed
 
     nb0 = nbtools.notebook([nbtools.code("x = 1", id="setup")])
     out = {}

@@ -38,7 +38,7 @@ def run(quick: bool = False) -> dict:
     from aerophoto.demos import interpretation as di
     from aerophoto.render import Sun, render
     from aerophoto.site import colour, cover
-    from aerophoto.tasks import ch08
+    from aerophoto.labs import ch08
     from aerophoto.variants import variant_for_index
 
     out = {}
@@ -94,7 +94,7 @@ def run(quick: bool = False) -> dict:
 
     t0 = time.perf_counter()
     for i in range(100 if not quick else 10):
-        ch08._truth(i)
+        ch08.truth(i)
     out["lab_answer_keys_100_s"] = round(time.perf_counter() - t0, 2)
     t0 = time.perf_counter()
     ch08.lab_photo(variant_for_index(57))

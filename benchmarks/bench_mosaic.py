@@ -111,7 +111,8 @@ def _own_sheet(quick: bool) -> dict:
 
     from aerophoto import mosaic as mo
     from aerophoto.demos import fotoschema as F
-    from aerophoto.tasks import _own, ch05
+    from aerophoto.labs import ch05
+    from aerophoto.labs import own as _own
     from aerophoto.variants import variant_for_index
 
     out = {}
@@ -119,7 +120,7 @@ def _own_sheet(quick: bool) -> dict:
 
     def uncached_fotoschema(v):
         ch05._own_fotoschema.cache_clear()
-        _own._own_strip.cache_clear()
+        _own.own_strip_of.cache_clear()
         return ch05.own_fotoschema(v)
 
     out["own_fotoschema_v99"] = measure(lambda: uncached_fotoschema(v99), 2 if quick else 5, warmup=1)
@@ -127,7 +128,7 @@ def _own_sheet(quick: bool) -> dict:
 
     def all_readings():
         ch05._own_fotoschema.cache_clear()
-        _own._own_strip.cache_clear()
+        _own.own_strip_of.cache_clear()
         ch05._seam_readings.cache_clear()
         ch05._scale_readings.cache_clear()
         for i in range(100):

@@ -127,7 +127,7 @@ def _run(quick: bool) -> dict:
         samples.append(time.perf_counter() - t0)
     out["one_resection"] = summarize(samples)
     from aerophoto.render import render
-    from aerophoto.tasks import ch11
+    from aerophoto.labs import ch11
 
     lab = ch11.example_rectification_lab(False)
     img = render(dr._site(True), lab.camera, lab.pose, 512).image

@@ -50,7 +50,7 @@ def _run(quick: bool) -> dict:
     from aerophoto.demos.spectral_explorer import SpectralExplorerDemo
     from aerophoto.site import get_site
     from aerophoto.site import soils
-    from aerophoto.tasks import ch13
+    from aerophoto.labs import ch13
     from aerophoto.variants import variant_for_index
 
     site = get_site()

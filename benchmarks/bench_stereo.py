@@ -28,7 +28,7 @@ def run(quick: bool = False) -> dict:
     from aerophoto import plots
     from aerophoto.demos import stereo as ds
     from aerophoto.site import get_site
-    from aerophoto.tasks import ch07
+    from aerophoto.labs import ch07
     from aerophoto.variants import variant_for_index
 
     out = {}

@@ -16,8 +16,8 @@ Measured (milliseconds, median and p95):
 * ``demo_kernel_update_largest``: the same at the largest variant's camera and scale (f = 1090 mm,
   1:21 900);
 * ``lab_strip_all_variants``: every student's strip of chapters 06 and 12 built from scratch — flown,
-  pricked, laid, reduced and read (:func:`aerophoto.tasks.ch06.strip_readings`) — for all 100 variants;
-* ``grade_lab_task``: the trusted grading of task 06.2 (``checks.grade_task``) on a right answer (the
+  pricked, laid, reduced and read (:func:`aerophoto.labs.ch06.strip_readings`) — for all 100 variants;
+* ``grade_lab_task``: the trusted grading of task 06.2 (``course.score.grade_task``) on a right answer (the
   student's strip is built on its first use and then reused), and ``grade_lab_task_wrong`` on a wrong one,
   which asks for every other variant's answers to recognise another variant's.
 
@@ -88,25 +88,26 @@ def run(quick: bool = False) -> dict:
     out["design"] = measure(design, max(8, n // 4))
     out["accumulation_study"] = measure(lambda: T.accumulation_study(n_bases=(2, 4, 6, 8), seeds=range(20)),
                                         2 if quick else 5, warmup=1)
-    from aerophoto import checks, tasks
+    from aerophoto import tasks
+    from aerophoto.course import score
+    from aerophoto.labs import ch06
+    from aerophoto.labs import own as _own
     from aerophoto.variants import variant_for_index
-
-    from aerophoto.tasks import _own, ch06
 
     variants = [variant_for_index(i) for i in range(100)]
 
     def all_strips():
-        for cache in (ch06._lab_parts, ch06._readings, _own._own_strip):
+        for cache in (ch06._lab_parts, ch06.shared_readings, _own.own_strip_of):
             cache.cache_clear()
         for v in variants:
             ch06.strip_readings(v)
 
     out["lab_strip_all_variants"] = measure(all_strips, 1, warmup=0)
     right = {v.i: tasks.answers("task-06-2", v) for v in variants[:20]}
-    out["grade_lab_task"] = measure(lambda i: checks.grade_task("task-06-2", variants[i], right[i]),
+    out["grade_lab_task"] = measure(lambda i: score.grade_task("task-06-2", variants[i], right[i]),
                                     max(5, n // 4), args_for=lambda i: (i % 20,))
     out["grade_lab_task_wrong"] = measure(
-        lambda i: checks.grade_task("task-06-2", variants[i], {**right[i], "k_bases": [k + 0.01 for k in right[i]["k_bases"]]}),
+        lambda i: score.grade_task("task-06-2", variants[i], {**right[i], "k_bases": [k + 0.01 for k in right[i]["k_bases"]]}),
         2 if quick else 5, args_for=lambda i: (i % 20,), warmup=0)
     out["target"] = {"demo_kernel_update_p95_ms": 50.0,
                      "met": out["demo_kernel_update"]["p95_ms"] <= 50.0}

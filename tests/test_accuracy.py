@@ -182,15 +182,15 @@ def test_block_precision_bad_input(block3):
 
 # ----------------------------------------------------------------------------------------------- article 001's audit
 def test_article_001_audit_names_the_two_numbers_that_do_not_follow():
-    a = guide.a001.examples()
+    a = guide.ch14.examples()
     bad = a.discrepancies
     assert len(bad) == 2
     assert {p.quantity for p in bad} == {"m_D as √(m_X² + m_Y²) of the printed m_X, m_Y, mm",
                                          "bases between plan control n"}
     assert all(p.reason for p in bad)
     assert all(not p.reason for p in a.values if p.follows)
-    assert "n³" in guide.a001.RECONSTRUCTION and "(10.21)" in guide.a001.RECONSTRUCTION
-    assert len(guide.a001.discrepancies()) == 2
+    assert "n³" in guide.ch14.RECONSTRUCTION and "(10.21)" in guide.ch14.RECONSTRUCTION
+    assert len(guide.ch14.discrepancies()) == 2
 
 
 # ----------------------------------------------------------------------------------------------- the live demo

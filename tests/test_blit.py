@@ -1,10 +1,10 @@
-"""Blitting in the live demos (LiveDemo.animated, plots.Blitter): a blitted move paints what a full draw paints.
+"""Blitting in the live demos (LiveDemo.animated, blit.Blitter): a blitted move paints what a full draw paints.
 
 For each converted demo: after ``demo.set(...)`` (drawn by blitting: the cached background, then only the
 animated artists) the canvas buffer is compared with a forced full draw of the same state (``demo.draw(force=True)``,
 which goes through the same draw-event path) and with a full draw in which nothing is animated at all (the
 picture the demo showed before blitting).  The two full draws differ only where a whole animated Axes overlaps a
-later Axes' labels — those labels are animated too (plots._overlapping_axes_labels) — so they must be equal;
+later Axes' labels — those labels are animated too (blit._overlapping_axes_labels) — so they must be equal;
 ``ALLOWED`` lists the few pixels that are not, per demo, with the reason.
 """
 
@@ -13,7 +13,7 @@ import importlib
 import numpy as np
 import pytest
 
-from aerophoto import plots
+from aerophoto import blit, plots
 
 pytestmark = pytest.mark.usefixtures("plot_style")
 
@@ -86,7 +86,7 @@ def _unanimated(demo):
     demo.blitter.disconnect()
     demo.fig.canvas.draw()
     ref = _buffer(demo.fig)
-    demo.blitter = plots.Blitter(demo.fig, demo.animated)
+    demo.blitter = blit.Blitter(demo.fig, demo.animated)
     demo.fig.canvas.draw()
     return ref
 
@@ -194,7 +194,7 @@ def test_animated_artists_must_belong_to_the_figure():
     other, ax2 = plt.subplots()
     (line,) = ax2.plot([0, 1])
     with pytest.raises(ValueError, match="animated"):
-        plots.Blitter(fig, [line])
+        blit.Blitter(fig, [line])
 
 
 def test_transformer_preview_and_full_resolution_both_blit():

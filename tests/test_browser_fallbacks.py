@@ -2,8 +2,8 @@
 
 Each of the three functions that use them — :func:`aerophoto.stereo.match_points`
 (``skimage.feature.match_template``), :func:`aerophoto.projective.warp_raster`
-(``skimage.transform.warp``) and :func:`aerophoto.guide.s11.projected` /
-:func:`~aerophoto.guide.s11.geographic` (pyproj) — keeps the library when it
+(``skimage.transform.warp``) and :func:`aerophoto.guide.ch10.projected` /
+:func:`~aerophoto.guide.ch10.geographic` (pyproj) — keeps the library when it
 imports and falls back to numpy/scipy when it does not.  The fallback is forced
 here the way the browser meets it: the library's entries in ``sys.modules`` are
 set to None, so its import raises ImportError (``monkeypatch`` restores them).
@@ -30,7 +30,7 @@ pyproj = pytest.importorskip("pyproj")
 
 from aerophoto import projective as pj  # noqa: E402
 from aerophoto import stereo as st  # noqa: E402
-from aerophoto.guide import s11  # noqa: E402
+from aerophoto import guide  # noqa: E402
 from aerophoto.projective import images  # noqa: E402
 
 
@@ -45,7 +45,7 @@ def _block(monkeypatch, *names):
 @pytest.fixture(scope="module")
 def pair():
     """The chapter 7 example pair, normalised, at 512 pixels (the height model's size; cached by ch07)."""
-    from aerophoto.tasks import ch07
+    from aerophoto.labs import ch07
 
     lab = ch07.example_lab()
     return lab, ch07.lab_images(lab, 512)
@@ -127,7 +127,7 @@ def test_stereo_match_points_fallback_on_the_known_disparity(monkeypatch):
 @pytest.fixture(scope="module")
 def rectification(pair):
     """The left photo of the pair and its rectification onto a 1:10 000 base (chapter 11's lab for that photo)."""
-    from aerophoto.tasks.ch11 import rectification_lab_for
+    from aerophoto.labs.ch11 import rectification_lab_for
 
     lab, images = pair
     photo = images.photos[0]
@@ -194,35 +194,35 @@ def test_projective_warp_fallback_on_the_tests_cases(monkeypatch):
 
 # --------------------------------------------------------------------------- guide §11: Gauss–Krüger zone 5
 def test_s11_transformers_are_chosen_at_each_call(monkeypatch):
-    fwd, inv = s11._transformers()
+    fwd, inv = guide.ch10._transformers()
     assert isinstance(fwd, pyproj.Transformer) and isinstance(inv, pyproj.Transformer)
     with monkeypatch.context() as m:
         _block(m, "pyproj")
-        fwd, inv = s11._transformers()
-        assert isinstance(fwd, s11._TransverseMercator) and isinstance(inv, s11._TransverseMercator)
-    assert isinstance(s11._transformers()[0], pyproj.Transformer)  # pyproj again once it imports
-    assert isinstance(s11._transformers(prefer_library=False)[0], s11._TransverseMercator)
+        fwd, inv = guide.ch10._transformers()
+        assert isinstance(fwd, guide.ch10._TransverseMercator) and isinstance(inv, guide.ch10._TransverseMercator)
+    assert isinstance(guide.ch10._transformers()[0], pyproj.Transformer)  # pyproj again once it imports
+    assert isinstance(guide.ch10._transformers(prefer_library=False)[0], guide.ch10._TransverseMercator)
 
 
 def test_s11_fallback_on_the_guides_points(monkeypatch):
-    df = s11.known_points()
+    df = guide.ch10.known_points()
     lat, lon = df["φ, °"].to_numpy(), df["λ, °"].to_numpy()
     X, Y = df["X, m"].to_numpy(), df["Y, m"].to_numpy()
-    XY_lib, back_lib = s11.projected(lat, lon), s11.geographic(X, Y)
-    one_lib = s11.projected(lat[0], lon[0])
-    table_lib = s11.coordinate_table().table
+    XY_lib, back_lib = guide.ch10.projected(lat, lon), guide.ch10.geographic(X, Y)
+    one_lib = guide.ch10.projected(lat[0], lon[0])
+    table_lib = guide.ch10.coordinate_table().table
     with monkeypatch.context() as m:
         _block(m, "pyproj")
-        XY_fb, back_fb = s11.projected(lat, lon), s11.geographic(X, Y)
-        one_fb = s11.projected(lat[0], lon[0])
-        table_fb = s11.coordinate_table.__wrapped__().table  # uncached: computed with the fallback
-        summary_fb = s11.shift_summary.__wrapped__()
+        XY_fb, back_fb = guide.ch10.projected(lat, lon), guide.ch10.geographic(X, Y)
+        one_fb = guide.ch10.projected(lat[0], lon[0])
+        table_fb = guide.ch10.coordinate_table.__wrapped__().table  # uncached: computed with the fallback
+        summary_fb = guide.ch10.shift_summary.__wrapped__()
     assert XY_fb.shape == XY_lib.shape == (4, 2) and one_fb.shape == one_lib.shape == (2,)
     assert np.max(np.abs(XY_fb - XY_lib)) < 1e-3  # m
     assert np.max(np.abs(one_fb - one_lib)) < 1e-3
     assert np.max(np.abs(back_fb - back_lib)) < 1e-9  # degrees
     assert table_fb.equals(table_lib)  # the audit's table, rounded to metres and seconds, is the same
-    summary_lib = s11.shift_summary()
+    summary_lib = guide.ch10.shift_summary()
     for key in ("mean_dX_m", "mean_dY_m", "sd_dX_m", "sd_dY_m", "max_relative_m"):
         assert summary_fb[key] == pytest.approx(summary_lib[key], abs=1e-3)
 
@@ -230,18 +230,18 @@ def test_s11_fallback_on_the_guides_points(monkeypatch):
 def test_s11_fallback_over_the_zone(monkeypatch):
     # the zone's 6° strip (24…30° E) and half a degree beyond, from the equator to 84° N, and the south too
     lon, lat = np.meshgrid(np.linspace(23.5, 30.5, 29), np.r_[np.linspace(-80.0, 84.0, 83), 54.85])
-    XY_lib = s11.projected(lat, lon)
-    back_lib = s11.geographic(XY_lib[..., 0], XY_lib[..., 1])
+    XY_lib = guide.ch10.projected(lat, lon)
+    back_lib = guide.ch10.geographic(XY_lib[..., 0], XY_lib[..., 1])
     with monkeypatch.context() as m:
         _block(m, "pyproj")
-        XY_fb = s11.projected(lat, lon)
-        back_fb = s11.geographic(XY_lib[..., 0], XY_lib[..., 1])
-        round_trip = s11.geographic(XY_fb[..., 0], XY_fb[..., 1])
+        XY_fb = guide.ch10.projected(lat, lon)
+        back_fb = guide.ch10.geographic(XY_lib[..., 0], XY_lib[..., 1])
+        round_trip = guide.ch10.geographic(XY_fb[..., 0], XY_fb[..., 1])
     assert np.max(np.abs(XY_fb - XY_lib)) < 1e-3  # m
     assert np.max(np.abs(back_fb - back_lib)) < 1e-9  # degrees
     assert np.max(np.abs(round_trip - np.stack([lat, lon], axis=-1))) < 1e-9
     # the zone's own numbers: the central meridian at Y = 5 500 000 m, the equator at X = 0
-    tm = s11._TransverseMercator()
+    tm = guide.ch10._TransverseMercator()
     E, N = tm.transform(27.0, 0.0)
     assert float(E) == pytest.approx(5_500_000.0, abs=1e-9) and float(N) == pytest.approx(0.0, abs=1e-9)
 
@@ -255,15 +255,15 @@ def test_stereo_projective_s11_run_in_a_process_without_skimage_and_pyproj():
             sys.modules[name] = None
         import numpy as np
         from aerophoto import projective as pj, stereo as st
-        from aerophoto.guide import s11
+        from aerophoto import guide
         rng = np.random.default_rng(1)
         L = rng.random((40, 80)).astype(np.float32)
         d, peak = st.match_points(L, np.roll(L, -3, axis=1), [[20, 40]], half_window=5, d_min=0, d_max=8)
         assert abs(d[0] - 3) < 0.05 and peak[0] > 0.999, (d, peak)
         out = pj.warp_photo(L[:, :40].astype(float), np.eye(3), (-90, 90, -90, 90), 4.5)
         assert np.allclose(out.image, L[:, :40]), "identity warp"
-        assert abs(s11.projected(54.0, 27.0)[1] - 5_500_000.0) < 1e-3
-        assert isinstance(s11._transformers()[0], s11._TransverseMercator)
+        assert abs(guide.ch10.projected(54.0, 27.0)[1] - 5_500_000.0) < 1e-3
+        assert isinstance(guide.ch10._transformers()[0], guide.ch10._TransverseMercator)
         assert "skimage.feature" not in sys.modules and "pyproj.transformer" not in sys.modules
         print("ok")
     """)

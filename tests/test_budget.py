@@ -1,4 +1,4 @@
-"""Chapter 17's physics (aerophoto.budget) and the audits of articles 003 and 000 (aerophoto.guide.a003, a000)."""
+"""Chapter 17's physics (aerophoto.budget) and the audits of articles 003 and 000 (aerophoto.guide.ch17, ch16)."""
 
 import math
 
@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from aerophoto import budget as bu
-from aerophoto.guide import a000, a003
+from aerophoto import guide
 
 
 # --------------------------------------------------------------------------- the formulas
@@ -92,10 +92,10 @@ def test_the_budget_reproduces_the_articles_consistent_numbers():
     for case, Mk in zip(bu.ARTICLE_CASES, (10000, 2000)):
         B = bu.budget(**case, transfer_mm=0.35)
         for s in B.stages:
-            printed = float(a003.TABLE4[Mk][s.key])
-            unit = 10 ** -len(a003.TABLE4[Mk][s.key].split(".")[1])
+            printed = float(guide.ch17.TABLE4[Mk][s.key])
+            unit = 10 ** -len(guide.ch17.TABLE4[Mk][s.key].split(".")[1])
             assert abs(s.rms_m - printed) <= 0.6 * unit, (Mk, s.key, s.rms_m, printed)
-        P = a003.TABLE5[Mk]
+        P = guide.ch17.TABLE5[Mk]
         assert abs(B.total_m - float(P["m_D"])) <= 0.006
         assert abs(B.map_rms_mm - float(P["m_d"])) <= 0.006
         assert abs(B.map_mean_mm - float(P["v_d"])) <= 0.006
@@ -154,7 +154,7 @@ def test_what_if_scenarios():
 
 # --------------------------------------------------------------------------- the audits of article 003
 def test_article_003_has_exactly_one_inconsistent_number():
-    audits = a003.audits()
+    audits = guide.ch17.audits()
     assert [a.title.split(".")[0] for a in audits] == ["Table 1", "Table 2", "Table 3", "The numbers in the text",
                                                         "Table 4", "Table 5"]
     bad = [p for a in audits for p in a.values if not p.follows]
@@ -163,27 +163,27 @@ def test_article_003_has_exactly_one_inconsistent_number():
     assert p.where == "formula (9)" and p.printed == 0.35 and p.computed == pytest.approx(0.357143, abs=1e-6)
     assert "0.357" in p.reason and "d/√2" in p.reason
     assert all(p.reason == "" for a in audits for p in a.values if p.follows)
-    d = a003.discrepancies()
+    d = guide.ch17.discrepancies()
     assert len(d) == 1 and d.iloc[0]["source"] == "article 003"
     # every printed value of tables 4 and 5 is checked
-    assert len(a003.table4().values) == 14 and len(a003.table5().values) == 6
-    assert any("0.357" in n for n in a003.table5().notes)
-    assert "1000" in a003.NOTES[0] and "formula (2)" in a003.NOTES[1]
+    assert len(guide.ch17.table4().values) == 14 and len(guide.ch17.table5().values) == 6
+    assert any("0.357" in n for n in guide.ch17.table5().notes)
+    assert "1000" in guide.ch17.NOTES[0] and "formula (2)" in guide.ch17.NOTES[1]
 
 
 # --------------------------------------------------------------------------- the audit of article 000
 def test_article_000_lysenko_reading_and_audit():
-    a = a000.lysenko()
+    a = guide.ch16.lysenko()
     (mz, step) = a.values
     assert not mz.follows and mz.printed == 14.0 and mz.computed == pytest.approx(12.823, abs=1e-3)
     assert "12.8 cm" in mz.reason and "0.0273" in mz.reason
     assert step.follows and step.computed == pytest.approx(31.5)
-    r = a000.lysenko_readings()
+    r = guide.ch16.lysenko_readings()
     assert r.loc[("s·r (the book)", "0.025 mm (the book)"), "m_z, cm"] == pytest.approx(12.823, abs=1e-3)
     assert r.loc[("2r", "0.025 mm (the book)"), "m_z, cm"] == pytest.approx(12.993, abs=1e-3)
     assert r.loc[("s·r (the book)", "0.25 mm (as printed)"), "m_z, cm"] == pytest.approx(128.23, abs=1e-2)
     # 14 cm would need m_p = 0.0273 mm under the book's reading
     assert 0.14 / (450 / 70 * r.loc[("s·r (the book)", "0.025 mm (the book)"), "root"]) == pytest.approx(
         0.0273, abs=1e-4)
-    assert "s·r" in a000.LYSENKO_READING and "0.025 mm" in a000.LYSENKO_READING
-    assert len(a000.discrepancies()) == 1
+    assert "s·r" in guide.ch16.LYSENKO_READING and "0.025 mm" in guide.ch16.LYSENKO_READING
+    assert len(guide.ch16.discrepancies()) == 1

@@ -1,5 +1,5 @@
 """aerophoto.control (guide §11): angles, the resection and its danger circle, the check angle, the control design;
-aerophoto.guide.s11: the §11 coordinate table against Pulkovo 1942."""
+aerophoto.guide.ch10: the §11 coordinate table against Pulkovo 1942."""
 
 import math
 
@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from aerophoto import control as c
 from aerophoto import triangulation as tri
-from aerophoto.guide import s11
+from aerophoto import guide
 
 I, II, III, IV = (np.array(p) for p in ([6066340.0, 5313900.0], [6067000.0, 5313500.0], [6066540.0, 5312500.0],
                                        [6065500.0, 5313100.0]))
@@ -51,7 +51,7 @@ def test_degrees_minutes_seconds():
     assert c.format_dms(10.999999999) == "11°00′00″"  # carried, not 10°59′60″
     assert c.from_dms(24, 33, 0) == pytest.approx(24.55)
     assert c.dms(c.from_dms(54, 50, 45))[:2] == (54, 50)
-    assert s11.parse_dms("54°51′15′") == pytest.approx(c.from_dms(54, 51, 15))  # OCR's ′ for ″
+    assert guide.ch10.parse_dms("54°51′15′") == pytest.approx(c.from_dms(54, 51, 15))  # OCR's ′ for ″
     with pytest.raises(ValueError, match="m = 60"):
         c.from_dms(1, 60, 0)
 
@@ -208,18 +208,18 @@ def test_marking_rules():
 
 # --------------------------------------------------------------------------- the guide's §11 table
 def test_the_projection_is_pulkovo_1942_zone_5_and_round_trips():
-    XY = s11.projected(54.85, 24.55)
+    XY = guide.ch10.projected(54.85, 24.55)
     assert XY[1] == pytest.approx(5342600, abs=300) and 5_000_000 < XY[1] < 6_000_000  # zone 5 prefix
-    np.testing.assert_allclose(s11.geographic(*XY), [54.85, 24.55], atol=1e-9)
+    np.testing.assert_allclose(guide.ch10.geographic(*XY), [54.85, 24.55], atol=1e-9)
     # on the central meridian 27° E the easting is the false easting 5 500 000 m
-    assert s11.projected(54.0, 27.0)[1] == pytest.approx(5_500_000.0, abs=1e-3)
+    assert guide.ch10.projected(54.0, 27.0)[1] == pytest.approx(5_500_000.0, abs=1e-3)
 
 
 def test_the_tables_xy_are_not_the_projection_of_its_phi_lambda():
-    a = s11.coordinate_table()
+    a = guide.ch10.coordinate_table()
     assert len(a.values) == 16 and len(a.discrepancies) == 16
     assert all(p.reason for p in a.discrepancies)
-    s = s11.shift_summary()
+    s = guide.ch10.shift_summary()
     assert s["mean_dX_m"] == pytest.approx(-17377, abs=5) and s["mean_dY_m"] == pytest.approx(-28758, abs=5)
     assert s["sd_dX_m"] < 60 and s["sd_dY_m"] < 90  # a nearly common shift
     assert 100 < s["max_relative_m"] < 130  # the relative positions disagree too

@@ -18,8 +18,8 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from aerophoto import checks, course, nbtools
-from aerophoto.course import Flag, graded_tasks, inspect_submission, parse_record_book, scan_submissions
+from aerophoto import course, nbtools
+from aerophoto.course import Flag, graded_tasks, inspect_submission, parse_record_book, scan_submissions, wire
 from aerophoto.course.common import ensure_path, read_roster, template_path, write_atomic
 from aerophoto.course.flags import answer_code, code_flags, package_answer_functions, same_code_groups
 from aerophoto.course.trusted import grade_executed
@@ -569,10 +569,10 @@ def _executed(release, values, *, variant_i=57, passed=True, extra=None, evidenc
     """A stand-in for an executed notebook: the check cell's record(s) and nbgrader's pass/fail."""
     nb = copy.deepcopy(release)
     chk = nbtools.find_cell(nb, "task-00-1-check")[1]
-    rec = checks.encode_answers("task-00-1", values, variant_for_index(variant_i))
+    rec = wire.encode_answers("task-00-1", values, variant_for_index(variant_i))
     rec["evidence"] = evidence or {"env": {"AEROPHOTO_RECORD_BOOK": "19-0457", "AEROPHOTO_GRADING": "1",
                                            "AEROPHOTO_HOME": "/sbx/.aerophoto"}}
-    outs = [nbformat.v4.new_output("display_data", data={checks.ANSWERS_MIME: rec})] * records
+    outs = [nbformat.v4.new_output("display_data", data={wire.ANSWERS_MIME: rec})] * records
     if not passed:
         outs = outs + [nbformat.v4.new_output("error", ename="WrongAnswer", evalue="H_m: not right", traceback=[])]
     chk.outputs = list(outs) + (extra or [])

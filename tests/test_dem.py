@@ -8,7 +8,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from aerophoto import dem
-from aerophoto.guide import a000
+from aerophoto import guide
 from aerophoto.site import get_site
 
 HILLS = dem.Sheet(2000.0, 3000.0)
@@ -48,7 +48,7 @@ def hill_lines(site):
 
 # --------------------------------------------------------------------------- Lysenko's formula
 def test_lysenko_with_the_articles_inputs():
-    I = a000.INPUTS
+    I = guide.ch16.INPUTS
     root = dem.lysenko_ratio(I["n"], I["m"], I["s"], I["r"])
     assert root == pytest.approx(math.sqrt(3 * (2 * 70 * 3 + 16 * 70 - 3 * 38) / (2 * 16 * 70 * 3)))
     assert root == pytest.approx(0.797877, abs=1e-6)

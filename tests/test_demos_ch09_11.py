@@ -209,7 +209,7 @@ def test_transformer_model_never_fails_in_range(values):
 
 
 def test_rectified_figure_and_residual_field():
-    from aerophoto.tasks import ch11
+    from aerophoto.labs import ch11
 
     lab = ch11.example_rectification_lab(False)
     f = dr.residual_field(lab, relief=False)

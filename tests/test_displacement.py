@@ -1,7 +1,7 @@
 """Relief and tilt displacement, scales of bases, and the guide's tables 2–7 (guide §4–§5).
 
 The physics (aerophoto.displacement), the demo terrain (aerophoto.terrain), the explorer's exact field
-(aerophoto.demos.displacement), the audits of tables 2–7 (aerophoto.guide.s04, s05) and the whole procedure
+(aerophoto.demos.displacement), the audits of tables 2–7 (aerophoto.guide.ch03, ch04) and the whole procedure
 of §4 and §5 on a set of measurements (relief_work, tilt_work).  The lab sheets and graded tasks of chapters
 03–04 are tested in test_displacement_lab.py and test_displacement_tasks.py."""
 
@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from aerophoto import displacement as d
 from aerophoto import geometry as g
 from aerophoto.demos.displacement import displacement_field
-from aerophoto.guide import s04, s05
+from aerophoto import guide
 from aerophoto.terrain import AnalyticHills
 
 S3 = math.sin(math.radians(3.0))
@@ -323,11 +323,11 @@ def test_analytic_hills():
 # --------------------------------------------------------------------------- the guide's tables 2–7
 def _audit(n: int):
     """The audit of the guide's table n: §4 (tables 2–4) or §5 (tables 5–7)."""
-    return (s04 if n <= 4 else s05).table(n)
+    return (guide.ch03 if n <= 4 else guide.ch04).table(n)
 
 
 #: the values whose printed number does not follow from the printed inputs (table, where, quantity; see the
-#: REASONS of aerophoto.guide.s04 and s05).  Under the one rule of aerophoto.guide.audit (0.6 of a unit of the
+#: REASONS of aerophoto.guide.ch03 and ch04).  Under the one rule of aerophoto.guide.audit (0.6 of a unit of the
 #: last printed digit) table 6's cos φ of points 1 and 6 — truncated, not rounded — join the list; the old module
 #: allowed a whole unit in that column.
 EXPECTED_DISCREPANCIES = {
@@ -357,18 +357,18 @@ def test_exactly_the_listed_cells_do_not_follow():
                 assert abs(p.printed - p.computed) > p.tolerance
                 assert p.reason and "does not follow from its printed inputs" not in p.reason  # explained
     assert flagged == EXPECTED_DISCREPANCIES
-    reasons = {(n, *key) for sec in (s04, s05) for n, table in sec.REASONS.items() for key in table}
+    reasons = {(n, *key) for sec in (guide.ch03, guide.ch04) for n, table in sec.REASONS.items() for key in table}
     assert reasons == EXPECTED_DISCREPANCIES  # every reason written is for a flagged cell
-    df4, df5 = s04.discrepancies(), s05.discrepancies()
+    df4, df5 = guide.ch03.discrepancies(), guide.ch04.discrepancies()
     assert len(df4) + len(df5) == len(EXPECTED_DISCREPANCIES)
     assert set(df4["table"]) == {"Table 2", "Table 4"} and set(df5["table"]) == {"Table 5", "Table 6", "Table 7"}
     assert set(df4.columns) == {"source", "table", "where", "quantity", "printed", "computed", "reason"}
 
 
 def test_table_3_is_right():
-    t = s04.table(3)
+    t = guide.ch03.table(3)
     assert t.discrepancies == ()
-    assert t.result.H_m == pytest.approx(s04.table(2).result.m_mean * 0.1)  # H = m_cp·f ≈ 1500 m
+    assert t.result.H_m == pytest.approx(guide.ch03.table(2).result.m_mean * 0.1)  # H = m_cp·f ≈ 1500 m
     assert t.result.Z_mean_m == pytest.approx(160.125)
     np.testing.assert_allclose(t.result.delta_mm, [-0.969, -1.151, -1.033, 1.100, 0.870, 1.138], atol=5e-4)
     # with the flight's H = 1200 m (§2) the printed column would not follow
@@ -377,34 +377,34 @@ def test_table_3_is_right():
 
 
 def test_table_2_and_4_numbers():
-    t2 = s04.table(2).result
+    t2 = guide.ch03.table(2).result
     assert t2.m_i[1] == pytest.approx(15202.02, abs=0.01)  # printed 15220
-    t4 = s04.table(4).result
+    t4 = guide.ch03.table(4).result
     assert t4.m_i[0] == pytest.approx(14973.26, abs=0.01)  # printed 15010
     assert t4.m_mean == pytest.approx(14994.75, abs=0.01)
     assert t4.ratio_N[0] == pytest.approx(888.4, abs=0.1)
     # the corrected lengths of table 4 do follow from tables 2 and 3 (radial scaling about n)
-    lengths = [p for p in s04.table(4).values if p.quantity == "l_сн"]
+    lengths = [p for p in guide.ch03.table(4).values if p.quantity == "l_сн"]
     assert len(lengths) == 4 and all(p.follows for p in lengths)
 
 
 def test_table_5_and_7_numbers():
-    t5 = s05.table(5).result
+    t5 = guide.ch04.table(5).result
     assert t5.m_i[1] == pytest.approx(12907.80, abs=0.01)
     assert t5.m_i[5] == pytest.approx(11588.45, abs=0.01)
     assert 32.1e4 / 27.3 == pytest.approx(11758, abs=0.5)  # the printed m_i fits l_сн = 27.3 mm
-    t7 = s05.table(7).result
+    t7 = guide.ch04.table(7).result
     assert [round(x) for x in t7.m_i] == [12698, 12595, 12492, 12571, 12393, 12490]
     assert round(t7.m_mean) == 12540
     np.testing.assert_allclose(t7.dm, [106.62, -8.46, -98.16], atol=0.01)
 
 
 def test_table_6_and_its_best_reading():
-    t = s05.table(6)
+    t = guide.ch04.table(6)
     res = t.result
     np.testing.assert_allclose(res.delta_approx_mm, -(np.array(res.r_c_mm) ** 2) * res.cos_phi / 100 * S3)
     assert res.n_applied == 7  # all but 3 and 4
-    fit = s05.table6_fit()
+    fit = guide.ch04.table6_fit()
     assert fit.k_lo < fit.k_lsq < fit.k_hi
     assert not (fit.k_lo <= S3 / 100 <= fit.k_hi)  # the stated f = 100 mm, α = 3° does not reproduce it
     lo, hi = fit.f_range_mm
@@ -436,23 +436,23 @@ def test_guide_table_objects():
         assert all(isinstance(x, str) for x in t.table.to_numpy().ravel())
         comp = t.comparison(only_discrepancies=False)
         assert len(comp) == len(t.values)
-    assert s04.audits() == tuple(s04.table(n) for n in (2, 3, 4))
-    assert s05.audits() == tuple(s05.table(n) for n in (5, 6, 7))
-    assert "Окончание табл. 3" in " ".join(s05.table(6).notes)
-    for section, bad in ((s04, 5), (s04, 1), (s05, 4), (s05, 8)):
+    assert guide.ch03.audits() == tuple(guide.ch03.table(n) for n in (2, 3, 4))
+    assert guide.ch04.audits() == tuple(guide.ch04.table(n) for n in (5, 6, 7))
+    assert "Окончание табл. 3" in " ".join(guide.ch04.table(6).notes)
+    for section, bad in ((guide.ch03, 5), (guide.ch03, 1), (guide.ch04, 4), (guide.ch04, 8)):
         with pytest.raises(ValueError, match="number"):
             section.table(bad)
 
 
 def test_guide_texts_as_printed():
     # printed values shown as the guide prints them, computed ones with a digit more
-    p = next(p for p in s04.table(2).values if (p.where, p.quantity) == ("I", "Δm_i"))
+    p = next(p for p in guide.ch03.table(2).values if (p.where, p.quantity) == ("I", "Δm_i"))
     assert (p.shown_printed(), p.shown_computed()) == ("-210", "+211.2")
-    p = next(p for p in s04.table(2).values if (p.where, p.quantity) == ("I", "Δm_i/m_cp"))
+    p = next(p for p in guide.ch03.table(2).values if (p.where, p.quantity) == ("I", "Δm_i/m_cp"))
     assert (p.shown_printed(), p.shown_computed()) == ("1/72", "1/71.0")
-    p = next(p for p in s05.table(7).values if (p.where, p.quantity) == ("III-6", "l_сн"))
+    p = next(p for p in guide.ch04.table(7).values if (p.where, p.quantity) == ("III-6", "l_сн"))
     assert p.bounds is not None and p.shown_computed() == "26.51 … 28.89"
-    assert s04.ratio_unit(72) == 1.0 and s04.ratio_unit(750) == 10.0 and s04.ratio_unit(1400) == 100.0
+    assert guide.ch03.ratio_unit(72) == 1.0 and guide.ch03.ratio_unit(750) == 10.0 and guide.ch03.ratio_unit(1400) == 100.0
 
 
 # --------------------------------------------------------------------------- the whole procedure (relief_work, tilt_work)

@@ -1,4 +1,4 @@
-"""The students' lab sheets of chapters 03–04 (aerophoto.tasks.displacement_lab): the guide's layout, the truth.
+"""The students' lab sheets of chapters 03–04 (aerophoto.labs.displacement): the guide's layout, the truth.
 
 Every variant 00–99 gets a sheet that keeps the guide's rules (zones, bases of 20–30 mm, points on open ground,
 inside the frame), whose reference corrections stay clear of the 0.2 mm threshold, and whose truth is the camera
@@ -12,7 +12,7 @@ import pytest
 
 from aerophoto import geometry as g
 from aerophoto.site import COVER_CODES, get_site
-from aerophoto.tasks import displacement_lab as lab
+from aerophoto.labs import displacement as lab
 from aerophoto.variants import variant_for_index
 
 VARIANTS = range(100)

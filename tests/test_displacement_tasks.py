@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 
 from aerophoto import checks, tasks
+from aerophoto.course import score
 from aerophoto import displacement as d
 from aerophoto.tasks import ch03, ch04
-from aerophoto.tasks.displacement_lab import relief_sheet, tilt_sheet
+from aerophoto.labs.displacement import relief_sheet, tilt_sheet
 from aerophoto.variants import variant_for_index
 
 IDS = ("task-03-1", "task-03-2", "task-03-3", "task-04-1", "task-04-2", "task-04-3", "task-04-4")
@@ -60,7 +61,7 @@ def test_the_reference_answers_pass_for_every_variant(task_id):
         v = variant_for_index(i)
         right = task.answers(v)
         assert set(right) == set(task.names)
-        g = checks.grade_task(task_id, v, right)
+        g = score.grade_task(task_id, v, right)
         assert g.passed and g.score == g.points == task.points, (i, g.checks)
         assert any(hidden for *_, hidden in g.checks)  # every task has a hidden check
 
@@ -74,9 +75,9 @@ def test_a_wrong_or_missing_answer_gets_nothing(task_id, i):
     first = task.names[0]
     value = right[first]
     bad = [x * 1.5 + 7.0 for x in value] if isinstance(value, list) else value * 1.5 + 7.0
-    wrong = checks.grade_task(task_id, v, {**right, first: bad})
+    wrong = score.grade_task(task_id, v, {**right, first: bad})
     assert not wrong.visible_ok and wrong.score == 0.0 and first in wrong.first_failure
-    unanswered = checks.grade_task(task_id, v, {})
+    unanswered = score.grade_task(task_id, v, {})
     assert unanswered.score == 0.0 and "no answer yet" in unanswered.first_failure
 
 
@@ -119,7 +120,7 @@ def test_a_careful_students_own_readings_pass_every_task(i):
     rng = np.random.default_rng(1000 + i)
     for _ in range(4):
         for task_id, got in student_answers(v, rng).items():
-            g = checks.grade_task(task_id, v, got)
+            g = score.grade_task(task_id, v, got)
             assert g.passed, (i, task_id, [c for c in g.checks if not c[1]])
 
 
@@ -127,13 +128,13 @@ def test_readings_beyond_the_tolerance_fail_visibly():
     v = variant_for_index(12)
     got = student_answers(v, np.random.default_rng(3))["task-03-1"]
     got["x_mm"] = [x + (0.3 if k == 2 else 0.0) for k, x in enumerate(got["x_mm"])]
-    g = checks.grade_task("task-03-1", v, got)
+    g = score.grade_task("task-03-1", v, got)
     assert not g.visible_ok and "x_mm" in g.first_failure and "2" in g.first_failure
 
 
 # --------------------------------------------------------------------------- hidden checks
 def _hidden_failed(task_id, v, got) -> list:
-    g = checks.grade_task(task_id, v, got)
+    g = score.grade_task(task_id, v, got)
     return [name for name, ok, _, hidden in g.checks if hidden and not ok]
 
 
@@ -186,7 +187,7 @@ def test_hidden_checks_hold_for_every_variant():
         for task_id in IDS:
             task = tasks.get(task_id)
             for h in task.hidden(v, task.answers(v)):
-                assert checks._hidden_ok(h)[0], (task_id, i, h)
+                assert score.hidden_ok(h)[0], (task_id, i, h)
 
 
 # --------------------------------------------------------------------------- what the student sees

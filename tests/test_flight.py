@@ -8,7 +8,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from aerophoto import checks, flight
-from aerophoto.guide import s02
+from aerophoto import guide
 from aerophoto.i18n.numbers import fmt_count
 from aerophoto.tasks import ch01
 from aerophoto.variants import variant, variant_for_index
@@ -91,15 +91,15 @@ def test_table_is_laid_out_like_the_guide():
     assert counts == [22, 31, 682] and all(isinstance(c, int) for c in counts)
 
 
-# --------------------------------------------------------------------------- audit (aerophoto.guide.s02)
+# --------------------------------------------------------------------------- audit (aerophoto.guide.ch01)
 def _lines_that_differ(audit):
     """The guide's symbols of the printed lines with a factor or result that does not follow."""
-    lines = {s02.line_where(line): line.quantity for line in s02.LINES}
+    lines = {guide.ch01.line_where(line): line.quantity for line in guide.ch01.LINES}
     return {lines[p.where] for p in audit.discrepancies if p.where in lines}
 
 
 def test_audit_flags_exactly_the_lines_that_differ():
-    a = s02.worked_example()
+    a = guide.ch01.worked_example()
     assert len(a.table) == 16
     assert _lines_that_differ(a) == {"Bx", "By", "K", "τ"}
     assert set(a.table.index[~a.table["follows"].astype(bool)]) == {"Bx", "By", "K", "τ"}
@@ -107,7 +107,7 @@ def test_audit_flags_exactly_the_lines_that_differ():
     assert factor == {"Bx", "By", "K", "τ"}
     # the printed result does not follow from the printed factors (the one rule: 0.6 of the last digit)
     arithmetic = set()
-    for line in s02.LINES:
+    for line in guide.ch01.LINES:
         give = a.table.loc[line.quantity, "printed factors give"]
         if line.count:
             wrong = np.ceil(give - 1e-9) != line.value
@@ -117,14 +117,14 @@ def test_audit_flags_exactly_the_lines_that_differ():
             arithmetic.add(line.quantity)
     assert arithmetic == {"Bx", "By", "K", "τ"}
     results = {p.where.split(", ")[1] for p in a.discrepancies
-               if not p.quantity.startswith("factor") and p.where != s02.ALLOWANCE_WHERE}
+               if not p.quantity.startswith("factor") and p.where != guide.ch01.ALLOWANCE_WHERE}
     assert results == {"τ"}
     assert all(len(p.reason) > 20 for p in a.discrepancies)
     assert all(p.reason == "" for p in a.values if p.follows)
 
 
 def test_audit_numbers():
-    a = s02.worked_example()
+    a = guide.ch01.worked_example()
     t = a.table
     # what the misprinted factors give
     assert t.loc["Bx", "printed factors give"] == approx(0.864)     # 7.2·12000 cm
@@ -155,8 +155,8 @@ def test_audit_numbers():
 
 
 def test_audit_side_overlap_allowance_shows_both():
-    a = s02.worked_example()
-    coeff = {p.quantity: p for p in a.values if p.where == s02.ALLOWANCE_WHERE}
+    a = guide.ch01.worked_example()
+    coeff = {p.quantity: p for p in a.values if p.where == guide.ch01.ALLOWANCE_WHERE}
     fwd = next(p for q, p in coeff.items() if "Px" in q)
     side = next(p for q, p in coeff.items() if "Py" in q)
     assert (fwd.printed, fwd.computed, fwd.follows) == (40, 40, True)

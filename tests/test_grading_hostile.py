@@ -25,7 +25,7 @@ import nbformat
 import pytest
 
 from aerophoto import course, nbtools
-from aerophoto.course.sandbox import Limits
+from aerophoto.course.limits import Limits
 from aerophoto.course.versions import strip_solutions
 from conftest import NOTEBOOKS
 

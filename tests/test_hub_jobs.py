@@ -15,7 +15,9 @@ import nbformat
 import pytest
 
 from aerophoto import course, nbtools
-from aerophoto.course.sandbox import MAX_JOBS, NOBODY, Box, Limits, sandbox_uid
+from aerophoto.course.bwrap import MAX_JOBS, NOBODY, sandbox_uid
+from aerophoto.course.limits import Limits
+from aerophoto.course.sandbox import Box
 from aerophoto.course.versions import strip_solutions
 from conftest import NOTEBOOKS
 

@@ -193,9 +193,9 @@ def test_switching_the_language_changes_a_checks_message():
 
 
 def test_the_checks_tables_of_hints_are_translated():
-    from aerophoto import checks
+    from aerophoto.course import verdict
 
-    for text in [*checks._UNIT_FACTORS.values(), *checks._ROUNDING.values()]:
+    for text in [*verdict._UNIT_FACTORS.values(), *verdict._ROUNDING.values()]:
         assert i18n.has(text), text
 
 

@@ -224,17 +224,17 @@ def test_greyscale_photos_of_the_main_site_are_unchanged():
 
 # ----------------------------------------------------------------------------------------------- guide §9
 def test_table_10_transcribed():
-    from aerophoto.guide import s09
+    from aerophoto import guide
 
-    tab = s09.table_10()
+    tab = guide.ch08.table_10()
     assert len(tab) == 20
     assert tab["признаки"].str.contains("острым углом").any()
-    assert len(s09.CONDITIONS) == 8
-    objs = {r[5] for r in s09.TABLE_10 if r[5]}
+    assert len(guide.ch08.CONDITIONS) == 8
+    objs = {r[5] for r in guide.ch08.TABLE_10 if r[5]}
     from aerophoto.demos.interpretation import KEY_VIEWS, N_KEY_ROWS
 
     assert objs <= set(KEY_VIEWS)
-    assert N_KEY_ROWS == sum(1 for r in s09.TABLE_10 if r[5])
+    assert N_KEY_ROWS == sum(1 for r in guide.ch08.TABLE_10 if r[5])
 
 
 # ----------------------------------------------------------------------------------------------- the lab
@@ -242,12 +242,13 @@ V = variant("19-0457")
 
 
 def test_lab_inputs_hold_no_answer_key():
-    from aerophoto.tasks import ch08
+    from aerophoto.labs import ch08
+    from aerophoto.tasks.ch08 import NameObjects
 
-    lab = ch08.NameObjects().inputs(V)
+    lab = NameObjects().inputs(V)
     assert set(vars(lab)) == {"bands", "pixel_mm", "m", "marks", "options"}
     assert list(lab.marks.index) == ["1", "2", "3", "4", "5", "6", "P", "Q", "A", "B"]
-    key = ch08.NameObjects().answers(V)
+    key = NameObjects().answers(V)
     assert all(name in ch08.OBJECT_NAMES for name in key.values())
     # nothing of the key in the inputs' text
     text = lab.marks.to_string() + repr(lab).replace(repr(lab.options), "")
@@ -256,51 +257,52 @@ def test_lab_inputs_hold_no_answer_key():
 
 
 def test_lab_grades_correct_full_and_swapped_labels_partly():
-    from aerophoto import checks, tasks
+    from aerophoto import tasks
+    from aerophoto.course import score
 
     t = tasks.get("task-08-1")
     key = t.answers(V)
-    full = checks.grade_task("task-08-1", V, key)
+    full = score.grade_task("task-08-1", V, key)
     assert full.score == t.points == 3
     swapped = dict(key, obj1=key["obj2"], obj2=key["obj1"])
     assert key["obj1"] != key["obj2"]
-    part = checks.grade_task("task-08-1", V, swapped)
+    part = score.grade_task("task-08-1", V, swapped)
     assert part.score == pytest.approx(3 * 4 / 6)
     assert [ok for _, ok, _, _ in part.checks] == [False, False, True, True, True, True]
     # flow and spruce: one of two right → half the points
     t2 = tasks.get("task-08-2")
     k2 = t2.answers(V)
-    assert checks.grade_task("task-08-2", V, k2).score == 2
+    assert score.grade_task("task-08-2", V, k2).score == 2
     wrong = dict(k2, spruce="Q" if k2["spruce"] == "P" else "P")
-    assert checks.grade_task("task-08-2", V, wrong).score == pytest.approx(1.0)
+    assert score.grade_task("task-08-2", V, wrong).score == pytest.approx(1.0)
 
 
 def test_width_by_the_scale_passes_and_a_slip_does_not():
-    from aerophoto import checks, tasks
-    from aerophoto.tasks import ch08
+    from aerophoto.course import score
+    from aerophoto.labs import ch08
 
     for i in range(0, 60, 7):
         v = variant_for_index(i)
         lab = ch08.lab_photo(v) if i == 0 else None
-        tr = ch08._truth(i)
-        su = ch08._setup_for(i)
+        tr = ch08.truth(i)
+        su = ch08.setup_for(i)
         ab_mm = math.hypot(*(np.array(tr["A"]) - np.array(tr["B"])))
         w = ab_mm * su.m / 1000.0
-        g_ = checks.grade_task("task-08-3", v, {"width_m": w})
+        g_ = score.grade_task("task-08-3", v, {"width_m": w})
         assert g_.score == 1, (i, w, tr["width_m"])
         if lab is not None:  # from the marks as the student reads them
             A, B = lab.marks.loc["A"].to_numpy(), lab.marks.loc["B"].to_numpy()
-            assert checks.grade_task("task-08-3", v, {"width_m": math.hypot(*(A - B)) * lab.m / 1000}).score == 1
-    assert checks.grade_task("task-08-3", V, {"width_m": ch08._truth(V.i)["width_m"] * 1.2}).score == 0
+            assert score.grade_task("task-08-3", v, {"width_m": math.hypot(*(A - B)) * lab.m / 1000}).score == 1
+    assert score.grade_task("task-08-3", V, {"width_m": ch08.truth(V.i)["width_m"] * 1.2}).score == 0
 
 
 def test_flow_follows_the_photo_swing():
-    from aerophoto.tasks import ch08
+    from aerophoto.labs import ch08
 
     seen = {}
     for i in range(40):
-        su = ch08._setup_for(i)
-        seen.setdefault(round(su.kappa_deg) % 360, set()).add(ch08._truth(i)["flow"])
+        su = ch08.setup_for(i)
+        seen.setdefault(round(su.kappa_deg) % 360, set()).add(ch08.truth(i)["flow"])
     # κ = 0: east is +x on the photo; κ = 90°: +x points north, so the river (east) flows towards −y
     assert seen[0] == {"towards +x (right)"}
     assert seen[90] == {"towards −y (down)"}

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from aerophoto.demos.measure import MeasureTool, photo_tool, plan_tool
-from aerophoto.tasks.displacement_lab import relief_sheet, tilt_sheet
+from aerophoto.labs.displacement import relief_sheet, tilt_sheet
 
 NAMES = ("I", "1", "2")
 

@@ -270,8 +270,8 @@ def test_scene_input_is_checked():
 
 
 def test_the_guides_section_10_as_data():
-    from aerophoto.guide import s10
+    from aerophoto import guide
 
-    assert s10.methods_table().shape == (7, 2) and len(s10.steps_table()) == 4
-    assert s10.PLAN_SCALE_M == 10000.0
-    assert {k for _, _, k in s10.GRID_METHODS if k} == set(pj.METHODS)
+    assert guide.ch09.methods_table().shape == (7, 2) and len(guide.ch09.steps_table()) == 4
+    assert guide.ch09.PLAN_SCALE_M == 10000.0
+    assert {k for _, _, k in guide.ch09.GRID_METHODS if k} == set(pj.METHODS)

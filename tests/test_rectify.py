@@ -1,5 +1,5 @@
 """aerophoto.rectify (guide §12): table 11, four-point rectification of rendered photos, the photo transformer;
-aerophoto.guide.s12: table 11 audited."""
+aerophoto.guide.ch11: table 11 audited."""
 
 import math
 
@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from aerophoto import geometry as g
 from aerophoto import projective as pj
 from aerophoto import rectify as rf
-from aerophoto.guide import s12
+from aerophoto import guide
 
 
 # --------------------------------------------------------------------------- table 11
@@ -64,7 +64,7 @@ def test_bad_lengths_are_named(l0, li, match):
 
 
 def test_the_audit_of_table_11():
-    a = s12.table_11()
+    a = guide.ch11.table_11()
     bad = a.discrepancies
     assert [(p.where, p.quantity) for p in bad] == [("formula", "t, mm")]
     assert bad[0].printed == pytest.approx(0.4115) and bad[0].computed == pytest.approx(-0.41154, abs=1e-5)
@@ -75,7 +75,7 @@ def test_the_audit_of_table_11():
 
 
 def test_the_list_of_plan_coordinates():
-    df = s12.plan_points()
+    df = guide.ch11.plan_points()
     assert list(df.index) == ["550", "551", "641", "644"]
     assert df.loc["550", "length"] == pytest.approx(185.2, abs=0.05)
     assert df["length"].max() == pytest.approx(855.8, abs=0.05)
@@ -124,7 +124,7 @@ def test_a_rendered_photo_of_flat_ground_rectifies_onto_the_truth_within_a_pixel
 
     from aerophoto.render import render
     from aerophoto.site import get_site
-    from aerophoto.tasks.ch11 import rectification_lab_for
+    from aerophoto.labs.ch11 import rectification_lab_for
 
     site = get_site(relief_m=0)
     cam = g.Camera(108.0)

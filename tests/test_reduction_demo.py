@@ -177,7 +177,7 @@ def test_ends_view_puts_the_enlarged_middle_beside_the_strip():
 
 
 def test_own_strip_figures_show_the_work_not_the_answers():
-    from aerophoto.tasks import ch06
+    from aerophoto.labs import ch06
     from aerophoto.variants import variant
 
     v = variant("19-0457")

@@ -18,7 +18,9 @@ from pathlib import Path
 import pytest
 
 from aerophoto.course import sandbox
-from aerophoto.course.sandbox import NOBODY, Box, Limits, kernel_exit_reason
+from aerophoto.course.bwrap import NOBODY
+from aerophoto.course.limits import Limits
+from aerophoto.course.sandbox import Box, kernel_exit_reason
 from conftest import ROOT
 
 PROBE = r"""

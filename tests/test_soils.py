@@ -1,13 +1,14 @@
 """Chapter 13 (guide §14): the site's soil layer, the soil model's §14 facts, the scale classes, the
-segmentation and the graded lab (aerophoto.site.soils, spectral, guide.s14, soilmap, tasks.ch13)."""
+segmentation and the graded lab (aerophoto.site.soils, spectral, guide.ch13, soilmap, tasks.ch13)."""
 
 import numpy as np
 import pytest
 
-from aerophoto import checks, soilmap, spectral, tasks
-from aerophoto.guide import s14
+from aerophoto import guide, soilmap, spectral, tasks
+from aerophoto.course import score
 from aerophoto.site import get_site
 from aerophoto.site import soils as so
+from aerophoto.labs import ch13 as lab13
 from aerophoto.tasks import ch13
 from aerophoto.variants import variant_for_index
 
@@ -143,7 +144,7 @@ def _dip_depth(theta, at):
     return 1.0 - r[1] / (0.5 * (r[0] + r[2]))
 
 
-@pytest.mark.parametrize("at", s14.WATER_DIPS_UM)
+@pytest.mark.parametrize("at", guide.ch13.WATER_DIPS_UM)
 def test_water_dips_deepen_with_moisture(at):
     d = [_dip_depth(t, at) for t in (0, 10, 20, 30, 40)]
     assert np.all(np.diff(d) > 0)
@@ -192,16 +193,16 @@ def test_finer_particles_are_brighter_most_below_0_4_mm():
     (500000, "small-scale"), (1e6, "small-scale"),
 ])
 def test_soil_map_scale_classes_with_the_gaps(m, expected):
-    assert s14.soil_map_scale_class(m) == expected
+    assert guide.ch13.soil_map_scale_class(m) == expected
 
 
 def test_scale_class_bad_input_and_notes():
     for bad in (0, -5, float("nan"), float("inf")):
         with pytest.raises(ValueError, match="scale_denominator"):
-            s14.soil_map_scale_class(bad)
-    assert "between classes" in s14.scale_class_note(30000) and "25 000" in s14.scale_class_note(30000)
-    assert len(s14.scale_table()) == 7  # four classes and three gaps
-    assert len(s14.STEPS) == 5 and s14.HUMUS_LINEAR_UP_TO_PCT == spectral.HUMUS_LINEAR_PCT
+            guide.ch13.soil_map_scale_class(bad)
+    assert "between classes" in guide.ch13.scale_class_note(30000) and "25 000" in guide.ch13.scale_class_note(30000)
+    assert len(guide.ch13.scale_table()) == 7  # four classes and three gaps
+    assert len(guide.ch13.STEPS) == 5 and guide.ch13.HUMUS_LINEAR_UP_TO_PCT == spectral.HUMUS_LINEAR_PCT
 
 
 # --------------------------------------------------------------------------- segmentation
@@ -265,24 +266,24 @@ def _student(task_id, v):
 @pytest.mark.parametrize("task_id", ["task-13-1", "task-13-2", "task-13-3"])
 def test_lab_grades_a_correct_submission_full(task_id):
     for v in V:
-        g = checks.grade_task(task_id, v, _student(task_id, v))
+        g = score.grade_task(task_id, v, _student(task_id, v))
         assert g.score == g.points, (v.i, g.checks)
 
 
 def test_lab_grades_wrong_submissions_zero():
     v = V[2]
     good = _student("task-13-1", v)
-    g = checks.grade_task("task-13-1", v, {**good, "class_2m": "large-scale"})  # ignoring the gap
+    g = score.grade_task("task-13-1", v, {**good, "class_2m": "large-scale"})  # ignoring the gap
     assert g.score == 0
     good = _student("task-13-2", v)
-    g = checks.grade_task("task-13-2", v, {**good, "band": "swir1"})
+    g = score.grade_task("task-13-2", v, {**good, "band": "swir1"})
     assert g.score == 0
-    g = checks.grade_task("task-13-2", v, {**good, "wet_dry_145_pct": 100 - good["wet_dry_145_pct"]})
+    g = score.grade_task("task-13-2", v, {**good, "wet_dry_145_pct": 100 - good["wet_dry_145_pct"]})
     assert g.score == 0
     good = _student("task-13-3", v)
-    g = checks.grade_task("task-13-3", v, {**good, "agreement_pct": good["agreement_pct"] - 1.0})
+    g = score.grade_task("task-13-3", v, {**good, "agreement_pct": good["agreement_pct"] - 1.0})
     assert g.score == 0
-    g = checks.grade_task("task-13-3", v, {**good, "k": len(so.SOIL_CLASSES) + 1})
+    g = score.grade_task("task-13-3", v, {**good, "k": len(so.SOIL_CLASSES) + 1})
     assert g.score == 0
 
 
@@ -305,7 +306,7 @@ def test_explorer_opens_on_variant_00_and_moves_its_artists_in_place():
 
     demo = SpectralExplorerDemo()
     assert demo.values["moisture_pct"] == REFERENCE["moisture_pct"]
-    p00 = ch13.patch_of(variant_for_index(0))
+    p00 = lab13.patch_of(variant_for_index(0))
     assert demo_patch().extent_m == p00.extent_m
     demo.set(roughness=0.0)  # no clods: the task's own photo of variant 00's patch
     np.testing.assert_allclose(demo.result.composite, p00.composite, atol=1e-6)

@@ -176,7 +176,7 @@ def test_matching_finds_a_known_disparity():
 # --------------------------------------------------------------------------- the pair of the site
 @pytest.fixture(scope="module")
 def lab():
-    from aerophoto.tasks import ch07
+    from aerophoto.labs import ch07
 
     return ch07.example_lab()
 
@@ -250,7 +250,7 @@ def test_anaglyph_alignment_on_rendered_markers(lab):
 
 def test_height_model_on_textured_ground(lab):
     """The correlation height model agrees with the truth to RMS ≤ 2.5 m where the ground is textured and seen twice."""
-    from aerophoto.tasks import ch07
+    from aerophoto.labs import ch07
 
     hm = ch07.height_model(lab)
     tg = hm.textured_ground & hm.reliable
@@ -341,7 +341,7 @@ def test_prints_at_true_size(lab, tmp_path):
     from PIL import Image
 
     from aerophoto.demos import stereo_figures as sf
-    from aerophoto.tasks import ch07
+    from aerophoto.labs import ch07
 
     im = ch07.lab_images(lab, 512)
     f = sf.stereo_print(im, tmp_path / "free.pdf", mode="free viewing", size_mm=(55.0, 40.0))
@@ -366,6 +366,6 @@ def test_prints_at_true_size(lab, tmp_path):
 def test_guide_s08():
     from aerophoto import guide
 
-    assert guide.s08.CHECK_LINE_CM == 40.0
-    assert len(guide.s08.steps_table()) == 2 and len(guide.s08.checks_table()) == 4
-    assert "обратный стереоэффект" in guide.s08.terms_table()["Russian"].tolist()
+    assert guide.ch07.CHECK_LINE_CM == 40.0
+    assert len(guide.ch07.steps_table()) == 2 and len(guide.ch07.checks_table()) == 4
+    assert "обратный стереоэффект" in guide.ch07.terms_table()["Russian"].tolist()

@@ -6,6 +6,8 @@ import pytest
 
 from aerophoto import accuracy as acc
 from aerophoto import checks, tasks
+from aerophoto.labs import ch15 as lab15
+from aerophoto.course import score
 from aerophoto.tasks import ch14, ch15
 from aerophoto.variants import variant_for_index
 
@@ -14,7 +16,7 @@ IDS = ("task-14-1", "task-14-2", "task-15-1", "task-15-2", "task-15-3")
 
 
 def _grade(task_id, v, **changes):
-    return checks.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
+    return score.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
 
 
 def test_the_chapters_register_their_tasks():
@@ -27,7 +29,7 @@ def test_the_chapters_register_their_tasks():
 @pytest.mark.parametrize("task_id", IDS)
 @pytest.mark.parametrize("v", VARIANTS, ids=lambda v: f"v{v.i:02d}")
 def test_reference_answers_earn_full_marks(task_id, v):
-    g = checks.grade_task(task_id, v, tasks.answers(task_id, v))
+    g = score.grade_task(task_id, v, tasks.answers(task_id, v))
     assert g.passed and g.score == g.points, g.checks
     assert any(hidden for *_, hidden in g.checks)
 
@@ -35,8 +37,8 @@ def test_reference_answers_earn_full_marks(task_id, v):
 @pytest.mark.parametrize("task_id", IDS)
 def test_unanswered_and_other_variant_answers_fail(task_id):
     v, w = VARIANTS[1], VARIANTS[2]
-    assert checks.grade_task(task_id, v, {}).score == 0.0
-    assert not checks.grade_task(task_id, v, tasks.answers(task_id, w)).passed
+    assert score.grade_task(task_id, v, {}).score == 0.0
+    assert not score.grade_task(task_id, v, tasks.answers(task_id, w)).passed
 
 
 def test_task_14_1_example_inputs_and_answers():
@@ -73,7 +75,7 @@ def test_every_variant_works_for_chapter_14(which):
 def test_every_variant_works_for_chapter_15(which):
     for i in which:
         v = variant_for_index(i)
-        sv = ch15.student_block(v)
+        sv = lab15.student_block(v)
         a2 = ch15.FindBlunders().answers(v)
         assert a2["blunder_point"] == sv.blunder_point, i
         assert a2["bad_control"] == sv.bad_control, i
@@ -97,11 +99,11 @@ def test_slips_are_named():
     with pytest.raises(checks.WrongAnswer, match="not as n"):
         checks.check_task("task-14-2", v, **{**b, "m20_mm": b["d_mm"] * 20})
     c = tasks.answers("task-15-1", v)
-    m = ch15.student_block(v).meas
+    m = lab15.student_block(v).meas
     with pytest.raises(checks.WrongAnswer, match="tie points are unknowns"):
         checks.check_task("task-15-1", v, **{**c, "n_unknowns": 6 * m.n_photos})
     d = tasks.answers("task-15-3", v)
-    fp = ch15.solve_block(ch15.student_block(v)).field_point(ch15.field_point_id(v))
+    fp = ch15.solve_block(lab15.student_block(v)).field_point(ch15.field_point_id(v))
     with pytest.raises(checks.WrongAnswer, match="semi-minor"):
         checks.check_task("task-15-3", v, **{**d, "a_m": fp["b_m"]})
     e = tasks.answers("task-15-2", v)

@@ -1,5 +1,5 @@
 """Chapter 05's graded tasks (aerophoto.tasks.ch05): the student's own fotoschema, its seams and its mean scale;
-the student's sheet (aerophoto.demos.fotoschema); and what guide §6 prints (aerophoto.guide.s06)."""
+the student's sheet (aerophoto.demos.fotoschema); and what guide §6 prints (aerophoto.guide.ch05)."""
 
 import math
 import re
@@ -8,9 +8,12 @@ import numpy as np
 import pytest
 
 from aerophoto import checks, tasks
+from aerophoto.course import score
 from aerophoto import geometry as g
 from aerophoto import mosaic as mo
-from aerophoto.tasks import _own, ch05
+from aerophoto.labs import ch05 as lab05
+from aerophoto.labs import own as _own
+from aerophoto.tasks import ch05
 from aerophoto.variants import variant, variant_for_index
 
 V3 = variant_for_index(3)
@@ -29,7 +32,7 @@ def test_the_chapter_registers_its_tasks():
 @pytest.mark.parametrize("i", [0, 3, 57, 99])
 def test_each_student_glues_their_own_strip(i):
     v = variant_for_index(i)
-    own = ch05.own_fotoschema(v)
+    own = lab05.own_fotoschema(v)
     assert own.fs.camera.f_mm == v.f_mm and own.fs.m_design == v.m and own.fs.scale.M == v.M
     assert own.numbers == (36, 37, 38, 39) and len(own.fs.seams) == 3
     # near-vertical photos, tilts capped at 2° and at f·tg α ≤ 6 mm (the photos stay on the site)
@@ -53,18 +56,18 @@ def test_strips_lie_at_places_of_their_own():
 
 def test_the_readings_are_the_truth_read_to_a_tenth_of_a_millimetre():
     for v in (variant_for_index(0), V57, variant_for_index(99)):
-        own = ch05.own_fotoschema(v)
-        t = ch05.seam_readings(v)
+        own = lab05.own_fotoschema(v)
+        t = lab05.seam_readings(v)
         d = own.details
         assert len(t) == d.dI_mm.size == own.fs.dI_mm.size
         for col in ("contour from the cut, mm", "prick from the cut, mm"):
             assert all(x == round(x, 1) and str(x) != "-0.0" for x in t[col])
         assert np.all(np.abs(t["contour from the cut, mm"] - d.contour_from_cut_mm) <= 0.05 + 1e-9)
-        assert np.all(np.abs(t["prick from the cut, mm"] - d.prick_from_cut_mm) <= ch05.PRICK_MAX_MM + 0.05 + 1e-9)
-        a = ch05.answers_of(v)
-        assert np.all(np.abs(np.array(a["dI_mm"]) - d.dI_mm) <= 0.05 + ch05.PRICK_MAX_MM + 0.05 + 1e-9)
+        assert np.all(np.abs(t["prick from the cut, mm"] - d.prick_from_cut_mm) <= lab05.PRICK_MAX_MM + 0.05 + 1e-9)
+        a = lab05.answers_of(v)
+        assert np.all(np.abs(np.array(a["dI_mm"]) - d.dI_mm) <= 0.05 + lab05.PRICK_MAX_MM + 0.05 + 1e-9)
         assert a["m_rms_mm"] == pytest.approx(math.sqrt(np.mean(d.dI_mm ** 2)), abs=0.12)
-        p = ch05.scale_readings(v)
+        p = lab05.scale_readings(v)
         truth_sheet, truth_plan = own.fs.scale.sheet_mm, own.plan_xy_mm()
         assert np.all(np.abs(p[["along the strip, mm", "across, mm"]].to_numpy() - truth_sheet) <= 0.15 + 1e-9)
         assert np.all(np.abs(p[["x (north) on the plan, mm", "y (east) on the plan, mm"]].to_numpy() - truth_plan)
@@ -82,14 +85,14 @@ def test_the_readings_are_the_truth_read_to_a_tenth_of_a_millimetre():
 
 def test_high_flights_leave_seams_within_the_reading_error():
     # ΔI ≈ b·h/H: 30 m of relief at H = 1200 m (variant 00) against H = 23 871 m (variant 99)
-    low, high = ch05.own_fotoschema(variant_for_index(0)), ch05.own_fotoschema(variant_for_index(99))
+    low, high = lab05.own_fotoschema(variant_for_index(0)), lab05.own_fotoschema(variant_for_index(99))
     assert np.max(np.abs(low.details.dI_mm)) > 0.2
     assert np.max(np.abs(high.details.dI_mm)) < 0.1
 
 
 def test_inputs_are_the_readings_and_fresh_each_time():
     t = tasks.inputs("task-05-1", V3)
-    assert t.equals(ch05.seam_readings(V3))
+    assert t.equals(lab05.seam_readings(V3))
     assert list(t.columns) == ["y across, mm", "contour from the cut, mm", "prick from the cut, mm"]
     assert list(dict.fromkeys(t.index.get_level_values(0))) == ["36/37", "37/38", "38/39"]
     t.iloc[0, 1] = 99.0  # a student changing the table does not change the task
@@ -117,7 +120,7 @@ def _by_hand(task_id, v):
 @pytest.mark.parametrize("task_id", ["task-05-1", "task-05-2"])
 def test_a_students_own_computation_passes(task_id):
     for v in (variant_for_index(0), V3, V57):
-        g_ = checks.grade_task(task_id, v, _by_hand(task_id, v))
+        g_ = score.grade_task(task_id, v, _by_hand(task_id, v))
         assert g_.passed and g_.score == g_.points == 4, g_.checks
         assert any(hidden for *_, hidden in g_.checks)
 
@@ -126,12 +129,12 @@ def test_every_variant_works():
     for i in range(100):
         v = variant_for_index(i)
         for task_id in ("task-05-1", "task-05-2"):
-            g_ = checks.grade_task(task_id, v, tasks.answers(task_id, v))
+            g_ = score.grade_task(task_id, v, tasks.answers(task_id, v))
             assert g_.passed and g_.score == g_.points, (i, task_id, g_.checks)
 
 
 def test_the_answers_hold_together():
-    a = ch05.answers_of(V3)
+    a = lab05.answers_of(V3)
     t1, t2 = tasks.get("task-05-1"), tasks.get("task-05-2")
     assert t1.answers(V3) == {k: a[k] for k in t1.names} and t2.answers(V3) == {k: a[k] for k in t2.names}
     dI = np.array(a["dI_mm"])
@@ -169,28 +172,28 @@ def test_hidden_checks_catch_inconsistent_answers():
     for bad in ({"m_rms_mm": ref1["m_rms_mm"] + 0.02}, {"n_cutouts": ref1["n_cutouts"] + 1},
                 {"seams_ok": not ref1["seams_ok"]}):
         hs = tasks.get("task-05-1").hidden(v, {**ref1, **bad})
-        assert not all(checks._hidden_ok(h)[0] for h in hs), bad
+        assert not all(score.hidden_ok(h)[0] for h in hs), bad
     # a ΔI of 0.0 written −0.04 (within the visible 0.05 mm) with the true count: every visible check passes, but
     # the count does not follow from the student's own ΔI
     d = list(ref1["dI_mm"])
     k = d.index(0.0)
     d[k] = -0.04
-    g_ = checks.grade_task("task-05-1", v, {**ref1, "dI_mm": d})
+    g_ = score.grade_task("task-05-1", v, {**ref1, "dI_mm": d})
     assert g_.visible_ok and not g_.hidden_ok and g_.score == 0
     assert "n_cutouts from your ΔI" in g_.first_failure
     # the mean scale: m_i must come from the student's own l and L, m from their own m_i
     ref2 = _by_hand("task-05-2", v)
     design = [float(v.m)] * 4  # the photos' scale typed instead: within 0.05 % for some variants, never consistent
     hs = tasks.get("task-05-2").hidden(v, {**ref2, "m_i": design, "m_mean": float(v.m)})
-    assert not all(checks._hidden_ok(h)[0] for h in hs)
+    assert not all(score.hidden_ok(h)[0] for h in hs)
     hs = tasks.get("task-05-2").hidden(v, {**ref2, "m_mean": ref2["m_mean"] * 1.0003})
-    assert [checks._hidden_ok(h)[0] for h in hs] == [True] * 4 + [False]
-    g_ = checks.grade_task("task-05-2", v, {**ref2, "m_mean": ref2["m_mean"] * 1.0003})
+    assert [score.hidden_ok(h)[0] for h in hs] == [True] * 4 + [False]
+    g_ = score.grade_task("task-05-2", v, {**ref2, "m_mean": ref2["m_mean"] * 1.0003})
     assert g_.visible_ok and not g_.hidden_ok and g_.score == 0
     hs = tasks.get("task-05-2").hidden(v, {**ref2, "m_i": ...})
-    assert not any(checks._hidden_ok(h)[0] for h in hs)
+    assert not any(score.hidden_ok(h)[0] for h in hs)
     # rounding m_i to whole numbers is consistent
-    g_ = checks.grade_task("task-05-2", v, {**ref2, "m_i": list(np.round(ref2["m_i"]))})
+    g_ = score.grade_task("task-05-2", v, {**ref2, "m_i": list(np.round(ref2["m_i"]))})
     assert g_.passed
 
 
@@ -198,16 +201,16 @@ def test_the_design_scale_typed_for_every_m_i_fails_where_it_is_close():
     # for variant 57 the photos' scale 1:17 700 lies within 0.05 % of two partial scales: the visible check of m_i
     # fails on the others, and the hidden check on all four
     ref = _by_hand("task-05-2", V57)
-    g_ = checks.grade_task("task-05-2", V57, {**ref, "m_i": [V57.m] * 4, "m_mean": V57.m})
+    g_ = score.grade_task("task-05-2", V57, {**ref, "m_i": [V57.m] * 4, "m_mean": V57.m})
     assert not g_.passed and not g_.hidden_ok
 
 
 def test_malformed_answers_never_stop_the_grader():
     for values in ({}, {"m_i": "twelve thousand", "m_mean": None}, {"l_mm": [1, 2], "m_mean": float("nan")},
                    {"l_mm": [0, 0, 0, 0], "L_mm": [1, 1, 1, 1], "m_i": [1, 1, 1, 1], "m_mean": 1}):
-        g_ = checks.grade_task("task-05-2", V3, values)
+        g_ = score.grade_task("task-05-2", V3, values)
         assert g_.score == 0 and not g_.passed
-    g_ = checks.grade_task("task-05-1", V3, {"dI_mm": "x", "m_rms_mm": "x", "n_cutouts": 0, "seams_ok": "yes"})
+    g_ = score.grade_task("task-05-1", V3, {"dI_mm": "x", "m_rms_mm": "x", "n_cutouts": 0, "seams_ok": "yes"})
     assert g_.score == 0
 
 
@@ -226,7 +229,7 @@ def test_the_measuring_figure_shows_the_work_not_the_answers():
     texts = [t.get_text() for t in ax.texts] + [ax.get_title()]
     assert {"36a", "36b", "39a", "39b", "cut 36/37"} <= set(texts)
     assert "17 700" in ax.get_title()  # the design scale: an input
-    a = ch05.answers_of(V57)
+    a = lab05.answers_of(V57)
     shown = " ".join(texts)
     assert f"{a['m_mean']:.0f}" not in shown and "ΔI" not in shown and "m =" not in shown
 
@@ -237,12 +240,12 @@ def test_student_sheet_is_signed_with_the_computed_scale_on_a3(tmp_path, capsys)
     fig = student_sheet(V57, "Ivanova A.", year=2025)
     assert fig.aerophoto_paper == "A3"
     texts = " ".join(t.get_text() for t in fig.texts)
-    m_txt = f"{int(round(ch05.answers_of(V57)['m_mean'] / 100) * 100):,}".replace(",", " ")
+    m_txt = f"{int(round(lab05.answers_of(V57)['m_mean'] / 100) * 100):,}".replace(",", " ")
     assert f"М 1:{m_txt}" in texts and "Ivanova A., record book 19-0457" in texts and "2025" in texts
     assert "ФОТОСХЕМА" in texts and "Проверил" in texts
     # every variant's sheet fits A3 at true size, the largest variant too
     for i in (0, 17, 77, 99):
-        assert sheet_paper(ch05.own_fotoschema(variant_for_index(i)).fs)[0] == "A3"
+        assert sheet_paper(lab05.own_fotoschema(variant_for_index(i)).fs)[0] == "A3"
     assert PAPER_MM["A3"] == (420.0, 297.0)
     # in the notebook: not before task 05.2 has passed
     assert finished_sheet(V57, "Ivanova A.", answered=False) is None
@@ -259,46 +262,46 @@ def test_student_sheet_is_signed_with_the_computed_scale_on_a3(tmp_path, capsys)
 def test_the_book_uses_the_guides_printed_rules():
     import inspect
 
-    from aerophoto.guide import s06
+    from aerophoto import guide
 
-    assert s06.rule("steps 5, 8", "largest cut-out").value == mo.ALLOWED_CUTOUT_MM == 0.5
-    lo, hi = s06.rule("step 8", "spacing").value
+    assert guide.ch05.rule("steps 5, 8", "largest cut-out").value == mo.ALLOWED_CUTOUT_MM == 0.5
+    lo, hi = guide.ch05.rule("step 8", "spacing").value
     assert lo <= mo.CHECK_SPACING_MM <= hi
     margin = inspect.signature(mo.choose_tie_points).parameters["margin_mm"].default
-    assert tuple(margin) == s06.rule("step 2", "distance of the tie points").value
-    assert s06.rule("step 7", "bases").value == 0.1
-    assert s06.rule("step 5", "the sheet").value == s06.SHEET == "A3"
+    assert tuple(margin) == guide.ch05.rule("step 2", "distance of the tie points").value
+    assert guide.ch05.rule("step 7", "bases").value == 0.1
+    assert guide.ch05.rule("step 5", "the sheet").value == guide.ch05.SHEET == "A3"
     with pytest.raises(KeyError, match="step 9"):
-        s06.rule("step 9", "anything")
-    t = s06.rules_table()
-    assert len(t) == len(s06.RULES) and list(t.columns)[:4] == ["where", "quantity", "value", "unit"]
-    assert [f.number for f in s06.FORMULAS] == ["6.1", "6.2"]
-    assert any("13000" in m.printed_text for m in s06.MARGINALIA)
+        guide.ch05.rule("step 9", "anything")
+    t = guide.ch05.rules_table()
+    assert len(t) == len(guide.ch05.RULES) and list(t.columns)[:4] == ["where", "quantity", "value", "unit"]
+    assert [f.number for f in guide.ch05.FORMULAS] == ["6.1", "6.2"]
+    assert any("13000" in m.printed_text for m in guide.ch05.MARGINALIA)
 
 
 def test_four_prints_at_60_percent_just_fill_a3():
-    from aerophoto.guide import s06
+    from aerophoto import guide
 
-    assert s06.strip_length_mm(4, 60) == pytest.approx(180 + 3 * 72)  # 396 mm
-    assert s06.strip_length_mm(5, 60) == pytest.approx(468.0)
-    assert s06.strip_length_mm(4, 60, trim_mm=15) == pytest.approx(426.0)
-    assert s06.prints_on_sheet() == 4
-    assert s06.prints_on_sheet(trim_mm=15) == 3  # with the guide's 1.5 cm trim A3 holds three
-    assert s06.prints_on_sheet((594.0, 420.0)) == 6  # A2
-    text = " ".join(s06.remarks())
+    assert guide.ch05.strip_length_mm(4, 60) == pytest.approx(180 + 3 * 72)  # 396 mm
+    assert guide.ch05.strip_length_mm(5, 60) == pytest.approx(468.0)
+    assert guide.ch05.strip_length_mm(4, 60, trim_mm=15) == pytest.approx(426.0)
+    assert guide.ch05.prints_on_sheet() == 4
+    assert guide.ch05.prints_on_sheet(trim_mm=15) == 3  # with the guide's 1.5 cm trim A3 holds three
+    assert guide.ch05.prints_on_sheet((594.0, 420.0)) == 6  # A2
+    text = " ".join(guide.ch05.remarks())
     assert "396" in text and "468" in text and "0.5–1" in text and "13000" in text
     with pytest.raises(ValueError, match="px_percent"):
-        s06.strip_length_mm(4, 100)
+        guide.ch05.strip_length_mm(4, 100)
     with pytest.raises(ValueError, match="n_photos"):
-        s06.strip_length_mm(0)
+        guide.ch05.strip_length_mm(0)
 
 
 def test_the_fotoschema_of_four_prints_matches_the_strip_length():
     # the sheet of the book's worked example (four untilted prints over flat ground) is as long as §6 says
     from aerophoto import simulate as sim
-    from aerophoto.guide import s06
+    from aerophoto import guide
 
     fs = mo.assemble(sim.fly_strip(g.Camera(100), 12000, 60, 4))
     x0, x1, _, _ = fs.extent_mm
-    assert x1 - x0 == pytest.approx(s06.strip_length_mm(4, 60), abs=1e-6)
-    assert len(fs.scale.names) == len(fs.scale.l_mm) == s06.rule("step 7", "points").value == 4
+    assert x1 - x0 == pytest.approx(guide.ch05.strip_length_mm(4, 60), abs=1e-6)
+    assert len(fs.scale.names) == len(fs.scale.l_mm) == guide.ch05.rule("step 7", "points").value == 4

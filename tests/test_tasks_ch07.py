@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from aerophoto import checks, tasks
+from aerophoto.course import score
 from aerophoto import stereo as st
-from aerophoto.tasks import ch07
+from aerophoto.labs import ch07
 from aerophoto.variants import variant_for_index
 
 V3 = variant_for_index(3)
@@ -55,7 +56,7 @@ def test_every_variant_has_its_pair_and_its_answers_pass(i):
         exp = tasks.answers(task_id, v)
         for k, val in exp.items():
             assert np.all(np.isfinite(val)), (task_id, k)
-        grade = checks.grade_task(task_id, v, ref)
+        grade = score.grade_task(task_id, v, ref)
         assert grade.passed and grade.score == grade.points, (i, task_id, grade.checks)
     # the heights measured agree with the truth within the reading error (4 σ of Δh, plus rounding)
     par = lab.parallaxes().join(lab.truth())
@@ -132,15 +133,15 @@ def test_hidden_checks_catch_inconsistent_answers():
     ref = _reference("task-07-1", v)
     # Z_S within its visible tolerance (0.5 m), but not what the submitted parallax of A gives
     bad = dict(ref, ZS_m=ref["ZS_m"] + 0.4)
-    g = checks.grade_task("task-07-1", v, bad)
+    g = score.grade_task("task-07-1", v, bad)
     assert g.visible_ok and not g.hidden_ok
     ref2 = _reference("task-07-2", v)
     bad2 = dict(ref2, dp_mm=[x + 0.004 for x in ref2["dp_mm"]])
-    g2 = checks.grade_task("task-07-2", v, bad2)
+    g2 = score.grade_task("task-07-2", v, bad2)
     assert g2.visible_ok and not g2.hidden_ok
     ref3 = _reference("task-07-3", v)
     bad3 = dict(ref3, V=ref3["V"] * 1.004)
-    g3 = checks.grade_task("task-07-3", v, bad3)
+    g3 = score.grade_task("task-07-3", v, bad3)
     assert g3.visible_ok and not g3.hidden_ok
 
 

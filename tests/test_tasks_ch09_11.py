@@ -7,9 +7,10 @@ import numpy as np
 import pytest
 
 from aerophoto import checks, tasks
+from aerophoto.course import score
 from aerophoto import control as c
 from aerophoto import rectify as rf
-from aerophoto.tasks import ch09, ch10, ch11
+from aerophoto.labs import ch09, ch10, ch11
 from aerophoto.variants import variant_for_index
 
 IDS = ("task-09-1", "task-09-2", "task-10-1", "task-10-2", "task-11-1", "task-11-2")
@@ -29,7 +30,7 @@ def test_the_chapters_register_their_tasks():
 @pytest.mark.parametrize("task_id", IDS)
 def test_every_variant_has_answers_that_earn_full_marks(task_id):
     for v in ALL:
-        g = checks.grade_task(task_id, v, tasks.answers(task_id, v))
+        g = score.grade_task(task_id, v, tasks.answers(task_id, v))
         assert g.passed and g.score == g.points, (v.i, g.checks)
         assert any(hidden for *_, hidden in g.checks)
 
@@ -37,8 +38,8 @@ def test_every_variant_has_answers_that_earn_full_marks(task_id):
 @pytest.mark.parametrize("task_id", IDS)
 def test_unanswered_and_other_variants_answers_fail(task_id):
     v, w = SOME[1], SOME[3]
-    assert checks.grade_task(task_id, v, {}).score == 0.0
-    g = checks.grade_task(task_id, v, tasks.answers(task_id, w))
+    assert score.grade_task(task_id, v, {}).score == 0.0
+    g = score.grade_task(task_id, v, tasks.answers(task_id, w))
     assert not g.passed
 
 
@@ -57,7 +58,7 @@ def _raises(task_id, v, match, **changes):
 
 
 def _grade(task_id, v, **changes):
-    return checks.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
+    return score.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
 
 
 # --------------------------------------------------------------------------- chapter 09

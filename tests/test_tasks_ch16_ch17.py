@@ -8,7 +8,9 @@ import pytest
 
 from aerophoto import budget as bu
 from aerophoto import checks, dem, tasks
-from aerophoto.tasks import ch16, ch17
+from aerophoto.course import score
+from aerophoto.labs import ch16 as lab16
+from aerophoto.tasks import ch17
 from aerophoto.variants import variant_for_index
 
 ALL = [variant_for_index(i) for i in range(100)]
@@ -58,7 +60,7 @@ def _reference(task_id, v):
 def test_every_variant_has_answers_and_an_independent_solution_passes(task_id):
     for v in ALL:
         ref = _reference(task_id, v)
-        grade = checks.grade_task(task_id, v, ref)
+        grade = score.grade_task(task_id, v, ref)
         assert grade.passed and grade.score == grade.points, (v.i, grade.checks)
         ans = tasks.answers(task_id, v)
         assert set(ans) == set(tasks.get(task_id).names)
@@ -67,17 +69,17 @@ def test_every_variant_has_answers_and_an_independent_solution_passes(task_id):
 
 
 def test_the_variants_data_are_their_own_and_deterministic():
-    assert ch16.sheet_of(V3) == dem.Sheet(100 + 88 * 3, 2500 + 250 * 3, 1000)
-    sheets = {(ch16.sheet_of(v).X0_m, ch16.sheet_of(v).Y0_m) for v in ALL}
+    assert lab16.sheet_of(V3) == dem.Sheet(100 + 88 * 3, 2500 + 250 * 3, 1000)
+    sheets = {(lab16.sheet_of(v).X0_m, lab16.sheet_of(v).Y0_m) for v in ALL}
     assert len(sheets) == 100
     for v in (ALL[0], ALL[99]):
-        s = ch16.sheet_of(v)
+        s = lab16.sheet_of(v)
         assert 0 <= s.X0_m and s.X0_m + s.size_m <= 10000 and 0 <= s.Y0_m and s.Y0_m + s.size_m <= 5000
-    d3 = ch16.sheet_data(V3)
-    assert d3.spacing_m == pytest.approx(0.007 * V3.m) and len(d3.points) == ch16.N_CHECK
-    assert d3.grid.mz_m == ch16.MZ_SHEET_M
+    d3 = lab16.sheet_data(V3)
+    assert d3.spacing_m == pytest.approx(0.007 * V3.m) and len(d3.points) == lab16.N_CHECK
+    assert d3.grid.mz_m == lab16.MZ_SHEET_M
     assert tasks.inputs("task-16-2", V3).equals(tasks.inputs("task-16-2", V3))
-    b = ch16.block_of(V3)
+    b = lab16.block_of(V3)
     assert (b.strips, b.per_strip, b.n, b.r) == (7, 11, 77, 21)
     c1, c2 = ch17.corner_measurements(V3), ch17.corner_measurements(V3)
     assert c1.equals(c2) and len(c1) == 20
@@ -123,7 +125,7 @@ def test_typical_slips_are_recognised(task_id, i):
 
 def test_hidden_checks_catch_inconsistent_answers():
     v = V3
-    ok = lambda hs: [checks._hidden_ok(h)[0] for h in hs]  # noqa: E731
+    ok = lambda hs: [score.hidden_ok(h)[0] for h in hs]  # noqa: E731
     t = tasks.get("task-16-1")
     ref = tasks.answers("task-16-1", v)
     assert ok(t.hidden(v, ref)) == [True, True]
@@ -134,7 +136,7 @@ def test_hidden_checks_catch_inconsistent_answers():
     ref = tasks.answers("task-16-2", v)
     assert ok(t.hidden(v, ref)) == [True, True]
     # within the visible tolerance, but not a count of the 40 points
-    grade = checks.grade_task("task-16-2", v, {**ref, "share_pct": ref["share_pct"] + 0.009})
+    grade = score.grade_task("task-16-2", v, {**ref, "share_pct": ref["share_pct"] + 0.009})
     assert grade.visible_ok and not grade.hidden_ok
     assert ok(t.hidden(v, {**ref, "v_lines_m": 2 * ref["m_lines_m"]})) == [True, False]
     t = tasks.get("task-17-1")
@@ -164,13 +166,13 @@ def test_malformed_answers_never_stop_the_grader():
     for task_id in IDS:
         names = tasks.get(task_id).names
         for values in ({}, {n: "x" for n in names}, {n: float("nan") for n in names}):
-            grade = checks.grade_task(task_id, V3, values)
+            grade = score.grade_task(task_id, V3, values)
             assert grade.score == 0 and not grade.passed
 
 
 def test_the_reference_uses_the_books_physics():
     v = V3
-    b = ch16.block_of(v)
+    b = lab16.block_of(v)
     assert tasks.answers("task-16-1", v)["mz_m"] == pytest.approx(
         dem.lysenko_mz_m(b.H_m, b.b_mm, 0.025, b.n, 16, 3, b.r))
     c = ch17.case_of(v)

@@ -7,8 +7,10 @@ import pandas as pd
 import pytest
 
 from aerophoto import checks, flight, tasks
+from aerophoto.course import score
 from aerophoto import quality as q
-from aerophoto.guide import s02, s03
+from aerophoto import guide
+from aerophoto.labs import ch02 as lab02
 from aerophoto.tasks import ch01, ch02
 from aerophoto.variants import variant_for_index
 
@@ -32,7 +34,7 @@ def test_the_chapters_register_their_tasks():
 @pytest.mark.parametrize("i", SOME_VARIANTS)
 def test_reference_answers_pass_the_trusted_grading(tid, i):
     v = variant_for_index(i)
-    grade = checks.grade_task(tid, v, tasks.answers(tid, v))
+    grade = score.grade_task(tid, v, tasks.answers(tid, v))
     assert grade.passed, grade.checks
     assert grade.score == grade.points
 
@@ -53,8 +55,8 @@ def test_chapter_01_answers_are_the_plan():
 def test_chapter_02_data_and_answers():
     # (moved from test_quality: the task data used to be quality.variant_task / variant_task_answers)
     v = variant_for_index(0)
-    d = ch02.strip_measurements(v)
-    assert d == ch02.strip_measurements(v)  # deterministic
+    d = lab02.strip_measurements(v)
+    assert d == lab02.strip_measurements(v)  # deterministic
     assert d["b_mm"] == 180.0 and d["f_mm"] == 100.0 and d["H_m"] == 1200.0
     for k in ("a_mm", "b1_mm", "b2_mm", "L_mm", "l_mm"):
         assert d[k] == round(d[k], 1)
@@ -75,9 +77,9 @@ def test_chapter_02_inputs_are_the_table_the_notebook_shows():
     v = variant_for_index(0)
     meas = tasks.inputs("task-02-1", v)
     assert isinstance(meas, pd.Series) and meas.name == "your measurements"
-    assert tuple(meas.index) == ch02.MEASUREMENT_KEYS
-    d = ch02.strip_measurements(v)
-    assert all(meas[k] == d[k] for k in ch02.MEASUREMENT_KEYS)
+    assert tuple(meas.index) == lab02.MEASUREMENT_KEYS
+    d = lab02.strip_measurements(v)
+    assert all(meas[k] == d[k] for k in lab02.MEASUREMENT_KEYS)
     assert meas["a_mm"] == 105.0 and meas["b1_mm"] == 74.4 and meas["bubble_div"] == 0.3
     assert tasks.inputs("task-02-2", v).equals(meas)
     # the notebook's solution works on it as on the old dict
@@ -129,7 +131,7 @@ def test_chapter_01_slips_are_todays():
 
 def test_chapter_02_slips_are_recognised(capsys):
     v = variant_for_index(0)
-    d = ch02.strip_measurements(v)
+    d = lab02.strip_measurements(v)
     assert "divides by b1" in _wrong("task-02-1", v, dm_percent=(d["b1_mm"] - d["b2_mm"]) / d["b2_mm"] * 100)
     assert "multiply by 30′" in _wrong("task-02-2", v, alpha_read_deg=d["bubble_div"])
     assert "56 %" in _wrong("task-02-2", v, px_ok=not tasks.answers("task-02-2", v)["px_ok"])
@@ -148,23 +150,23 @@ def test_hidden_checks_catch_inconsistent_submissions():
     p = flight.plan(v)
     # 01.1: Bx within its tolerance, Px within its own, but the two do not belong together
     bad = {**tasks.answers("task-01-1", v), "Px_percent": p.Px_percent + 0.019, "Bx_km": p.Bx_km * 1.0049}
-    g = checks.grade_task("task-01-1", v, bad)
+    g = score.grade_task("task-01-1", v, bad)
     assert g.visible_ok and _hidden(g) == {"Bx_km from Px_percent": False} and g.score == 0
     # 01.2: N is not the product of the student's own n and K
-    g = checks.grade_task("task-01-2", v, {"K": 22, "n": 31, "N": 683})
+    g = score.grade_task("task-01-2", v, {"K": 22, "n": 31, "N": 683})
     assert _hidden(g) == {"N = n·K": False}
     # 01.3: TS is not the student's own LS over W
     bad = {**tasks.answers("task-01-3", v), "LS_km": p.LS_km * 1.004, "TS_h": p.TS_h * 0.996}
-    g = checks.grade_task("task-01-3", v, bad)
+    g = score.grade_task("task-01-3", v, bad)
     assert g.visible_ok and _hidden(g) == {"TS_h from LS_km": False}
     # 02.2: a level reading within 0.01° of the right one, but not a whole number of 30′ divisions
     a = tasks.answers("task-02-2", v)
-    g = checks.grade_task("task-02-2", v, {**a, "alpha_read_deg": a["alpha_read_deg"] + 0.005})
+    g = score.grade_task("task-02-2", v, {**a, "alpha_read_deg": a["alpha_read_deg"] + 0.005})
     assert g.visible_ok and _hidden(g) == {"alpha_read_deg (30′ steps)": False} and not g.passed
     # no hidden check repeats a visible one: 02.1 has none (each answer is one formula of the given data)
     assert ch02.MeasureStrip().hidden(v, tasks.answers("task-02-1", v)) == []
     # unanswered values: the hidden check fails, it never raises
-    g = checks.grade_task("task-01-2", v, {"K": ..., "n": 31, "N": 682})
+    g = score.grade_task("task-01-2", v, {"K": ..., "n": 31, "N": 682})
     assert _hidden(g) == {"N = n·K": False} and g.score == 0
 
 
@@ -173,7 +175,7 @@ def test_hidden_checks_pass_the_reference_answers():
         v = variant_for_index(i)
         for tid in IDS:
             hidden = tasks.get(tid).hidden(v, tasks.answers(tid, v))
-            assert all(checks._hidden_ok(h)[0] for h in hidden), (tid, i)
+            assert all(score.hidden_ok(h)[0] for h in hidden), (tid, i)
 
 
 # --------------------------------------------------------------------------- the side-overlap allowance (guide §2)
@@ -193,7 +195,7 @@ def test_exact_allowance_keeps_the_overlap_on_the_highest_ground():
 
 
 def test_side_allowance_for_variant_00():
-    t = s02.side_allowance_table(flight.guide_example())
+    t = guide.ch01.side_allowance_table(flight.guide_example())
     g, e = t.columns[0], t.columns[1]
     assert list(t.index) == ["allowance, %", "Py, %", "by, cm", "By, km", "K"]
     assert t.loc["allowance, %", g] == approx(1.0) and t.loc["allowance, %", e] == approx(1.75)
@@ -221,12 +223,12 @@ def test_exact_allowance_changes_some_variants_strip_count():
 
 # --------------------------------------------------------------------------- guide §3, table 1
 def test_guide_table_1_as_printed():
-    t = s03.table_1()
+    t = guide.ch02.table_1()
     assert list(t.index) == [542, 543, 544, 545]
     assert list(t.columns) == ["sharpness", "fine detail", "defects"]
     assert t.loc[542, "sharpness"] == "good (хор.)" and t.loc[545, "defects"] == "yes (да)"
     assert not hasattr(q, "guide_table_1")
-    assert "no checkable numbers" in " ".join(s03.__doc__.replace("**", "").split())
+    assert "no checkable numbers" in " ".join(guide.ch02.__doc__.replace("**", "").split())
 
 
 def test_survey_tasks_have_no_nan_answers():

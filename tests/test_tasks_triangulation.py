@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from aerophoto import checks, tasks
+from aerophoto.course import score
 from aerophoto import triangulation as T
+from aerophoto.labs import ch06 as lab06
 from aerophoto.tasks import ch06, ch12
 from aerophoto.variants import variant, variant_for_index
 
@@ -31,7 +33,7 @@ def test_every_variant_works():
     for i in range(100):
         v = variant_for_index(i)
         for task_id in IDS:
-            g = checks.grade_task(task_id, v, tasks.answers(task_id, v))
+            g = score.grade_task(task_id, v, tasks.answers(task_id, v))
             assert g.passed and g.score == g.points, (i, task_id, g.checks)
             assert any(hidden for *_, hidden in g.checks)
 
@@ -39,7 +41,7 @@ def test_every_variant_works():
 # --------------------------------------------------------------------------- what the student reads
 def test_the_inputs_are_plain_tables_not_the_answers():
     r = tasks.inputs("task-06-1", V57)
-    assert isinstance(r, ch06.StripReadings)
+    assert isinstance(r, lab06.StripReadings)
     assert set(vars(r)) == {"rays", "control", "points", "M"}  # no laid strip, no reduction, no coefficients
     for name in ("reduction", "coefficients", "corrections", "free", "templates"):
         assert not hasattr(r, name)
@@ -48,15 +50,15 @@ def test_the_inputs_are_plain_tables_not_the_answers():
     t = r.control_table()
     t.iloc[0, 0] = 0.0  # a student's change does not reach the task
     assert tasks.inputs("task-06-2", V57).control.iloc[0, 0] != 0.0
-    assert list(r.points.index) == list(ch06.POINT_ORDER) and "a" not in r.points.index  # tie points not transferred
+    assert list(r.points.index) == list(lab06.POINT_ORDER) and "a" not in r.points.index  # tie points not transferred
     assert list(r.control.index) == ["36/1", "36/2", "39/1", "39/2"]
-    assert list(dict.fromkeys(r.rays.index.get_level_values(0))) == list(ch06.TIE_POINTS)
-    assert all(len(r.rays.loc[n]) == 3 for n in ch06.TIE_POINTS)
+    assert list(dict.fromkeys(r.rays.index.get_level_values(0))) == list(lab06.TIE_POINTS)
+    assert all(len(r.rays.loc[n]) == 3 for n in lab06.TIE_POINTS)
 
 
 def test_the_tables_are_in_the_geodetic_convention_and_within_the_reading_error():
     for v in (variant_for_index(0), V57, variant_for_index(99)):
-        lab, r = ch06.lab_strip(v), ch06.strip_readings(v)
+        lab, r = lab06.lab_strip(v), lab06.strip_readings(v)
         pts = lab.free.points
         names = list(pts.names)
         # control coordinates: X north = X₀ + ground Y, Y east = Y₀ + ground X, to 0.1 m
@@ -65,24 +67,24 @@ def test_the_tables_are_in_the_geodetic_convention_and_within_the_reading_error(
         assert np.allclose(r.control[["X (north), m", "Y (east), m"]].to_numpy(), truth, atol=0.05 + 1e-9)
         assert np.all(r.control["X (north), m"] > 6.06e6) and np.all(r.control["Y (east), m"] > 3.1e5)
         # the common tracing: the laid strip turned and shifted onto the table, axes swapped, read to 0.1 mm
-        phi, R, shift = ch06.tracing_frame(v)
+        phi, R, shift = lab06.tracing_frame(v)
         assert abs(math.degrees(phi)) <= 8.0
-        on_table = T.sheet_to_geodetic(lab.free.points_mm[[names.index(n) for n in ch06.POINT_ORDER]] @ R.T + shift)
+        on_table = T.sheet_to_geodetic(lab.free.points_mm[[names.index(n) for n in lab06.POINT_ORDER]] @ R.T + shift)
         read = r.points[["x on the strip, mm", "y on the strip, mm"]].to_numpy()
-        assert np.all(np.abs(read - on_table) <= ch06.SHEET_MAX_MM + 0.05 + 1e-9)
+        assert np.all(np.abs(read - on_table) <= lab06.SHEET_MAX_MM + 0.05 + 1e-9)
         assert np.all(read > 5.0)
         # the strip runs along +y ("east"): 36 … 39 in order
         y = r.points.loc[["36", "37", "38", "39"], "y on the strip, mm"].to_numpy()
         assert np.all(np.diff(y) > 0)
         # the rays reproduce the laid strip's own error triangles (a turn and a shift change no triangle)
         tri_read = ch06.triangles_from_rays(r.rays)["largest, mm"].to_numpy()
-        tri_true = lab.free.triangle_sides_mm[[names.index(n) for n in ch06.TIE_POINTS]].max(axis=1)
+        tri_true = lab.free.triangle_sides_mm[[names.index(n) for n in lab06.TIE_POINTS]].max(axis=1)
         assert np.allclose(tri_read, tri_true, atol=0.002)
 
 
 def test_reference_answers_hold_against_the_truth():
     for v in VARIANTS:
-        lab = ch06.lab_strip(v)
+        lab = lab06.lab_strip(v)
         red = lab.reduction  # exact, unrounded, in the package's own frame
         a2, a12 = tasks.answers("task-06-2", v), tasks.answers("task-12-2", v)
         exact = T.reduction_coefficients([red.strip.points.names[i] for i in red.control],
@@ -92,7 +94,7 @@ def test_reference_answers_hold_against_the_truth():
         assert np.allclose(a2["l_template_mm"], exact.l_template_mm, atol=0.25)  # two points read to 0.1 mm
         assert np.allclose(a2["k_bases"], exact.k, atol=0.002)
         assert a12["k_mean"] == pytest.approx(red.k, abs=0.001)
-        assert a2["k_mean"] == pytest.approx(1 / ch06.free_scale_ratio(v.i), abs=0.01)  # k ≈ 1/q
+        assert a2["k_mean"] == pytest.approx(1 / lab06.free_scale_ratio(v.i), abs=0.01)  # k ≈ 1/q
         a3 = tasks.answers("task-06-3", v)
         r_true = red.corrections.r_mm[[red.strip.points.names.index(n) for n in ch06.CORRECTION_POINTS]]
         assert np.allclose(a3["r_mm"], r_true, atol=0.25)
@@ -100,7 +102,7 @@ def test_reference_answers_hold_against_the_truth():
 
 
 def test_half_the_class_lays_the_strip_too_small_and_half_too_large():
-    q = [ch06.free_scale_ratio(i) for i in range(100)]
+    q = [lab06.free_scale_ratio(i) for i in range(100)]
     k1 = [1 / x - 1 for x in q]
     assert min(abs(x) for x in k1) > 0.02  # corrections never vanish
     assert sum(x > 0 for x in k1) == 50 and sum(x < 0 for x in k1) == 50
@@ -154,7 +156,7 @@ def _by_hand(task_id, v):
 @pytest.mark.parametrize("task_id", ["task-06-1", "task-06-2", "task-06-3", "task-12-2", "task-12-3"])
 def test_a_students_own_computation_passes(task_id):
     for v in VARIANTS:
-        g = checks.grade_task(task_id, v, _by_hand(task_id, v))
+        g = score.grade_task(task_id, v, _by_hand(task_id, v))
         assert g.passed, (v.i, g.checks)
 
 
@@ -188,7 +190,7 @@ def test_another_variants_answers_are_recognised():
     with pytest.raises(checks.WrongAnswer, match=f"variant {w.i:02d}"):
         checks.check_task("task-06-2", v, **{**a, "k_bases": tasks.answers("task-06-2", w)["k_bases"]})
     for task_id in IDS:
-        g = checks.grade_task(task_id, v, tasks.answers(task_id, w))
+        g = score.grade_task(task_id, v, tasks.answers(task_id, w))
         assert not g.passed and g.score == 0.0, task_id
 
 
@@ -203,18 +205,18 @@ def test_check_task_passes_the_reference_and_prints_the_verdict(capsys):
 
 # --------------------------------------------------------------------------- hidden checks
 def _grade(task_id, v, **changes):
-    return checks.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
+    return score.grade_task(task_id, v, {**tasks.answers(task_id, v), **changes})
 
 
 def test_hidden_06_1_verdict_follows_from_the_students_sides():
     task = tasks.get("task-06-1")
     v = VARIANTS[1]
     (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.06, 0.04, 0.05], "triangles_ok": False})
-    assert h.expected is True and not checks._hidden_ok(h)[0]
+    assert h.expected is True and not score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.36, 0.04, 0.05], "triangles_ok": True})
-    assert h.expected is False and not checks._hidden_ok(h)[0]
+    assert h.expected is False and not score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.305, 0.04, 0.05], "triangles_ok": True})  # at the limit: either
-    assert checks._hidden_ok(h)[0]
+    assert score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": "small", "triangles_ok": True})
     assert h.answer is None
 
@@ -281,13 +283,13 @@ def test_hidden_12_2_mean_deviation_and_verdict_follow_from_the_students_k():
     v = VARIANTS[1]
     a = task.answers(v)
     hs = task.hidden(v, a)
-    assert all(checks._hidden_ok(h)[0] for h in hs)
+    assert all(score.hidden_ok(h)[0] for h in hs)
     k = np.array(a["k_bases"])
     g = _grade("task-12-2", v, dk_max=a["dk_max"] + 0.0004, k_bases=list(k - np.where(k > a["k_mean"], 0.0003, -0.0003)))
     assert g.visible_ok and not g.hidden_ok  # a smaller spread of the student's own k than the dk_max they give
     flat = [a["k_mean"]] * 6
     hs = task.hidden(v, {"k_bases": flat, "k_mean": a["k_mean"], "dk_max": 0.0, "spread_ok": False})
-    assert [checks._hidden_ok(h)[0] for h in hs] == [True, True, False]
+    assert [score.hidden_ok(h)[0] for h in hs] == [True, True, False]
     hs = task.hidden(v, {"k_bases": "six", "k_mean": 1.0, "dk_max": 0.0, "spread_ok": True})
     assert all(h.answer is None for h in hs)
 

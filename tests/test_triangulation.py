@@ -1,4 +1,4 @@
-"""Radial strip phototriangulation and its reduction (guide §7, §13): aerophoto.triangulation, guide.s07, guide.s13."""
+"""Radial strip phototriangulation and its reduction (guide §7, §13): aerophoto.triangulation, guide.ch06, guide.ch12."""
 
 import math
 
@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from aerophoto import geometry as g
 from aerophoto import plane
 from aerophoto import triangulation as T
-from aerophoto.guide import s07, s13
+from aerophoto import guide
 
 CAM = g.Camera(100.0)
 M_PHOTO = 12000.0
@@ -398,7 +398,7 @@ def test_zhukov_coefficient_is_the_chain_held_at_both_ends():
     for n in (2, 4, 6, 10, 20):
         assert T.bridge_variance_factor(n) * 48 == pytest.approx(n**3 + 2 * n)  # no n² term, like n³ + 11n + 34
     assert math.sqrt(3.0 / 48.0) == 0.25  # three direction errors per base → the formula's 0.25
-    assert "n³ + 11n + 34" in s13.ZHUKOV_READING
+    assert "n³ + 11n + 34" in guide.ch12.ZHUKOV_READING
 
 
 def test_zhukov_input_checks():
@@ -412,12 +412,12 @@ def test_zhukov_input_checks():
 
 # ----------------------------------------------------------------------------- the guide's tables
 def test_table9_corrections_follow_from_r_and_k():
-    chk = s07.table(9)
+    chk = guide.ch06.table(9)
     v_checks = [c for c in chk.values if c.quantity.startswith("v =")]
     assert len(v_checks) == 12 and all(c.follows for c in v_checks)
     computed = chk.table.loc["v, mm"].to_numpy(dtype=float)
-    np.testing.assert_allclose(computed, np.array(s07.GUIDE_TABLE9["r_mm"]) * 0.037)
-    np.testing.assert_allclose(np.round(computed, 1), s07.GUIDE_TABLE9["v_mm"])
+    np.testing.assert_allclose(computed, np.array(guide.ch06.GUIDE_TABLE9["r_mm"]) * 0.037)
+    np.testing.assert_allclose(np.round(computed, 1), guide.ch06.GUIDE_TABLE9["v_mm"])
     # what does not follow: the labels (a point twice with two distances) and table 8's template
     bad = {c.where for c in chk.discrepancies}
     assert "table 9, label 498/1" in bad
@@ -425,7 +425,7 @@ def test_table9_corrections_follow_from_r_and_k():
 
 
 def test_table8_from_the_coordinates():
-    chk = s07.table(8)
+    chk = guide.ch06.table(8)
     t = chk.table
     l = t["l_осн from coordinates, mm"].to_numpy()
     np.testing.assert_allclose(l, [196.81, 144.84, 223.15, 129.65], atol=0.01)
@@ -450,22 +450,22 @@ def test_table8_from_the_coordinates():
 def test_guide_tables_7_audits_give_a_reason_exactly_where_a_value_does_not_follow():
     from aerophoto.guide import audit
 
-    for a in (s07.table8(), s07.table9()):
+    for a in (guide.ch06.table8(), guide.ch06.table9()):
         assert a.source == "guide §7" and a.title.startswith(("Table 8.", "Table 9."))
         for p in a.values:
             assert bool(p.reason) == (not p.follows), p
             assert p.reason != audit.GENERIC_REASON
         assert len(a.comparison()) == len(a.discrepancies)
         assert len(a.comparison(only_discrepancies=False)) == len(a.values)
-    assert [len(s07.table8().discrepancies), len(s07.table9().discrepancies)] == [11, 4]
-    assert len(s07.discrepancies()) == 15 and set(s07.discrepancies()["table"]) == {"Table 8", "Table 9"}
+    assert [len(guide.ch06.table8().discrepancies), len(guide.ch06.table9().discrepancies)] == [11, 4]
+    assert len(guide.ch06.discrepancies()) == 15 and set(guide.ch06.discrepancies()["table"]) == {"Table 8", "Table 9"}
     with pytest.raises(ValueError, match="number"):
-        s07.table(7)
+        guide.ch06.table(7)
 
 
 def test_guide_tables_7_verdicts_are_the_same_under_the_half_unit_rule():
     """The one rule (0.6 of a unit) and the tables' earlier rule (0.5·10⁻ᵈ) agree on every printed value."""
-    for a in (s07.table8(), s07.table9()):
+    for a in (guide.ch06.table8(), guide.ch06.table9()):
         for p in a.values:
             lo, hi = p.bounds if p.bounds is not None else (p.computed, p.computed)
             half = lo - 0.5 * p.unit - 1e-9 <= p.printed <= hi + 0.5 * p.unit + 1e-9
@@ -473,16 +473,16 @@ def test_guide_tables_7_verdicts_are_the_same_under_the_half_unit_rule():
 
 
 def test_zhukov_readings_with_the_guides_inputs():
-    t = s13.zhukov_readings()
+    t = guide.ch12.zhukov_readings()
     assert list(t.columns) == ["n for m_ε = 4′", "n for m_ε = 4.5′", "n for m_ε = 5′"]
     np.testing.assert_allclose(t.round(2).to_numpy(), [[6.66, 6.01, 5.47], [14.46, 12.22, 10.43],
                                                        [33.38, 25.70, 20.22]])
-    assert s13.GUIDE_ZHUKOV_INPUTS["m_mm"] == 0.35
+    assert guide.ch12.GUIDE_ZHUKOV_INPUTS["m_mm"] == 0.35
 
 
 def test_table8_reproduced_by_reduction_coefficients():
     names = ["496/1", "498/1", "498/2", "496/2"]
-    base = np.array([[s07.GUIDE_S7_CONTROL[n][1], s07.GUIDE_S7_CONTROL[n][0]] for n in names]) / 10.0  # m → mm at 1:10000
+    base = np.array([[guide.ch06.GUIDE_S7_CONTROL[n][1], guide.ch06.GUIDE_S7_CONTROL[n][0]] for n in names]) / 10.0  # m → mm at 1:10000
     # a template whose sides are the printed l_воск cannot be checked without its diagonals; use the ratio form
     c = T.reduction_coefficients(names, base, base / 1.037, pairs="perimeter")
     np.testing.assert_allclose(c.k, 1.037)
@@ -571,7 +571,7 @@ def test_geodetic_directions_read_the_same_formulas():
 def test_tie_points_are_seen_on_all_three_photos_of_every_students_strip():
     # tilted photos turn against each other: a tie point at x = 0 of its photo, or a catalogue point near it,
     # may leave a neighbour's frame; the design slides it along the strip and the catalogue must be seen there
-    from aerophoto.tasks import ch06
+    from aerophoto.labs import ch06
     from aerophoto.variants import variant_for_index
 
     for i in range(100):

@@ -4,7 +4,8 @@ Used by ``jupyterhub_config.py`` (beside this file); the hub runs as root on the
 
 Why a spawner of our own.  JupyterHub's ``LocalProcessSpawner`` starts a server with ``setuid`` to a system
 account and lets it see the whole machine.  This one starts it through **bubblewrap** with the bind recipe
-of the grading sandbox (``aerophoto.course.sandbox``):
+of the grading sandbox — the package's one recipe, :func:`aerophoto.course.bwrap.bwrap_argv`, with this
+server's options — and the limits of :data:`aerophoto.course.limits.HUB_STUDENT` / ``HUB_INSTRUCTOR``:
 
 * the server sees ``/usr``, ``/lib*``, ``/bin``, ``/etc`` and the book's Python (its prefix, the venv, the
   package's source) **read-only**; the book's ``notebooks/`` read-only (for ``aerophoto-course workbook``);
@@ -20,9 +21,11 @@ of the grading sandbox (``aerophoto.course.sandbox``):
   every process it started).  The instructor's server keeps the host's ``/proc`` instead, because grading
   runs ``aerophoto-course autograde`` there and its bubblewrap sandboxes cannot mount ``/proc`` inside a
   sandbox that covers parts of it (a kernel rule for user namespaces);
-* **limits** (``prlimit``): ``mem_limit`` is each process's address space (a runaway array gets a
-  MemoryError; this spawner has no cgroup, so it is per process, not per user), processes per uid
-  (``nproc``), open files; ``/tmp`` is a tmpfs of ``tmp_mb``.
+* **limits** (``prlimit``, :class:`aerophoto.course.limits.Limits`): ``mem_limit`` is each process's address
+  space (a runaway array gets a MemoryError; this spawner has no cgroup, so it is per process, not per user),
+  processes per uid (``nproc``), open files; ``/tmp`` is a tmpfs of ``tmp_mb``, ``/dev/shm`` one of 64 MB.
+  The defaults are the package's (``HUB_STUDENT``, ``HUB_INSTRUCTOR``); ``jupyterhub_config.py`` changes
+  the memory only when ``AEROPHOTO_HUB_STUDENT_MEM`` / ``_INSTRUCTOR_MEM`` say so.
 
 The book's Python here lives under ``/root/.pyenv`` (``/root`` is mode 0700), which another uid cannot
 reach: inside the sandbox only the Python's own folders are bound, under fresh traversable parents, so
@@ -36,11 +39,12 @@ import json
 import os
 import pwd
 import re
-import shutil
 import signal
 import sys
 from pathlib import Path
 
+from aerophoto.course.bwrap import BwrapOptions, bwrap_argv
+from aerophoto.course.limits import HUB_INSTRUCTOR, HUB_STUDENT, MB, Limits
 from jupyterhub.spawner import LocalProcessSpawner
 from jupyterhub.utils import random_port
 from traitlets import Bool, Integer, Unicode, default
@@ -52,20 +56,6 @@ CONFIG_MOUNT = "/srv/aerophoto/jupyter-config"
 NAME_RE = re.compile(r"^[a-z0-9][a-z0-9._@-]{0,63}$")
 """Hub user names the spawner accepts (also the hub's ``Authenticator.username_pattern``): a home folder's
 name, an nbgrader student id (no ``+``), a passwd entry."""
-
-_SYSTEM = ("/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32", "/etc")
-
-
-def _tool(name: str) -> str:
-    return shutil.which(name, path="/usr/bin:/bin:/usr/sbin:/sbin") or name
-
-
-def python_roots() -> list[Path]:
-    """The folders the book's Python needs (the grading sandbox's own list: prefix, venv, package source)."""
-    from aerophoto.course.sandbox import _python_roots
-
-    return _python_roots()
-
 
 class UidTable:
     """Hub user name → uid, kept in ``<state>/users.json``; also writes the passwd/group files bound into sandboxes.
@@ -158,13 +148,13 @@ class AerophotoSpawner(LocalProcessSpawner):
     config_root = Unicode(str(HERE / "single-user"), config=True,
                           help="folder with the Jupyter config of each role: student/ and instructor/")
     instructor_group = Unicode("instructors", config=True)
-    instructor_mem_limit = Unicode("4G", config=True,
-                                   help="address space per process of an instructor (≥ the grading sandbox's 3 GB)")
+    instructor_mem_limit = Unicode(f"{HUB_INSTRUCTOR.memory_mb}M", config=True,
+                                   help="address space per process of an instructor (≥ the grading sandbox's)")
     uid_base = Integer(30000, config=True, help="first uid the table gives out")
     system_users = Bool(False, config=True, help="use the system account's uid and home (PAM) instead of the table")
-    nproc = Integer(512, config=True, help="processes and threads per uid (RLIMIT_NPROC)")
-    nofile = Integer(4096, config=True, help="open files per process")
-    tmp_mb = Integer(512, config=True, help="size of the private /tmp, MB")
+    nproc = Integer(HUB_STUDENT.nproc, config=True, help="processes and threads per uid (RLIMIT_NPROC)")
+    nofile = Integer(HUB_STUDENT.nofile, config=True, help="open files per process")
+    tmp_mb = Integer(HUB_STUDENT.tmpfs_mb, config=True, help="size of the private /tmp, MB")
 
     @default("homes_dir")
     def _homes(self):
@@ -226,7 +216,13 @@ class AerophotoSpawner(LocalProcessSpawner):
             from jupyterhub.traitlets import ByteSpecification
 
             return int(ByteSpecification().validate(self, self.instructor_mem_limit))
-        return int(self.mem_limit or 3 * 1024**3)
+        return int(self.mem_limit or HUB_STUDENT.memory_mb * MB)
+
+    def limits(self) -> Limits:
+        """This user's limits: the package's for the role, with this spawner's memory, processes, files, /tmp."""
+        base = HUB_INSTRUCTOR if self.is_instructor else HUB_STUDENT
+        return base.replace(memory_mb=self.mem_bytes() / MB, nproc=self.nproc, nofile=self.nofile,
+                            tmpfs_mb=self.tmp_mb)
 
     # the sandbox ------------------------------------------------------------------------------
     def prepare_home(self, uid: int, gid: int, home: Path) -> None:
@@ -240,58 +236,25 @@ class AerophotoSpawner(LocalProcessSpawner):
             raise RuntimeError(f"{home} belongs to uid {st.st_uid}, not to {self.user.name} (uid {uid})")
         os.chmod(home, 0o700)
 
-    def bwrap_args(self, uid: int, gid: int, home: Path) -> list[str]:
+    def bwrap_options(self, uid: int, gid: int, home: Path) -> BwrapOptions:
+        """This user's sandbox (see the module notes): the package's recipe with a home, the exchange, the book."""
         name = self.user.name
-        args = [_tool("bwrap"), "--unshare-ipc", "--unshare-uts", "--die-with-parent", "--new-session",
-                "--hostname", "aerophoto"]
-        if not self.is_instructor:
-            args.append("--unshare-pid")
-        made: set[str] = set()
-
-        def ancestors(path: Path):
-            for parent in reversed(path.parents):
-                s = str(parent)
-                if s == "/" or s in made or any(s == m or s.startswith(m + "/") for m in _SYSTEM):
-                    continue
-                made.add(s)
-                args.extend(["--perms", "0755", "--dir", s])
-
-        for top in _SYSTEM:
-            p = Path(top)
-            if p.is_symlink():
-                args += ["--symlink", os.readlink(p), top]
-            elif p.is_dir():
-                args += ["--ro-bind", top, top]
+        etc = ()
         if not self.system_users:
             passwd, group = UidTable(self.state_dir, self.uid_base).write_etc()
-            args += ["--ro-bind", str(passwd), "/etc/passwd", "--ro-bind", str(group), "/etc/group"]
-        # /proc, /dev and a fresh /tmp before the environment and the book: a venv or a book checked out under
-        # /tmp is bound on top of the tmpfs, not hidden by it
-        args += ["--proc", "/proc"] if not self.is_instructor else ["--bind", "/proc", "/proc"]
-        args += ["--dev", "/dev", "--perms", "1777", "--size", str(64 * 1024 * 1024), "--tmpfs", "/dev/shm",
-                 "--perms", "1777", "--size", str(self.tmp_mb * 1024 * 1024), "--tmpfs", "/tmp"]
-        made.update({"/tmp", "/dev", "/proc"})
-        for root in python_roots():
-            if any(str(root) == m or str(root).startswith(m + "/") for m in _SYSTEM):
-                continue
-            ancestors(root)
-            args += ["--ro-bind", str(root), str(root)]
-            made.add(str(root))
+            etc = ((str(passwd), "/etc/passwd"), (str(group), "/etc/group"))
         book = Path(self.book_dir)
-        for rel in ("notebooks", "pyproject.toml"):
-            if (book / rel).exists():
-                ancestors(book / rel)
-                args += ["--ro-bind", str(book / rel), str(book / rel)]
-        ancestors(Path(CONFIG_MOUNT))
-        args += ["--ro-bind", str(Path(self.config_root) / self.role), CONFIG_MOUNT]
-        ancestors(Path(f"/home/{name}"))
-        args += ["--bind", str(home), f"/home/{name}"]
-        ancestors(Path(EXCHANGE_MOUNT))
-        args += ["--bind", str(self.exchange_dir), EXCHANGE_MOUNT, "--chdir", f"/home/{name}", "--"]
-        args += [_tool("prlimit"), f"--as={self.mem_bytes()}", f"--nproc={self.nproc}", f"--nofile={self.nofile}",
-                 "--core=0", "--"]
-        args += [_tool("setpriv"), f"--reuid={uid}", f"--regid={gid}", "--clear-groups", "--no-new-privs", "--"]
-        return args
+        ro = [(str(book / rel), str(book / rel)) for rel in ("notebooks", "pyproject.toml") if (book / rel).exists()]
+        ro.append((str(Path(self.config_root) / self.role), CONFIG_MOUNT))
+        return BwrapOptions(limits=self.limits(), uid=uid, gid=gid, hostname="aerophoto", network=True,
+                            own_pids=not self.is_instructor, host_proc=self.is_instructor, etc=etc,
+                            ro_binds=tuple(ro),
+                            binds=((str(home), f"/home/{name}"), (str(self.exchange_dir), EXCHANGE_MOUNT)),
+                            chdir=f"/home/{name}")
+
+    def bwrap_args(self, uid: int, gid: int, home: Path) -> list[str]:
+        """The command line up to the server's own: bubblewrap, prlimit, setpriv (:func:`bwrap_argv`)."""
+        return bwrap_argv(self.bwrap_options(uid, gid, home), [])
 
     async def start(self):
         if os.geteuid() != 0:

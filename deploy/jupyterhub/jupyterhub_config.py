@@ -168,8 +168,12 @@ UID_BASE = 30000  # the users' uids: 30000, 30001, … in the order they are fir
 c.AerophotoSpawner.uid_base = UID_BASE
 c.Spawner.cmd = [str(Path(sys.executable).parent / "jupyterhub-singleuser")]
 c.Spawner.default_url = "/lab"
-c.Spawner.mem_limit = env("STUDENT_MEM", "3G")
-c.AerophotoSpawner.instructor_mem_limit = env("INSTRUCTOR_MEM", "4G")
+# the limits are the package's (aerophoto.course.limits.HUB_STUDENT / HUB_INSTRUCTOR: 3 GB, 4 GB of address
+# space per process); the environment may change the memory
+if env("STUDENT_MEM"):
+    c.Spawner.mem_limit = env("STUDENT_MEM")
+if env("INSTRUCTOR_MEM"):
+    c.AerophotoSpawner.instructor_mem_limit = env("INSTRUCTOR_MEM")
 c.Spawner.start_timeout = int(env("START_TIMEOUT", "120"))  # a class logging in at once on a small machine
 c.Spawner.http_timeout = int(env("START_TIMEOUT", "120"))
 c.Spawner.environment = {"JUPYTERHUB_ACTIVITY_INTERVAL": env("ACTIVITY_INTERVAL", "300")}

@@ -8,24 +8,12 @@ template lines only (the reference lives in aerophoto.tasks.ch03); the check cel
 
 from pathlib import Path
 
-from aerophoto import tasks
-from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
+from aerophoto.nbtools import code, md, notebook, write
+
+from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "03_relief_displacement.ipynb"
-
-
-def answer_cell(task_id: str):
-    """The answer cell of the student book: the task's template lines only."""
-    t = tasks.get(task_id)
-    return nbgrader_answer(code(t.template(), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
 
 
 CELLS = [
@@ -149,7 +137,7 @@ intermediate values). Cells that do not follow are listed, with the reason, to t
 ### Table 2 — partial and mean scales before the correction
 """, id="example-theory"),
     code("""
-guide.s04.table(2)
+guide.ch03.table(2)
 """, id="example-1"),
     md("""
 Two things recur in all four scale tables of §4–§5: the guide prints $\\Delta m$ with the opposite sign to
@@ -160,7 +148,7 @@ ratios, 1/72 and 1/70.
 ### Table 3 — the relief corrections
 """, id="example-2-theory"),
     code("""
-guide.s04.table(3)
+guide.ch03.table(3)
 """, id="example-2"),
     md("""
 Table 3 is right: its $h$ follow from $Z$ and $Z_{cp}$, and its $\\delta_h$ from $r$, $h$ and
@@ -170,7 +158,7 @@ $f = 100$ mm. All six corrections exceed 0.2 mm and are applied.
 ### Table 4 — the scales after the correction
 """, id="example-3-theory"),
     code("""
-guide.s04.table(4)
+guide.ch03.table(4)
 """, id="example-3"),
     md("""
 The corrected photo lengths of table 4 do follow from tables 2 and 3 (the package checks each against the
@@ -179,7 +167,7 @@ partial scale and the deviations: corrected properly, both zones agree to about 
 The whole list for the chapter:
 """, id="example-summary"),
     code("""
-guide.s04.discrepancies()
+guide.ch03.discrepancies()
 """, id="example-discrepancies"),
     md(r"""
 ## Your photo: the guide's §4 on your own variant

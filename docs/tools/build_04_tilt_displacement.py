@@ -8,24 +8,12 @@ template lines only (the reference lives in aerophoto.tasks.ch04); the check cel
 
 from pathlib import Path
 
-from aerophoto import tasks
-from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
+from aerophoto.nbtools import code, md, notebook, write
+
+from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "04_tilt_displacement.ipynb"
-
-
-def answer_cell(task_id: str):
-    """The answer cell of the student book: the task's template lines only."""
-    t = tasks.get(task_id)
-    return nbgrader_answer(code(t.template(), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
 
 
 CELLS = [
@@ -114,8 +102,8 @@ displacement, from the point's image on the (turned) vertical photo to its image
 the guide's formula, drawn along the same line. The table gives the largest of each and the formula's
 error. Arrows are lengthened by the factor in the title.
 
-Like every demo of the book it opens on the guide's worked example — $f = 100$ mm, 1:12 000, $\alpha = 3^\circ$,
-$\lambda = -60^\circ$ (variant 00) — not on your variant; its $f$ slider reaches 1100 mm, the longest lens of
+Like every demo of the book it opens on the guide's worked example — $f = 100$ mm, 1:12 000, $\\alpha = 3^\\circ$,
+$\\lambda = -60^\\circ$ (variant 00) — not on your variant; its $f$ slider reaches 1100 mm, the longest lens of
 the guide's scheme.
 """, id="demo-theory"),
     code("""
@@ -141,7 +129,7 @@ follow from their inputs are listed beside each table with the reason (same rule
 ### Table 5 — scales before the correction
 """, id="example-theory"),
     code("""
-guide.s05.table(5)
+guide.ch04.table(5)
 """, id="example-1"),
     md("""
 Two $m_i$ are misprinted (I-2 and III-6; the latter fits a photo length of 27.3 mm, not the printed 27.7),
@@ -151,7 +139,7 @@ are printed with the opposite sign, and divided by $m_{част}$.
 ### Table 6 — the tilt displacements
 """, id="example-2-theory"),
     code("""
-guide.s05.table(6)
+guide.ch04.table(6)
 """, id="example-2"),
     md("""
 Six of the nine printed $\\delta_\\alpha$ do not follow from $f = 100$ mm and $\\alpha = 3^\\circ$: the printed
@@ -159,7 +147,7 @@ values are all about 15 % smaller. Which camera does the column fit? The formula
 $k = \\sin\\alpha/f$, so the package tests readings of it against the printed column:
 """, id="example-fit-theory"),
     code("""
-fit = guide.s05.table6_fit()
+fit = guide.ch04.table6_fit()
 print(f"least-squares k = {fit.k_lsq:.3e} 1/mm;  every printed value reproduced for "
       f"f = {fit.f_range_mm[0]:.1f}…{fit.f_range_mm[1]:.1f} mm at α = 3°, "
       f"or α = {fit.alpha_range_deg[0]:.2f}…{fit.alpha_range_deg[1]:.2f}° at f = 100 mm")
@@ -174,7 +162,7 @@ this book the corrections are computed with $f = 100$ mm and $\\alpha = 3^\\circ
 ### Table 7 — scales after the correction
 """, id="example-3-theory"),
     code("""
-guide.s05.table(7)
+guide.ch04.table(7)
 """, id="example-3"),
     md("""
 Table 7's arithmetic is right apart from the signs of $\\Delta m$; but its base III-6 cannot have come from
@@ -182,7 +170,7 @@ table 5 and table 6: the two corrections at its ends are 0.67 and 0.52 mm, so th
 1.19 mm, yet it shrank by 2.0 mm. The whole list for the chapter:
 """, id="example-summary"),
     code("""
-guide.s05.discrepancies()
+guide.ch04.discrepancies()
 """, id="example-discrepancies"),
     md("""
 ## Task 04.1 — the isocentre on your photo (graded)

@@ -41,7 +41,7 @@ import aerophoto
 from aerophoto import geometry, simulate, site, tasks, triangulation
 from aerophoto.demos.reduction import (ReductionDemo, TemplateView, StripView, EndsView, SiteStripView,
                                        own_site_figure, own_templates_figure, own_strip_figure)
-from aerophoto.guide import s07
+from aerophoto import guide
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
     md("""
@@ -224,7 +224,7 @@ The package recomputes the table from these inputs: the base lengths from the co
 coefficients both from the printed $l_{осн}$ and from the recomputed one.
 """, id="example-theory"),
     code("""
-t8 = s07.table(8)   # the audit: recomputed table, every printed number checked
+t8 = guide.ch06.table(8)   # the audit: recomputed table, every printed number checked
 t8.table.round(4)
 """, id="example-table8"),
     code("""
@@ -253,7 +253,7 @@ Table 9 lists, for twelve points, the distance $r$ from the chosen centre and th
 with $k = 1.037$.
 """, id="example-theory-9"),
     code("""
-t9 = s07.table(9)
+t9 = guide.ch06.table(9)
 t9.table.round(3)
 """, id="example-table9"),
     code("""

@@ -38,7 +38,7 @@ photogrammetrist reads relief from photos — and, with a measuring mark, how he
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
-from aerophoto import checks, guide, plots, stereo, tasks
+from aerophoto import checks, guide, labs, plots, stereo, tasks
 from aerophoto.demos import stereo as ds
 from aerophoto.demos import stereo_figures as sf
 v = aerophoto.setup(RECORD_BOOK)
@@ -91,7 +91,7 @@ times larger than horizontal distances — about 2.8 for the guide's pair ($B/H 
 how deep a model looks also depends on the observer.
 """, id="theory"),
     code("""
-guide.s08.terms_table()
+guide.ch07.terms_table()
 """, id="theory-terms"),
     code("""
 plots.static(sf.pair_geometry_figure(),
@@ -117,7 +117,7 @@ plots.static(sf.stereoscope_figure(),
                  "its photo; the two photos lie about 250 mm apart on the table.")
 """, id="figure-stereoscope"),
     code("""
-guide.s08.steps_table()
+guide.ch07.steps_table()
 """, id="example-steps"),
     md("""
 ### Checking the stereoscope
@@ -127,7 +127,7 @@ parallel in pairs with a straight line 40 cm long: with the instrument's base al
 see **one** line.
 """, id="checks-theory"),
     code("""
-guide.s08.checks_table()
+guide.ch07.checks_table()
 """, id="example-checks"),
     md("""
 Why it works: each eye looks at its own part of the line, one base apart. If the instrument is turned by a small
@@ -215,7 +215,7 @@ leave:
 import numpy as np
 import pandas as pd
 
-lab = tasks.ch07.example_lab()
+lab = labs.ch07.example_lab()
 b1, b2 = lab.photo_bases_mm()
 from aerophoto import geometry as g
 
@@ -236,7 +236,7 @@ millimetre — too much to fuse comfortably; after normalisation none is left (t
 the overlap, direct and reversed:
 """, id="example-anaglyph-theory"),
     code("""
-images = tasks.ch07.lab_images(lab)
+images = labs.ch07.lab_images(lab)
 fig = plots.figure(figsize=(10.5, 4.2))
 ax1, ax2 = fig.subplots(1, 2)
 centre = mark.areas["village"]
@@ -285,7 +285,7 @@ second peak close to it (a margin of 0.2), some texture, and the right photo mat
 (the left–right check). Here on the pair rendered at 512 pixels (0.35 mm, 4.2 m on the ground):
 """, id="height-model-theory"),
     code("""
-hm = tasks.ch07.height_model(lab)
+hm = labs.ch07.height_model(lab)
 plots.static(sf.height_model_figure(hm),
              alt="Three maps of the overlap. Left: heights from correlation where the match was reliable, patchy. "
                  "Middle: the true heights, the gentle hills with the forest and the village standing up. Right: "
@@ -332,7 +332,7 @@ display(lab.control_table())
 print(f"air base of the navigation record: B = {lab.B_record_m:.1f} m; focal length f = {lab.camera.f_mm:g} mm")
 """, id="task-07-1-data"),
     code("""
-own = tasks.ch07.lab_images(lab)
+own = labs.ch07.lab_images(lab)
 plots.static(sf.anaglyph_figure(own, size_mm=(70, 50), title="your pair: red filter over the left eye"),
              alt="A red-cyan anaglyph of the middle of your own stereo pair of the virtual site.")
 """, id="task-07-1-pair"),

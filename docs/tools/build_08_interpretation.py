@@ -38,7 +38,7 @@ the image.
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
-from aerophoto import checks, guide, interpretation, plots, spectral, tasks
+from aerophoto import checks, guide, interpretation, labs, plots, spectral, tasks
 from aerophoto.demos import interpretation as di
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
@@ -52,7 +52,7 @@ before noon are usually the most complete; snow, autumn's uniform colours, wet s
 take detail away.
 """, id="theory"),
     code("""
-guide.s09.conditions_table()
+guide.ch08.conditions_table()
 """, id="theory-conditions"),
     md("""
 ### How the book models them
@@ -123,7 +123,7 @@ are not enough, by **indirect keys** (косвенные): the links between obj
 calls the objects that point to something unseen **indicators** (индикаторы).
 """, id="theory-keys"),
     code("""
-guide.s09.keys_table()
+guide.ch08.keys_table()
 """, id="theory-keys-table"),
     md("""
 ## Table 10: the keys of topographic interpretation
@@ -132,7 +132,7 @@ The guide's table 10 (guide §9) lists, for rivers, lakes, ponds, bogs, forest, 
 railways and roads, what to determine and by which key. Here it is as printed, with our English beside it.
 """, id="example-theory"),
     code("""
-guide.s09.table_10()
+guide.ch08.table_10()
 """, id="example-table-10"),
     md("""
 **Notes on the table.** The guide places the **shallows on the downstream side of islands**: true of the bars that
@@ -159,19 +159,19 @@ A photo taken like yours (a different crop and conditions; nobody's variant), wi
 and Q, and the river's flow read with table 10's keys.
 """, id="example-1-theory"),
     code("""
-example = tasks.ch08.example_photo()
+example = labs.ch08.example_photo()
 plots.static(di.lab_figure(example),
              alt="A colour aerial photo of the interpretation site with six yellow numbered marks, two blue marks P "
                  "and Q on two forest stands, and two red marks A and B on opposite banks of the river.", dpi=72)
 """, id="example-1"),
     code("""
-tasks.ch08.example_key()
+labs.ch08.example_key()
 """, id="example-1-key"),
     md("""
 ## Task 08.1 — name the numbered objects (graded)
 
 Your photo is below: your own crop of the site, at your own scale, turned by your own swing κ, in your own light and
-air. Six objects are numbered. Name each of them with one of the names of `tasks.ch08.OBJECT_NAMES` (copy the
+air. Six objects are numbered. Name each of them with one of the names of `labs.ch08.OBJECT_NAMES` (copy the
 text exactly, e.g. `obj1 = "lake (озеро)"`):
 
 * `obj1` … `obj6` — the names of objects 1 to 6.
@@ -182,7 +182,7 @@ Each name is graded on its own (half a point for each right one).
 lab = tasks.inputs("task-08-1", v)
 print(lab)
 print("the names to choose from:")
-for name in tasks.ch08.OBJECT_NAMES:
+for name in labs.ch08.OBJECT_NAMES:
     print("   ", repr(name))
 """, id="task-08-1-data"),
     code("""
@@ -201,7 +201,7 @@ plots.static(di.lab_figure(lab, "colour-infrared film"),
 
 On your photo:
 
-* `flow` — the direction the river flows **on the photo**, one of `tasks.ch08.FLOW_OPTIONS`
+* `flow` — the direction the river flows **on the photo**, one of `labs.ch08.FLOW_OPTIONS`
   (`"towards +x (right)"`, `"towards −x (left)"`, `"towards +y (up)"`, `"towards −y (down)"`); use the islands'
   shape and the tributary (table 10);
 * `spruce` — which of the two stands marked P and Q is spruce: `"P"` or `"Q"` (the other is pine).

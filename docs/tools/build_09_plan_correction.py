@@ -7,24 +7,12 @@ Cells are identified by id; the notebook is written without outputs.
 
 from pathlib import Path
 
-from aerophoto import tasks
-from aerophoto.nbtools import code, md, nbgrader_answer, nbgrader_tests, notebook, write
+from aerophoto.nbtools import code, md, notebook, write
+
+from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "09_plan_correction.ipynb"
-
-
-def answer_cell(task_id: str):
-    """The answer cell of the student book: the task's template lines only (the reference lives in aerophoto.tasks)."""
-    t = tasks.get(task_id)
-    return nbgrader_answer(code(t.template(), id=f"{task_id}-answer"), f"{task_id}-answer")
-
-
-def check_cell(task_id: str):
-    t = tasks.get(task_id)
-    args = ", ".join(f"{n}={n}" for n in t.names)
-    src = f'from aerophoto import checks\nchecks.check_task("{task_id}", v, {args})'
-    return nbgrader_tests(code(src, id=f"{task_id}-check"), f"{task_id}-check", t.points)
 
 
 CELLS = [
@@ -51,7 +39,7 @@ a grid on the photo and a grid on the plan whose cells correspond, built on four
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
-from aerophoto import guide, plots, projective, tasks
+from aerophoto import guide, labs, plots, projective, tasks
 from aerophoto.demos import plan_correction as pc
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
@@ -80,7 +68,7 @@ place inside the cell — by eye or with a proportional compass (пропорц�
 two grids are images of each other under the projective transformation.
 """, id="theory"),
     code("""
-guide.s10.steps_table()
+guide.ch09.steps_table()
 """, id="theory-steps"),
     md("""
 ## Two ways to draw the grid
@@ -161,14 +149,14 @@ demo
 The ways it lists:
 """, id="example-theory"),
     code("""
-guide.s10.methods_table()
+guide.ch09.methods_table()
 """, id="example-1"),
     md("""
 So the worked example is the explorer's scene at the guide's numbers: a photo at 1:12 000 with $f = 100$ mm,
 tilted by 3°, and the plan at 1:10 000. Its four control points on the photo and the plan, to 0.01 mm:
 """, id="example-2-theory"),
     code("""
-example = tasks.ch09.lab_for(pc.EXAMPLE_SEED, 100.0, 12000.0, 3.0, -60.0, 10.0)
+example = labs.ch09.lab_for(pc.EXAMPLE_SEED, 100.0, 12000.0, 3.0, -60.0, 10.0)
 example.control_table()
 """, id="example-2"),
     md("""

@@ -154,7 +154,7 @@ for φ, λ and EPSG:28405 for X, Y in the EPSG registry that pyproj ships. Proje
 the computed X, Y are ranges):
 """, id="example-theory"),
     code("""
-guide.s11.coordinate_table()
+guide.ch10.coordinate_table()
 """, id="example-1"),
     md("""
 **What the table turns out to contain.** The X, Y are *not* the Gauss–Krüger coordinates of the printed φ, λ:

@@ -35,7 +35,7 @@ projecting the negative onto a screen that carries four **transformation points*
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
-from aerophoto import guide, plots, rectify, tasks
+from aerophoto import guide, labs, plots, rectify, tasks
 from aerophoto.demos import rectification as dr
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
@@ -119,7 +119,7 @@ by $|t|$ at the exposure.
 ### Table 11, recomputed
 """, id="table11-theory"),
     code("""
-guide.s12.table_11()
+guide.ch11.table_11()
 """, id="example-1"),
     md("""
 **What table 11 turns out to contain.** Every length difference, the three sums and $K_d = -0.7/734.8 =
@@ -133,7 +133,7 @@ paper stretched, so the 0.41 mm go under the paper at the exposure, not under th
 §12 also lists the plan coordinates of four points; nothing is computed from them in the guide:
 """, id="example-1-note"),
     code("""
-guide.s12.plan_points()
+guide.ch11.plan_points()
 """, id="example-2"),
     md("""
 Taken round, the four points make a long, narrow quadrilateral (about 830 m by 180–270 m in the list's units),
@@ -147,7 +147,7 @@ control points near the corners of the working area, two check points (K2 where 
 coordinates with a pricking error of 0.03 mm, base coordinates at 1:5000:
 """, id="example-3-theory"),
     code("""
-example = tasks.ch11.example_rectification_lab()
+example = labs.ch11.example_rectification_lab()
 display(example.table())
 example.rectification.table()
 """, id="example-3"),
@@ -157,7 +157,7 @@ within 0.4 mm. Over the whole photo, every catalogue point of the site against i
 the flat version of the site, then the real one:
 """, id="example-4-theory"),
     code("""
-plots.static(dr.rectified_figure(tasks.ch11.example_rectification_lab(relief=False), relief=False),
+plots.static(dr.rectified_figure(labs.ch11.example_rectification_lab(relief=False), relief=False),
              alt="Left: a photo of the flat version of the virtual site rectified onto the base at 1:5000, with "
                  "arrows at every catalogue point showing its residual enlarged fifty times; the arrows are short "
                  "and point every way (pricking errors only). Right: the left half of the same window is the "

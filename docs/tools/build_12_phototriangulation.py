@@ -39,7 +39,7 @@ import pandas as pd
 from aerophoto import tasks, triangulation
 from aerophoto.demos.reduction import (ReductionDemo, TemplateView, StripView, AccumulationView, reduction_model,
                                        own_strip_figure)
-from aerophoto.guide import s13
+from aerophoto import guide
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
 md(r"""
@@ -94,7 +94,7 @@ the reading $n^3$ gives 5–6 bases between control points — the usual spacing
 triangulation. The other readings give strips two to five times longer:
 """, id="theory-zhukov"),
     code("""
-s13.zhukov_readings().round(2)   # n for m = 0.35 mm, k_i = 1, b = 60 mm: the guide's inputs
+guide.ch12.zhukov_readings().round(2)   # n for m = 0.35 mm, k_i = 1, b = 60 mm: the guide's inputs
 """, id="zhukov-readings"),
     md(r"""
 **3. A simulation.** The package lays free strips of 2 to 10 bases over flat ground with vertical photos,
@@ -127,7 +127,7 @@ crosses the 0.35 mm line between 4 and 5 bases (0.288 mm at 4, 0.361 mm at 5), (
 (`triangulation.zhukov_bases_continuous`) — a formula for planning is allowed to be a little cautious.
 
 One more remark on the inputs: at $p_x = 60\,\%$ the base of an 18 cm frame is $0.4 	imes 180 = 72$ mm, not
-the guide's "≈ 60 mm" (that is the base of a 15 cm frame, or of an 18 cm frame at $p_x pprox 67\,\%$).
+the guide's "≈ 60 mm" (that is the base of a 15 cm frame, or of an 18 cm frame at $p_x \approx 67\,\%$).
 """, id="zhukov-notes"),
     md(r"""
 ## The procedure of §13 on a strip 36–39
@@ -233,7 +233,7 @@ Use (13.1) read with $n^3 + 11n + 34$ and **your** inputs:
 * $m = 0.35$ mm, the allowed RMS error of an orienting point on the plan;
 * $k_i = m_{photo}/M$ — your photo scale denominator over the plan's, $M = 10000$;
 * $b_{ср} = l\,(100 - p_x)/100$ with $l = 180$ mm and your $p_x$;
-* $m_arepsilon = 4' + 0.5'\cdot(i mod 3)$, $i$ your variant number (so 4′, 4.5′ or 5′); $ho' = 3437.75'$.
+* $m_\varepsilon = 4' + 0.5'\cdot(i \bmod 3)$, $i$ your variant number (so 4′, 4.5′ or 5′); $\rho' = 3437.75'$.
 
 Set
 
@@ -264,8 +264,8 @@ aerophoto.plots.static(own_strip_figure(v), alt="Your templates laid into the fr
 
 Compute the reduction coefficient $k = l_{осн}/l_{воск}$ of **all six** bases between your four control points,
 in the order of table 12: 36/1–36/2, 36/1–39/1, 36/1–39/2, 36/2–39/1, 36/2–39/2, 39/1–39/2 ($l_{осн}$ from the
-coordinates at 1:10 000, $l_{воск}$ on the free strip), their mean $ar k$ and each base's deviation
-$\Delta k = k - ar k$. A base passes when $|\Delta k| \le 0.003$, or $\le 0.006$ if it is short — shorter than
+coordinates at 1:10 000, $l_{воск}$ on the free strip), their mean $\bar k$ and each base's deviation
+$\Delta k = k - \bar k$. A base passes when $|\Delta k| \le 0.003$, or $\le 0.006$ if it is short — shorter than
 133 mm **on the base** (the book's definition, chapter 06). Set
 
 * `k_bases` — the six coefficients, in that order;
@@ -285,8 +285,8 @@ readings.control_table()
 ## Task 12.3 — table 13: the corrections from centre 38 (graded)
 
 Chapter 06 took working centre 37; take the other middle centre, **38**, as the centre of the strip, and the
-six-base mean $ar k$ of task 12.2. For every other point of the common tracing (the table below without 38, in
-its order) measure its distance $r_i$ from 38 and compute $v_i = r_i(ar k - 1)$ — away from the centre if
+six-base mean $\bar k$ of task 12.2. For every other point of the common tracing (the table below without 38, in
+its order) measure its distance $r_i$ from 38 and compute $v_i = r_i(\bar k - 1)$ — away from the centre if
 positive, towards it if negative (formula 12.3 of the guide, table 13). Set
 
 * `r_mm` — the distances from 38, mm (13 values);
@@ -304,7 +304,7 @@ readings.points_table()   # every point of your common tracing
 
 * Planar radial phototriangulation keeps only directions from the working centres; its errors accumulate
   from template to template, so the error in the middle of a strip held at both ends grows like $n^{3/2}$.
-* Zhukov's formula (13.1), read $m = 0.25\,k_i\,b\,(m_arepsilon/ho')\sqrt{n^3 + 11n + 34}$, has exactly
+* Zhukov's formula (13.1), read $m = 0.25\,k_i\,b\,(m_\varepsilon/\rho')\sqrt{n^3 + 11n + 34}$, has exactly
   that growth and the coefficient of three direction errors per base; with the guide's inputs it allows
   control points every 5–6 bases, and simulated strips follow it within 30 % (closest for long strips).
 * §13's nine steps: control spacing → pricking the four kinds of points → templates → the free strip with

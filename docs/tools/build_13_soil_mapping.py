@@ -69,10 +69,10 @@ maps; intensive farming, anti-erosion, irrigation and drainage projects need det
 maps serve the zoning of districts, small-scale ones the strategy of regions. Look at the ranges: the
 guide says nothing about maps between 1:5000 and 1:10 000, between 1:25 000 and 1:50 000, or between
 1:200 000 and 1:500 000. The book answers **"between classes"** there
-(`guide.s14.soil_map_scale_class`).
+(`guide.ch13.soil_map_scale_class`).
 """, id="theory"),
     code("""
-guide.s14.scale_table()
+guide.ch13.scale_table()
 """, id="theory-scales"),
     md(r"""
 ### What a soil's brightness depends on
@@ -185,10 +185,10 @@ tone, texture and soil-forming factors, and only then names the soils — in the
 allow, otherwise in the field, checking each soil type at least three times.
 """, id="keys-theory"),
     code("""
-guide.s14.keys_table()
+guide.ch13.keys_table()
 """, id="keys"),
     code("""
-guide.s14.steps_table()
+guide.ch13.steps_table()
 """, id="steps"),
     md(r"""
 ## Task 13.1 — which class of soil map? (graded)

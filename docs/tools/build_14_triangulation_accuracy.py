@@ -127,7 +127,7 @@ Control at both ends (the points $m$, $m'$ of the article's figure 10.7 are made
 part of the drift that grows linearly along the strip: the ends are right, the middle is worst. The
 article estimates the middle by "replacing $n$ by $n/2$ in (10.20) and halving the result", then replaces
 $d$ by the errors of a single model, giving its formula (10.21) — lost in the scan except for the legend
-($m_D$, $m_Z$, $m$, $m_q$, $f$, $b$) and a worked example. The book's reading (`guide.a001.RECONSTRUCTION`):
+($m_D$, $m_Z$, $m$, $m_q$, $f$, $b$) and a worked example. The book's reading (`guide.ch14.RECONSTRUCTION`):
 
 $$m_X = 0.25\,m\,m_q\sqrt{n^3},\quad m_Y = 0.16\,m\,m_q\sqrt{n^3},\quad m_Z = 0.25\,m\,m_q\,\frac{f}{b}\sqrt{n^3},
 \quad m_D = 0.35\,m\,m_q\sqrt{n^3}.$$
@@ -138,7 +138,7 @@ fixes the coefficients, and the article's two design examples — 8 bases betwee
 between height control — check them independently. The audit:
 """, id="theory-1021"),
     code("""
-guide.a001.examples()
+guide.ch14.examples()
 """, id="example-1"),
     md(r"""
 Two printed numbers do not follow. $m_D = 0.11$ mm is not the plan error $\sqrt{m_X^2 + m_Y^2} = 0.094$ mm

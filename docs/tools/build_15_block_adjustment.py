@@ -50,6 +50,7 @@ import numpy as np
 import pandas as pd
 from aerophoto import bundle, guide, plots, tasks
 from aerophoto.demos import bundle_views
+from aerophoto.labs import ch15 as lab15
 from aerophoto.tasks import ch15
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
@@ -64,7 +65,7 @@ f = 200 mm, measured with the other points on a stereocomparator, and computed b
 The column *here* names the part of the package that does each computational step.
 """, id="theory-article"),
     code("""
-guide.a002.technology()
+guide.ch15.technology()
 """, id="table-technology"),
     md(r"""
 ## The collinearity equations of a block
@@ -106,7 +107,7 @@ measurement is moved by 0.1 mm and one control height is wrong by 10 m (the arti
 heights wrong by 8–12 m).
 """, id="example-theory"),
     code("""
-ex = ch15.example_block()
+ex = lab15.example_block()
 pd.Series(ex.meas.summary(), name="example block")
 """, id="example-summary"),
     code("""
@@ -204,7 +205,7 @@ archive photos; their third group (plan from a 1:25 000 map, heights from barome
 and 5.5 m) is the map's own accuracy. The audit of the experiment's numbers:
 """, id="experiment-theory"),
     code("""
-guide.a002.experiment()
+guide.ch15.experiment()
 """, id="example-experiment"),
     md(r"""
 ## The gravimetric points and their error ellipses
@@ -234,7 +235,7 @@ limits follow from others — the smallest block's 54 unknowns are 3 photos × 6
 audit checks them. The largest values cannot all be reached at once: 1000 unknowns is the one that binds.
 """, id="limits-theory"),
     code("""
-guide.a002.package_limits()
+guide.ch15.package_limits()
 """, id="example-limits"),
     code("""
 import time

@@ -104,18 +104,18 @@ H the flying height and ρ the photo base (printed "p = 70 mm"). Two terms need 
   more) — the simulation below decides: the parallax.
 
 So the book uses $m_z = m_p\,(H/b)\,\sqrt{3(2ns + mn - sr)/(2mns)}$ with m_p = 0.025 mm
-(`aerophoto.dem.lysenko_mz_m`; the full argument: `guide.a000.LYSENKO_READING`). The article's inputs
+(`aerophoto.dem.lysenko_mz_m`; the full argument: `guide.ch16.LYSENKO_READING`). The article's inputs
 recomputed, with the printed result audited (article 000):
 """, id="theory-lysenko"),
     code("""
-guide.a000.lysenko()
+guide.ch16.lysenko()
 """, id="example-1"),
     md(r"""
 What each reading of the two terms gives with the article's inputs (H = 450 m, n = 70, m = 16, r = 38,
 s = 3, ρ = 70 mm), in centimetres — only the 0.025 mm row is of the article's order:
 """, id="example-2-theory"),
     code("""
-guide.a000.lysenko_readings().round(3)
+guide.ch16.lysenko_readings().round(3)
 """, id="example-2"),
     md(r"""
 ### The formula against a simulated block
@@ -245,7 +245,7 @@ block.table()
     md(r"""
 ## Task 16.2 — check points of your sheet (graded)
 
-Your sheet is a 1 km square of the site of its own (`aerophoto.tasks.ch16.sheet_of(v)` gives its corner);
+Your sheet is a 1 km square of the site of its own (`aerophoto.labs.ch16.sheet_of(v)` gives its corner);
 its regular DEM has the step of the article's 7 mm on *your* photo, d = 0.007·m metres, and node heights
 with the article's densification error of 12 cm. The table gives 40 check points: their true
 ("geodetic") heights `Z_geod_m` and the heights read from the regular DEM (`Z_grid_m`) and from the same

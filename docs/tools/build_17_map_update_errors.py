@@ -94,16 +94,16 @@ deviations from the mean (3), $V_D = \sqrt{V_X^2 + V_Y^2}$ (4), $m_D = 1.25\,V_D
 $m_d = m_D/M_k$ (6).
 """, id="example-theory"),
     code("""
-guide.a003.table1()
+guide.ch17.table1()
 """, id="example-1"),
     md(r"""
 ### Tables 2 and 3 — scanning and phototriangulation
 """, id="example-2-theory"),
     code("""
-guide.a003.table2()
+guide.ch17.table2()
 """, id="example-2"),
     code("""
-guide.a003.table3()
+guide.ch17.table3()
 """, id="example-3"),
     md(r"""
 ### The numbers in the text
@@ -114,7 +114,7 @@ instruction's other transfer rule (40 µm on the photo), and the two errors of t
 0.5·P).
 """, id="example-4-theory"),
     code("""
-guide.a003.text_values()
+guide.ch17.text_values()
 """, id="example-4"),
     md(r"""
 **One slip.** Formula (9) with every one of n = 50 discrepancies equal to d = 0.5 mm gives
@@ -124,10 +124,10 @@ many points). The tables carry 0.35 on; the book's budget uses 0.357 and says so
 ### Tables 4 and 5 — the stages on the ground and the total
 """, id="example-4-summary"),
     code("""
-guide.a003.table4()
+guide.ch17.table4()
 """, id="example-5"),
     code("""
-guide.a003.table5()
+guide.ch17.table5()
 """, id="example-6"),
     md(r"""
 Table 5 follows from table 4. Its 1:2000 mean error, 0.45 mm, was divided from the rounded
@@ -136,7 +136,7 @@ rule. With formula (9)'s 0.357 mm the totals hardly move (notes under the table)
 All the discrepancies of article 003:
 """, id="example-summary"),
     code("""
-guide.a003.discrepancies()
+guide.ch17.discrepancies()
 """, id="example-discrepancies"),
     md(r"""
 ## The live budget

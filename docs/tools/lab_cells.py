@@ -1,4 +1,4 @@
-"""Cells shared by the build scripts of chapters 05, 06 and 12: a task's answer cell and its check cell.
+"""Cells shared by the chapters' build scripts (03, 04, 05, 06, 09, 12–17): a task's answer cell and its check cell.
 
 The answer cell holds the task's template lines only (``Task.template()``): the notebooks are the student book,
 with no solution anywhere (docs/CONTRIBUTING.md, "Graded tasks"); ``aerophoto.course`` generates nbgrader's

@@ -14,7 +14,7 @@ course-design guide (Presnyakov & Tyuklenkova, Penza 2014), in six layers
 3    the virtual world     ``terrain``, ``site``, ``simulate``, ``render``
 4    the course's content  ``guide`` (printed tables and their audits),
                            ``tasks`` (graded tasks per chapter)
-5    presentation          ``plots``, ``widgets``, ``demos``, ``i18n`` (EN/RU)
+5    presentation          ``plots``, ``blit``, ``widgets``, ``demos``, ``i18n``
 6    course                ``checks``, ``book`` (setup, chapter registry),
                            ``nbtools``, ``course`` (the instructor's CLI),
                            ``report`` (the student's course report, §15)
@@ -52,19 +52,25 @@ _SUBMODULES = (
     "bundle",
     "accuracy",
     "soilmap",
+    "spectral",
     "terrain",
     "guide",
+    "labs",
     "tasks",
     "plots",
+    "blit",
     "widgets",
     "demos",
     "i18n",
     "checks",
+    "gradebook",
     "book",
     "nbtools",
     "course",
     "report",
+    "lite",
 )
+"""Every public module and subpackage, once (tests/test_chapter_key.py checks it against the files on disk)."""
 
 __all__ = ["__version__", "setup", "chapters", *_SUBMODULES]
 

@@ -41,7 +41,7 @@ coefficients that reproduce those numbers with the n³/3 form of (10.20) are
 (0.25 = √6/√96: a single model's X error of √6·m_q, halved over n/2 links;
 0.35 ≈ 0.25·√2).  They also reproduce the article's two design examples —
 n = 8 bases between plan control and 2–3 bases between height control
-(:func:`plan_bases`, :func:`height_bases`) — see :mod:`aerophoto.guide.a001`.
+(:func:`plan_bases`, :func:`height_bases`) — see :mod:`aerophoto.guide.ch14`.
 
 Monte Carlo and covariance
 --------------------------

@@ -23,7 +23,7 @@ import html
 import json
 import os
 import sys
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from importlib import metadata
 from pathlib import Path
 
@@ -80,7 +80,13 @@ class Demo:
 
 @dataclass(frozen=True)
 class Chapter:
-    """One notebook of the book.
+    """One notebook of the book, and the one key to everything of it: the chapter's number ``NN``.
+
+    A maintainer finds chapter ``NN``'s parts from ``NN`` alone: the notebook ``notebooks/NN_slug.ipynb``, the guide's
+    tables ``aerophoto.guide.chNN``, the graded tasks
+    ``aerophoto.tasks.chNN`` and the lab world ``aerophoto.labs.chNN``.  Only the demos are named by topic (one
+    demo module may serve two chapters: :mod:`aerophoto.demos.reduction` is chapters 06 and 12), so the registry
+    lists them (:attr:`demo_modules`).  ``python -m aerophoto.book NN`` prints the lot.
 
     Attributes
     ----------
@@ -88,19 +94,38 @@ class Chapter:
         The notebook's number, ``"03"`` (the guide's §4 → 03, leaving room for later chapters).
     slug : str
         The rest of the file name, ``"relief_displacement"``.
-    source : str
-        What it is built from: ``"guide §4"``, ``"article 001"``.
     title, title_ru : str
         The topic in English and the guide's Russian term.
     demos : tuple of :class:`Demo`
+        The live demos.
+    section : int or None
+        The section of the course-design guide the chapter is built from (``4`` for §4), or None.
+    article : str or None
+        The article it is built from (``"001"``, the seeds' numbering), or None.  Exactly one of ``section``
+        and ``article`` is given.
+    tables : bool
+        Whether the source prints tables the book transcribes (then ``aerophoto.guide.chNN`` holds them);
+        False for chapter 00 (guide §1 prints none).
+    views : tuple of str
+        Demo modules (``aerophoto.demos.<name>``) with static figures or tools the chapter uses besides its
+        live demos' modules, e.g. ``("measure",)``.
     """
 
     number: str
     slug: str
-    source: str
     title: str
     title_ru: str
     demos: tuple = ()
+    _: KW_ONLY
+    section: int | None = None
+    article: str | None = None
+    tables: bool = True
+    views: tuple = ()
+
+    def __post_init__(self):
+        if (self.section is None) == (self.article is None):
+            raise ValueError(f"chapter {self.number}: section = {self.section!r}, article = {self.article!r}; "
+                             "give exactly one")
 
     @property
     def name(self) -> str:
@@ -110,58 +135,98 @@ class Chapter:
     def notebook(self) -> str:
         return f"{self.name}.ipynb"
 
+    @property
+    def source(self) -> str:
+        """What the chapter is built from, as the book prints it: ``"guide §4"`` or ``"article 001"``."""
+        return f"guide §{self.section}" if self.section is not None else f"article {self.article}"
+
+    @property
+    def guide_module(self) -> str | None:
+        """The module of the source's printed tables, ``"aerophoto.guide.chNN"``; None if it prints none."""
+        return f"aerophoto.guide.ch{self.number}" if self.tables else None
+
+    @property
+    def tasks_module(self) -> str:
+        """The module of the chapter's graded tasks, ``"aerophoto.tasks.chNN"``."""
+        return f"aerophoto.tasks.ch{self.number}"
+
+    @property
+    def lab_module(self) -> str | None:
+        """The module of the chapter's lab world, ``"aerophoto.labs.chNN"``; None for a chapter whose inputs come
+        with its tasks (no lab world of its own: 00, 01, 12, 14, 17)."""
+        from . import labs
+
+        return f"aerophoto.labs.ch{self.number}" if f"ch{self.number}" in labs.chapter_modules() else None
+
+    @property
+    def demo_modules(self) -> tuple:
+        """The demo modules the chapter uses: its live demos' modules, then :attr:`views`, each once."""
+        names = [d.cls.rsplit(".", 1)[0] for d in self.demos] + [f"aerophoto.demos.{v}" for v in self.views]
+        return tuple(dict.fromkeys(names))
+
+    def key_text(self) -> str:
+        """The chapter's key as lines of text: what ``python -m aerophoto.book NN`` prints."""
+        rows = [("notebook", f"notebooks/{self.notebook}"), ("source", self.source), ("guide module", self.guide_module or "— (the source prints no tables)"),
+                ("tasks module", self.tasks_module), ("lab module", self.lab_module or "— (the inputs come with the tasks)"),
+                ("demo modules", ", ".join(self.demo_modules) or "—")]
+        head = f"chapter {self.number} · {self.title} ({self.source})"
+        return "\n".join([head, *(f"  {k:<13}{v}" for k, v in rows)])
+
 
 _F = ("f, mm", "PageUp")  # focal length: five steps up from the chapter's start
 _M = ("m (scale 1:m)", "PageUp")  # scale denominator: five steps up
 
 CHAPTERS = (
-    Chapter("00", "start_here", "guide §1", "start here: your variant, central projection",
-            "задание; центральная проекция", (
+    Chapter("00", "start_here", "start here: your variant, central projection",
+            "задание; центральная проекция", section=1, tables=False, demos=(
                 Demo("demo-footprint", "aerophoto.demos.footprint.FootprintDemo", "Camera footprint — o, n, c",
                      "α (tilt), then f and m (scale 1:m)",
                      "the footprint turns from a square into a trapezoid; n and c leave o along the principal "
                      "vertical; with the scale fixed, a longer lens flies higher but covers the same ground",
                      (_F, _M, ("α, °", "ArrowRight")), timed="α, °"),
             )),
-    Chapter("01", "flight_planning", "guide §2", "planning the aerial survey", "расчёт параметров аэросъёмки", (
+    Chapter("01", "flight_planning", "planning the aerial survey", "расчёт параметров аэросъёмки", section=2, demos=(
         Demo("demo-flight-plan", "aerophoto.demos.flight_plan.FlightPlanDemo", "Live survey plan", "m, relief h, then f and W",
              "strips and photos multiply as the scale grows or the relief rises; a faster aircraft shortens the "
              "flight and the admissible exposure", (_F, _M, ("px, %", "ArrowRight")), timed="f, mm"),
     )),
-    Chapter("02", "photo_quality", "guide §3", "judging the photos' quality", "оценка качества материалов", (
+    Chapter("02", "photo_quality", "judging the photos' quality", "оценка качества материалов", section=3, demos=(
         Demo("demo-quality", "aerophoto.demos.quality.QualityDemo", "Rough mosaic you can break", "crab φ, α max, ΔH, bend, overlaps",
              "an imperfection past its tolerance turns its print, pair or strip vermillion and changes the verdict",
              (_F, ("α max, °", "ArrowRight"), ("crab φ, °", "ArrowRight")), timed="α max, °"),
     )),
-    Chapter("03", "relief_displacement", "guide §4", "relief displacement", "смещение точек за рельеф", (
+    Chapter("03", "relief_displacement", "relief displacement", "смещение точек за рельеф",
+            section=4, views=("measure",), demos=(
         Demo("demo-relief", "aerophoto.demos.displacement.ReliefDemo", "Displacement explorer, relief", "relief ±h, then α and f",
              "arrows radiate from the nadir n — outwards for hills, inwards for the valley; a longer lens at the "
              "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "ArrowRight")),
              timed="relief ±h, m"),
     )),
-    Chapter("04", "tilt_displacement", "guide §5", "tilt displacement", "смещения за угол наклона", (
+    Chapter("04", "tilt_displacement", "tilt displacement", "смещения за угол наклона",
+            section=5, views=("measure",), demos=(
         # m is no headline here: over flat ground the tilt displacement on the photo does not depend on m
         Demo("demo-tilt", "aerophoto.demos.displacement.TiltDemo", "Displacement explorer, tilt", "α, then λ and f",
              "arrows radiate from the isocentre c; points on the isoline stay put; the guide's approximate "
              "formula (orange) parts from the exact displacement (blue) as α grows",
              (_F, ("α, °", "ArrowRight"), ("λ, °", "ArrowRight")), timed="α, °"),
     )),
-    Chapter("05", "fotoschema", "guide §6", "the single-strip photo mosaic", "одномаршрутная фотосхема", (
+    Chapter("05", "fotoschema", "the single-strip photo mosaic", "одномаршрутная фотосхема", section=6, demos=(
         Demo("demo-fotoschema", "aerophoto.demos.fotoschema.FotoschemaDemo", "Live single-strip mosaic",
              "relief h, α max, then f and p_x",
              "cut-outs and duplicates appear along the cuts; a longer lens at the same scale shrinks the mismatches",
              (_F, _M, ("α max, °", "ArrowRight")), timed="α max, °"),
     )),
-    Chapter("06", "strip_triangulation", "guide §7", "strip phototriangulation and its reduction",
-            "фототриангуляционный ряд", (
+    Chapter("06", "strip_triangulation", "strip phototriangulation and its reduction",
+            "фототриангуляционный ряд", section=7, demos=(
                 Demo("demo-reduction", "aerophoto.demos.reduction.ReductionDemo", "Reduction explorer",
                      "q (free-strip scale), pricking error, central centre",
                      "k follows 1/q and the reduction arrows grow while the control residuals stay; pricking errors "
                      "grow the error triangles",
                      (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
             )),
-    Chapter("07", "stereoscope", "guide §8", "the stereoscope and the stereo model: parallax, heights, the floating "
-            "mark", "линзово-зеркальный стереоскоп; изучение стереомодели", (
+    Chapter("07", "stereoscope", "the stereoscope and the stereo model: parallax, heights, the floating "
+            "mark", "линзово-зеркальный стереоскоп; изучение стереомодели",
+            section=8, views=("stereo_figures",), demos=(
                 Demo("demo-floating-mark", "aerophoto.demos.stereo.FloatingMarkDemo", "The floating mark on an anaglyph",
                      "p (the parallax bar's drum), then x, y onto a roof, then the area",
                      "through red–cyan glasses the two crosses fuse into one mark that rises with p; at the parallax "
@@ -173,8 +238,8 @@ CHAPTERS = (
                      "lens at the same scale flattens it",
                      (("B, m", "PageUp"), ("f, mm", "PageUp")), timed="B, m"),
             )),
-    Chapter("08", "interpretation", "guide §9", "interpreting aerial photos: conditions, keys, table 10",
-            "дешифрирование аэроснимков", (
+    Chapter("08", "interpretation", "interpreting aerial photos: conditions, keys, table 10",
+            "дешифрирование аэроснимков", section=9, demos=(
                 Demo("demo-conditions", "aerophoto.demos.interpretation.ConditionsDemo",
                      "What makes a photo readable", "season, then e (sun elevation) and V (visibility), then θ and t",
                      "snow hides the fields; a low sun lengthens the shadows; haze greys the colours and flattens the "
@@ -187,8 +252,8 @@ CHAPTERS = (
                      "tributary give the flow, tone and crowns tell pine from spruce, curvature a railway from a road",
                      (("table 10 row", "ArrowRight"),), timed="table 10 row"),
             )),
-    Chapter("09", "plan_correction", "guide §10", "correcting a plan by mutual projective grids",
-            "корректировка плана методом взаимно-проектных сеток", (
+    Chapter("09", "plan_correction", "correcting a plan by mutual projective grids",
+            "корректировка плана методом взаимно-проектных сеток", section=10, demos=(
                 Demo("demo-plan-correction", "aerophoto.demos.plan_correction.PlanCorrectionDemo",
                      "Plan correction by mutual projective grids", "α, then n and the grid method, then the spread",
                      "with central directions the carried changes sit on the truth and improve as n grows; with "
@@ -196,8 +261,8 @@ CHAPTERS = (
                      (("α, °", "PageUp"), ("n (cells per side)", "ArrowRight"), ("spread of 1–4, %", "PageDown")),
                      timed="n (cells per side)"),
             )),
-    Chapter("10", "ground_control", "guide §11", "ground control: design, marking and resection",
-            "проект планово-высотной привязки", (
+    Chapter("10", "ground_control", "ground control: design, marking and resection",
+            "проект планово-высотной привязки", section=11, demos=(
                 Demo("demo-control-design", "aerophoto.demos.control.ControlDesignDemo", "Design of control on a block",
                      "m_ε and the allowed error, then the photo scale",
                      "Zhukov's spacing sets how many bases apart the rows of control go; a smaller scale or poorer "
@@ -208,22 +273,22 @@ CHAPTERS = (
                      "the cloud of stations resected under angle errors stretches near the danger circle",
                      (("P north, m", "PageUp"), ("P east, m", "PageUp")), timed="P north, m"),
             )),
-    Chapter("11", "rectification", "guide §12", "rectifying photos of flat ground", "фототрансформирование", (
+    Chapter("11", "rectification", "rectifying photos of flat ground", "фототрансформирование", section=12, demos=(
         Demo("demo-transformer", "aerophoto.demos.rectification.TransformerDemo", "The photo transformer, step by step",
              "step, then α and the pricking error",
              "centre, scale, hh, turn, tilt: the misses of the four points fall below 0.4 mm in two cycles",
              (("step", "ArrowRight"), ("α, °", "PageUp")), timed="step"),
     )),
-    Chapter("12", "phototriangulation", "guide §13", "phototriangulation: control spacing and reduction",
-            "фототриангуляция", (
+    Chapter("12", "phototriangulation", "phototriangulation: control spacing and reduction",
+            "фототриангуляция", section=13, demos=(
                 Demo("demo-reduction", "aerophoto.demos.reduction.ReductionDemo", "Reduction explorer (tilted photos)",
                      "α max, q, pricking error",
                      "the same explorer with tilted photos: the reduced strip against the control points",
                      (_F, ("m (photo 1:m)", "PageUp"), ("α max, °", "ArrowRight")), timed="α max, °"),
             )),
-    Chapter("13", "soil_mapping", "guide §14", "aerial and space photos in soil mapping: soil reflectance, "
+    Chapter("13", "soil_mapping", "aerial and space photos in soil mapping: soil reflectance, "
             "soil keys and contour interpretation", "применение аэро- и космических снимков при почвенном "
-            "картографировании", (
+            "картографировании", section=14, demos=(
                 Demo("demo-spectral", "aerophoto.demos.spectral_explorer.SpectralExplorerDemo",
                      "Spectral explorer — soil reflectance and a band composite",
                      "θ (moisture) up, then H (humus), then d (particle size) below 0.4 mm",
@@ -232,26 +297,26 @@ CHAPTERS = (
                      "follows",
                      (("θ (moisture), %", "PageUp"), ("H (humus), %", "PageUp")), timed="θ (moisture), %"),
             )),
-    Chapter("14", "triangulation_accuracy", "article 001", "accuracy of phototriangulation: error accumulation and "
-            "control spacing", "точность фототриангуляционных сетей", (
+    Chapter("14", "triangulation_accuracy", "accuracy of phototriangulation: error accumulation and "
+            "control spacing", "точность фототриангуляционных сетей", article="001", views=("bundle_views",), demos=(
                 Demo("demo-block-errors", "aerophoto.demos.block_accuracy.BlockErrorDemo",
                      "Block error map — control layout and σ", "n (control spacing), then K strips and σ",
                      "the predicted errors swell between the control rows, faster in height; more strips stiffen "
                      "the block; σ brightens the whole map",
                      (("σ, µm", "PageUp"), ("K, strips", "ArrowRight")), timed="σ, µm"),
             )),
-    Chapter("15", "block_adjustment", "article 002", "bundle block adjustment: locating field points in the "
-            "mountains", "блочная фототриангуляция по методу связок"),
-    Chapter("16", "dem_contours", "article 000", "contours from a DEM: regular grid, structural lines, Lysenko's "
-            "densification accuracy", "рисовка горизонталей по точкам ЦМР", (
+    Chapter("15", "block_adjustment", "bundle block adjustment: locating field points in the "
+            "mountains", "блочная фототриангуляция по методу связок", article="002", views=("bundle_views",)),
+    Chapter("16", "dem_contours", "contours from a DEM: regular grid, structural lines, Lysenko's "
+            "densification accuracy", "рисовка горизонталей по точкам ЦМР", article="000", demos=(
                 Demo("demo-contours", "aerophoto.demos.dem_contours.ContourDemo", "Contours from a DEM against the truth",
                      "m_z to 0, then d up to 150 m, then the structural lines on",
                      "with error-free nodes a 30 m grid follows the site's hills to millimetres; coarse grids cut "
                      "the bends and the structural lines win part back; node errors make the contours wriggle",
                      (("d, m", "PageUp"), ("m_z, m", "PageUp")), timed="d, m"),
             )),
-    Chapter("17", "map_update_errors", "article 003", "the error budget of map updating", "анализ плановой точности "
-            "при обновлении карт", (
+    Chapter("17", "map_update_errors", "the error budget of map updating", "анализ плановой точности "
+            "при обновлении карт", article="003", demos=(
                 Demo("demo-budget", "aerophoto.demos.error_budget.BudgetDemo", "The error budget of map updating",
                      "the DEM stage, then 1:M_c and P, then the map scale",
                      "the instruction's DEM and transfer tolerances dominate; a real DEM brings the map within "
@@ -265,9 +330,15 @@ chapter 00's tables, the browser tests and the benchmarks read it)."""
 LECTURE_INDEX = "lectures.ipynb"
 
 
-def chapter(name_or_number: str) -> Chapter:
-    """A chapter by number (``"03"``), name (``"03_relief_displacement"``) or notebook file name."""
+def chapter(name_or_number: str | int) -> Chapter:
+    """A chapter by number (``"03"``, ``"3"`` or ``3``), name (``"03_relief_displacement"``) or notebook file name.
+
+    The chapter carries its key: ``chapter("09").guide_module`` is ``"aerophoto.guide.ch09"``, and so on
+    (:class:`Chapter`).
+    """
     key = str(name_or_number).removesuffix(".ipynb")
+    if key.isdigit() and len(key) <= 2:
+        key = f"{int(key):02d}"
     for c in CHAPTERS:
         if key in (c.number, c.name):
             return c
@@ -716,6 +787,18 @@ def _banner(v: Variant, note: str, ip) -> None:
     display(HTML(f"<div style='border-left:4px solid #0072B2;padding:4px 8px'><b>{line1}</b><br>{line2}{extra}</div>"))
 
 
-if __name__ == "__main__":  # python -m aerophoto.book: rewrite the generated chapter tables
+def main(argv=None) -> int:
+    """``python -m aerophoto.book``: rewrite the generated chapter tables; ``python -m aerophoto.book 09``: print
+    chapter 09's key (its notebook, source, guide, tasks, lab and demo modules)."""
+    args = sys.argv[1:] if argv is None else list(argv)
+    if args:
+        for a in args:
+            print(chapter(a).key_text())
+        return 0
     for place in sync_generated(write=True) or ["(all current)"]:
         print("updated", place)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

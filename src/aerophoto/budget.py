@@ -30,7 +30,7 @@ DEM's tolerance by what a DEM of a given height accuracy actually does to an ort
 (:func:`dtm_displacement_m`), or by the relief left uncorrected when a photo is rectified onto one
 plane (:func:`plane_rectification_m`).
 
-The printed tables 1–5 and their audits: :mod:`aerophoto.guide.a003`.
+The printed tables 1–5 and their audits: :mod:`aerophoto.guide.ch17`.
 """
 
 from __future__ import annotations

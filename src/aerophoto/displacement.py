@@ -45,7 +45,7 @@ table 3 and :func:`tilt_corrections` table 6.  :func:`relief_work` and
 pricked points and plan lengths of the bases.
 
 Where the rest lives: the guide's printed tables 2–7 and their audits in
-:mod:`aerophoto.guide.s04` and :mod:`aerophoto.guide.s05`; the lab tasks of
+:mod:`aerophoto.guide.ch03` and :mod:`aerophoto.guide.ch04`; the lab tasks of
 chapters 03 and 04 in :mod:`aerophoto.tasks.ch03` and :mod:`aerophoto.tasks.ch04`;
 the demo terrain in :mod:`aerophoto.terrain` (:class:`~aerophoto.terrain.AnalyticHills`)
 and the explorer's exact displacement field in :mod:`aerophoto.demos.displacement`.

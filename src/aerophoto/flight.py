@@ -48,7 +48,7 @@ p_y = 30 % it would be 70.  :func:`plan` follows the guide (the graded tasks
 do too); :func:`side_spacing` gives P_y, b_y, B_y and K with either allowance.
 
 The guide's worked example (variant i = 0) is :func:`guide_example`; its
-printed lines and their audit are :mod:`aerophoto.guide.s02`.
+printed lines and their audit are :mod:`aerophoto.guide.ch01`.
 """
 
 from __future__ import annotations

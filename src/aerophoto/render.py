@@ -459,8 +459,6 @@ def render(
     -------
     Photo
     """
-    from scipy.ndimage import map_coordinates
-
     if not isinstance(camera, g.Camera):
         raise ValueError(f"camera = {camera!r} must be an aerophoto.geometry.Camera")
     if not isinstance(pose, g.Pose):
@@ -478,7 +476,33 @@ def render(
     zmax = float(site.z_max_m)
     pose.flying_height(zmax)  # S must be above the terrain
 
-    # 1. rays
+    ax, ay = _pixel_rays(camera, pose, n)
+    Xg, Yg, Z, residual, n_eval = _ground_under_rays(site, camera, pose, n, ax, ay, tol)
+    objs = getattr(site, "objects", None) if objects else None
+    hits = None
+    if objs is not None:
+        hits, Xg, Yg, Z = _objects_on_rays(site, objs, camera, pose, n, ax, ay, Xg, Yg, Z)
+    img, valid, shadow = _brightness(site, lev, Xg, Yg, Z, hits, objs, sun, camera, pose, n)
+    img = _finish_image(img.reshape(n, n), valid.reshape(n, n), camera, n, v, bg, fiducials)
+    valid = valid.reshape(n, n)
+    ground = None
+    if keep_ground:
+        ground = np.stack([Xg, Yg, Z], axis=-1).reshape(n, n, 3)
+    surface = object_id = None
+    if hits is not None:
+        surface = hits.surface.reshape(n, n)
+        object_id = hits.object_id.astype(np.int32).reshape(n, n)
+    return Photo(image=img, camera=camera, pose=pose, site=site, valid=valid, level=lev, vignetting=v,
+                 fiducials=bool(fiducials), dem_residual_m=residual, ground_m=ground, number=number,
+                 dem_evaluations=n_eval, surface=surface, object_id=object_id, shadow=shadow,
+                 objects=hits is not None, sun=sun)
+
+
+def _pixel_rays(camera: g.Camera, pose: g.Pose, n: int):
+    """The ray of every pixel as slopes: ``(ax, ay)``, dX/dZ and dY/dZ, each shape (n·n,).
+
+    Raises ValueError when a ray points at or above the horizon (the tilt is too large for the lens).
+    """
     cam = _camera_vectors(camera.f_mm, camera.frame_mm, n)
     R = g.rotation_matrix(pose)
     gz = cam @ R[2]
@@ -488,12 +512,23 @@ def render(
             f"{camera.f_mm:g}); the valid range is a tilt with every ray below the horizon, "
             f"|alpha_deg| < {90.0 - math.degrees(math.atan(camera.half_mm * math.sqrt(2) / camera.f_mm)):.1f}"
         )
-    s = float(site.dem_spacing_m)
     ax = (cam @ R[0]) / gz  # dX/dZ along each ray
     ay = (cam @ R[1]) / gz
-    Sx, Sy, Sz = pose.X_m, pose.Y_m, pose.Z_m
+    return ax, ay
 
-    # 2. coarse: exact, bracketed intersections on a lattice of pixels; interpolate Z; refine
+
+def _ground_under_rays(site, camera: g.Camera, pose: g.Pose, n: int, ax, ay, tol: float):
+    """Where every pixel's ray meets the bare ground (the DEM), to ``tol`` metres in height.
+
+    Exact, bracketed intersections on a coarse lattice of pixels give a first height by interpolation; a secant
+    iteration on the DEM (bilinear) refines every pixel; pixels still off by more than ``tol`` after 12 steps
+    (pathological terrain) are solved by the bracketed solver.  Returns ``(X, Y, Z, residual_m, evaluations)``:
+    ground coordinates in metres, shape (n·n,) each, the largest |Z − h(X, Y)| and the number of DEM look-ups.
+    """
+    from scipy.ndimage import map_coordinates
+
+    s = float(site.dem_spacing_m)
+    Sx, Sy, Sz = pose.X_m, pose.Y_m, pose.Z_m
     idx, A = _coarse_plan(n, COARSE_STEP)
     grid = _pixel_grid_mm(camera.frame_mm, n)
     coarse = g.photo_to_dem(camera, pose, grid[np.ix_(idx, idx)], site, tol_m=min(tol, 1e-3) * 0.1)
@@ -502,7 +537,6 @@ def render(
     dem = site.dem
     coords = np.empty((2, n * n))
     dz = np.empty(n * n)
-
     n_eval = [0]
 
     def height_on_ray(Zv):
@@ -541,23 +575,36 @@ def render(
         f = Z - h
         residual = float(np.max(np.abs(f)))
     # ground coordinates of the final heights (coords holds Y/s, X/s of the last evaluation)
-    Xg = coords[1] * s
-    Yg = coords[0] * s
+    return coords[1] * s, coords[0] * s, Z, residual, n_eval[0]
 
-    # 2b. what stands on the ground: the nearest hit of every ray
-    objs = getattr(site, "objects", None) if objects else None
-    hits = None
-    if objs is not None:
-        k, pix = box_pixel_pairs(objs.bbox, camera, pose, n)
-        hits = first_hits(site, objs, pose.centre, ax, ay, Sz - Z, k, pix, Xg, Yg)
-        moved = hits.idx
-        u = hits.u
-        Xg[moved] = Sx - ax[moved] * u
-        Yg[moved] = Sy - ay[moved] * u
-        Z = Z.copy()
-        Z[moved] = Sz - u
 
-    # 3. brightness
+def _objects_on_rays(site, objs, camera: g.Camera, pose: g.Pose, n: int, ax, ay, Xg, Yg, Z):
+    """What stands on the ground: the nearest hit of every ray on the site's objects.
+
+    Returns ``(hits, X, Y, Z)``: the :class:`Hits` and the ground coordinates with the hit pixels moved onto the
+    objects' surfaces (``Xg`` and ``Yg`` are changed in place; ``Z`` is copied).
+    """
+    Sx, Sy, Sz = pose.X_m, pose.Y_m, pose.Z_m
+    k, pix = box_pixel_pairs(objs.bbox, camera, pose, n)
+    hits = first_hits(site, objs, pose.centre, ax, ay, Sz - Z, k, pix, Xg, Yg)
+    moved = hits.idx
+    u = hits.u
+    Xg[moved] = Sx - ax[moved] * u
+    Yg[moved] = Sy - ay[moved] * u
+    Z = Z.copy()
+    Z[moved] = Sz - u
+    return hits, Xg, Yg, Z
+
+
+def _brightness(site, lev: int, Xg, Yg, Z, hits, objs, sun, camera: g.Camera, pose: g.Pose, n: int):
+    """The brightness of every pixel: the texture at its ground point, the objects shaded, their shadows cast.
+
+    Returns ``(img, valid, shadow)``: brightness 0…1 (float32, shape (n·n,)), whether the ground point is on the
+    site (shape (n·n,)), and the pixels in a cast shadow (shape (n, n), or None without objects or sun).
+    """
+    from scipy.ndimage import map_coordinates
+
+    coords = np.empty((2, n * n))
     t = site.texel_m(lev)
     tex = site.texture_level(lev)
     coords[0] = Yg / t - 0.5
@@ -584,8 +631,14 @@ def render(
             f[~is_on] = np.float32(AMBIENT)
             img[sh] *= f
             shadow = shadow.reshape(n, n)
-    img = img.reshape(n, n)
-    valid = valid.reshape(n, n)
+    return img, valid, shadow
+
+
+def _finish_image(img, valid, camera: g.Camera, n: int, v: float, bg: float, fiducials: bool):
+    """The camera's marks on the picture: light fall-off ``v``, background ``bg`` off the site, fiducials.
+
+    ``img`` (n, n) is changed in place and returned.
+    """
     if v > 0:
         img *= _falloff(camera.frame_mm, n, v)
     if not valid.all():
@@ -594,17 +647,7 @@ def render(
         dark, light_mask = _fiducial_mask(n)
         img[dark] = 0.0
         img[light_mask] = 1.0
-    ground = None
-    if keep_ground:
-        ground = np.stack([Xg, Yg, Z], axis=-1).reshape(n, n, 3)
-    surface = object_id = None
-    if hits is not None:
-        surface = hits.surface.reshape(n, n)
-        object_id = hits.object_id.astype(np.int32).reshape(n, n)
-    return Photo(image=img, camera=camera, pose=pose, site=site, valid=valid, level=lev, vignetting=v,
-                 fiducials=bool(fiducials), dem_residual_m=residual, ground_m=ground, number=number,
-                 dem_evaluations=n_eval[0], surface=surface, object_id=object_id, shadow=shadow,
-                 objects=hits is not None, sun=sun)
+    return img
 
 
 def trace(site, camera: g.Camera, pose: g.Pose, xy_mm, *, objects: bool = True) -> Hits:

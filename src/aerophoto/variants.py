@@ -35,7 +35,7 @@ from dataclasses import asdict, dataclass
 import pandas as pd
 
 from ._validate import check_int_range
-from .geometry import Camera
+from .geometry import Camera, flying_height_m
 
 __all__ = ["Variant", "variant", "variant_for_index", "index_from_record_book"]
 
@@ -68,7 +68,7 @@ class Variant:
     @property
     def H_m(self) -> float:
         """Flying height H = f·m in metres (guide §2, step 2)."""
-        return self.f_mm / 1000.0 * self.m
+        return flying_height_m(self.f_mm, self.m)
 
     @property
     def relief_m(self) -> float:

@@ -292,7 +292,7 @@ class LiveDemo:
     #: show the figure's legends as HTML under it instead of drawing them on every update
     legend_beside: bool = True
     #: the artists a move changes (lines, markers, whole Axes whose limits move), set in :meth:`build`;
-    #: when given, a move redraws only these over a cached picture of the rest (:class:`plots.Blitter`)
+    #: when given, a move redraws only these over a cached picture of the rest (:class:`blit.Blitter`)
     animated: tuple = ()
     #: the handle of the work scheduled by :meth:`later` (None: nothing scheduled)
     _later = None
@@ -336,7 +336,7 @@ class LiveDemo:
         #: draws only ``animated`` on a move (None: every move draws the whole figure)
         self.blitter = None
         if self.animated and getattr(self, "fig", None) is not None and os.environ.get("AEROPHOTO_BLIT", "1") != "0":
-            from .plots import Blitter
+            from .blit import Blitter
 
             self.blitter = Blitter(self.fig, self.animated)
         #: where Reset returns: the values the demo was built with (e.g. the student's variant)

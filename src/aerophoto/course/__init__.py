@@ -20,11 +20,19 @@
 =====================================  ==============================================================
 
 The parts: :mod:`.common` (paths, config, cells), :mod:`.versions` (student book, nbgrader source, teacher's
-copy), :mod:`.sandbox` (bubblewrap, the kernel manager), :mod:`.execute` (nbgrader's Execute in the sandbox),
-:mod:`.trusted` (the answers graded outside the student's kernel), :mod:`.flags`, :mod:`.lms`,
-:mod:`.grading` (the course folder, the lock), :mod:`.reports`, :mod:`.check`, :mod:`.cli`,
-:mod:`.probe` (what a check cell reports about its kernel).  Importing this package is cheap; the parts
-load on first use.
+copy), :mod:`.limits` (what a sandbox may use), :mod:`.bwrap` (the one bubblewrap recipe, also the hub's),
+:mod:`.sandbox` (the host side of a sandbox), :mod:`.sandbox_kernel` (the kernel manager),
+:mod:`.sandbox_execute` (nbgrader's Execute in the sandbox), :mod:`.outcomes` (nbgrader's view of an executed
+notebook), :mod:`.flags`, :mod:`.lms`, :mod:`.grading` (the course folder, the lock), :mod:`.reports`,
+:mod:`.check`, :mod:`.cli`.  Importing this package is cheap; the parts load on first use.
+
+**The answer's road** from the notebook to the gradebook runs one way.  In the student's kernel
+:mod:`aerophoto.checks` uses the kernel-side parts — :mod:`.wire` (the answer record; the standard library
+only), :mod:`.verdict` (right, or what kind of mistake) and :mod:`.probe` (what the check saw of the kernel)
+— none of which imports nbgrader or another part of this package but :mod:`.wire`.  In the instructor's
+process :mod:`.trusted` reads the records (:mod:`.wire`) and scores them with :mod:`.score` (the same
+:mod:`.verdict`, the hidden checks of :mod:`aerophoto.tasks`).  Nothing in this package imports
+:mod:`aerophoto.checks`.
 
 **Student id and record-book number.**  The student id (the name nbgrader and the LMS export use) is the
 record-book number (номер зачётной книжки) unless a roster CSV (``course/roster.csv`` or ``--roster``;
@@ -43,15 +51,19 @@ _EXPORTS = {
     "student_version": "versions", "source_version": "versions", "teacher_version": "versions",
     "strip_solutions": "versions", "strip_solutions_in": "versions", "write_workbook": "versions",
     "write_teacher": "versions",
-    "check_notebook": "check", "CheckResult": "execute", "TaskOutcome": "execute", "executed_outcomes": "execute",
+    "check_notebook": "check", "CheckResult": "outcomes", "TaskOutcome": "outcomes", "executed_outcomes": "outcomes",
     "parse_record_book": "flags", "inspect_submission": "flags", "code_flags": "flags",
     "package_answer_functions": "flags",
     "scan_submissions": "lms", "Scan": "lms",
     "Course": "grading", "GradeResult": "grading", "CourseBusy": "grading", "course_lock": "grading",
     "grade_executed": "trusted", "answer_records": "trusted",
-    "Limits": "sandbox", "SandboxUnavailable": "sandbox",
+    "ANSWERS_MIME": "wire", "encode_answers": "wire", "decode_answers": "wire",
+    "grade_task": "score", "TaskGrade": "score",
+    "Limits": "limits", "BwrapOptions": "bwrap", "bwrap_argv": "bwrap", "sandbox_uid": "bwrap",
+    "SandboxUnavailable": "sandbox", "SandboxKernelManager": "sandbox_kernel", "SandboxExecute": "sandbox_execute",
     "main": "cli",
 }
+"""Every public name of the package → the part that defines it (loaded on first use)."""
 
 __all__ = sorted(_EXPORTS)
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from .common import DEFAULT_TIMEOUT_S, digits, graded_tasks, read_nb
-from .execute import CheckResult, TaskOutcome, executed_outcomes, run_sandboxed
-from .sandbox import Limits
+from .limits import Limits
+from .outcomes import CheckResult, TaskOutcome, executed_outcomes
 
 
 def resolve_record_book(nb, record_book=None) -> tuple[str | None, str]:
@@ -67,6 +67,8 @@ def check_notebook(path, *, timeout: int = DEFAULT_TIMEOUT_S, record_book: str |
         result.problem = ("no record-book number: type it in the first cell (RECORD_BOOK = \"19-0457\") or pass "
                           "--record-book — without it the answers cannot be verified")
         return result
+    from .sandbox_execute import run_sandboxed
+
     ex = run_sandboxed(nb, cwd=path.parent.resolve(), timeout=timeout, record_book=rb, limits=limits,
                        unsafe_no_sandbox=unsafe_no_sandbox)
     outcomes = {o.task: o for o in executed_outcomes(nb)[0]}

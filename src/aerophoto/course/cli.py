@@ -183,7 +183,7 @@ def _dispatch(args, out) -> int:
         scan = course.import_submissions(args.folder)
         return 1 if scan.failed else 0
     if args.cmd == "autograde":
-        from .sandbox import MAX_JOBS
+        from .bwrap import MAX_JOBS
 
         if not 1 <= args.jobs <= MAX_JOBS:
             out(t("autograde: --jobs {jobs} is not valid; expected 1 … {max_jobs}", jobs=args.jobs, max_jobs=MAX_JOBS))

@@ -14,9 +14,12 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from .limits import GRADING
+
 COURSE_ID = "aerophoto"
-DEFAULT_TIMEOUT_S = 120
-"""Per-cell execution limit (seconds) while grading or checking; nbgrader's own default is 30 s."""
+DEFAULT_TIMEOUT_S = GRADING.cell_s
+"""Per-cell execution limit (seconds) while grading or checking (:attr:`.limits.Limits.cell_s`); nbgrader's own
+default is 30 s."""
 
 SID_RE = re.compile(r"^\w[\w.@-]*$")
 _LOG = logging.getLogger("aerophoto.course")

@@ -78,24 +78,28 @@ _VARIANT_CALLS = {"aerophoto.setup", "aerophoto.book.setup", "aerophoto.variants
 def package_answer_functions() -> frozenset:
     """The package's functions the graded tasks compute their answers with (from :mod:`aerophoto.tasks`' code).
 
-    Every call in a ``tasks/chNN.py`` module of a function of another aerophoto module (``flight.plan``,
-    ``geometry.flying_height_m``, ``quality.variant_task_answers``, ...), plus ``aerophoto.tasks`` itself, less
-    the instruments a task's text tells the student to work with (``Task.tools``).
+    Every call in a ``tasks/chNN.py`` or ``labs/chNN.py`` module of a function of another aerophoto module
+    (``flight.plan``, ``geometry.flying_height_m``, ``quality.variant_task_answers``, ...), plus ``aerophoto.tasks``
+    and ``aerophoto.labs`` themselves, less the instruments a task's text tells the student to work with
+    (``Task.tools``).
     """
-    from .. import tasks
+    from .. import labs, tasks
 
-    folder = Path(tasks.__file__).parent
-    found = {"aerophoto.tasks"}
-    for mod in tasks.CHAPTER_MODULES.values():
-        path = folder / f"{mod}.py"
+    # the rubrics (tasks/chNN.py) and the chapters' lab worlds they build on (labs/chNN.py)
+    sources = [(Path(tasks.__file__).parent / f"{mod}.py", "aerophoto.tasks") for mod in tasks.CHAPTER_MODULES.values()]
+    sources += [(Path(labs.__file__).parent / f"{mod}.py", "aerophoto.labs") for mod in labs.MODULES
+                if mod.startswith("ch")]
+    found = {"aerophoto.tasks", "aerophoto.labs"}
+    for path, package in sources:
         if not path.is_file():
             continue
         tree = ast.parse(path.read_text(encoding="utf-8"))
-        aliases = _aliases(tree, package="aerophoto.tasks")
+        aliases = _aliases(tree, package=package)
         for node in ast.walk(tree):
             if isinstance(node, ast.Call):
                 name = _resolve(node.func, aliases)
                 if (name and name.startswith("aerophoto.") and not name.startswith(("aerophoto.tasks",
+                                                                                     "aerophoto.labs",
                                                                                      "aerophoto._validate",
                                                                                      "aerophoto.variants"))
                         and name.count(".") >= 2):
@@ -377,7 +381,7 @@ def inspect_submission(release_nb, submitted_path: Path, autograded_path: Path |
     if autograded_path is None or not autograded_path.exists():
         flags.append(Flag("not_graded", "no autograded notebook (autograde failed or has not run)"))
         return flags
-    from .execute import error_outputs, test_outcome
+    from .outcomes import error_outputs, test_outcome
     from .common import graded_tasks
 
     graded = read_nb(autograded_path)

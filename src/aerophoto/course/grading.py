@@ -4,7 +4,7 @@ nbgrader is the engine for the workflow and the gradebook; what is added around 
 
 * the student book is the repository's ``notebooks/``; ``generate`` writes nbgrader's source from it with
   reference solutions computed by the package (:func:`~.versions.source_version`);
-* every submission runs in the sandbox (:mod:`.sandbox`, :class:`~.execute.SandboxExecute`), and the score
+* every submission runs in the sandbox (:mod:`.sandbox`, :class:`~.sandbox_execute.SandboxExecute`), and the score
   written into nbgrader's gradebook is the trusted one (:mod:`.trusted`);
 * a lock on the course folder (:func:`course_lock`): a second grading run waits (or refuses) instead of
   corrupting the first; ``import`` writes each file atomically;
@@ -28,7 +28,8 @@ from .common import (COURSE_ID, Flag, GradedTask, chapters, course_config, defau
                      default_notebooks_dir, digits, ensure_path, graded_tasks, last_error, nb_bytes,
                      nbformat_major, need_nbgrader, notebook_problem, read_nb, read_roster, stderr_to,
                      template_path, write_atomic)
-from .sandbox import MAX_JOBS, NOBODY, Limits, sandbox_uid
+from .bwrap import MAX_JOBS, NOBODY, sandbox_uid
+from .limits import Limits
 
 
 class CourseBusy(RuntimeError):
@@ -166,7 +167,7 @@ class Course:
             return self._limits
         cfg = course_config(self.root)
         lim = cfg.SandboxExecute.get("limits") if "SandboxExecute" in cfg else None
-        return Limits(**lim) if isinstance(lim, dict) else Limits()
+        return Limits.of(lim)
 
     def lock(self, what: str):
         return course_lock(self.root, what, wait_s=self.wait_s, out=self.out)
@@ -176,10 +177,10 @@ class Course:
         from nbgrader.preprocessors import (AssignLatePenalties, CheckCellMetadata, IgnorePattern, LimitOutput,
                                             SaveAutoGrades)
 
-        from .execute import __getattr__ as _execute_attr
+        from .sandbox_execute import SandboxExecute
 
         cfg = course_config(self.root, self.timeout)
-        cfg.Autograde.autograde_preprocessors = [_execute_attr("SandboxExecute"), IgnorePattern,
+        cfg.Autograde.autograde_preprocessors = [SandboxExecute, IgnorePattern,
                                                  ClearMetadataPreprocessor, LimitOutput, SaveAutoGrades,
                                                  AssignLatePenalties, CheckCellMetadata]
         if self._limits is not None or "limits" not in cfg.SandboxExecute:
@@ -484,7 +485,7 @@ class Course:
 
     def _trusted(self, sid: str, a: str) -> list:
         """The trusted check of one autograded submission: scores into the gradebook, a report beside."""
-        from .execute import EVENTS
+        from .sandbox_execute import EVENTS
         from .trusted import grade_executed, write_scores
 
         rb = self.record_book(sid)

@@ -1,10 +1,12 @@
 """What a check cell reports about the kernel it runs in, while the instructor grades (kernel side).
 
 :func:`evidence` is called by :func:`aerophoto.checks.check_task` when ``AEROPHOTO_GRADING`` is set and goes
-into the answer record beside the submitted values.  It is evidence, not proof — the kernel is the
-student's — and it is cheap: exception handling and IPython event hooks changed by cell code, the checks
-or the tasks replaced, the ``AEROPHOTO_*`` environment.  The score never depends on it (the trusted check
-runs in the instructor's process); it names what a student did.
+into the answer record (:mod:`.wire`) beside the submitted values.  It is evidence, not proof — the kernel is
+the student's — and it is cheap: exception handling and IPython event hooks changed by cell code, the checks
+(:mod:`aerophoto.checks`, :mod:`.verdict`, :mod:`.wire`) or the tasks replaced, the ``AEROPHOTO_*``
+environment.  The score never depends on it (the trusted check runs in the instructor's process); it names
+what a student did.  Kernel side: the standard library only; it imports nothing of aerophoto (it looks at
+the modules already loaded).
 """
 
 from __future__ import annotations
@@ -16,9 +18,16 @@ _OURS = ("IPython", "ipykernel", "matplotlib", "matplotlib_inline", "ipympl", "i
          "traitlets", "jupyter_client", "debugpy", "zmq", "tornado", "asyncio")
 _SHELL_METHODS = ("showtraceback", "_showtraceback", "showsyntaxerror", "run_cell", "run_cell_async",
                   "run_code", "run_ast_nodes", "should_run_async", "transform_cell", "excepthook")
-_CHECK_FUNCTIONS = ("check_task", "check_value", "check_count", "check_values", "check_bool", "check_choice",
-                    "task_passed", "grade_task", "encode_answers", "_check_one", "_fail", "_pass", "_emit",
-                    "_task_values", "_close", "_plain", "WrongAnswer")
+_WATCHED = {
+    "aerophoto.checks": ("check_task", "check_value", "check_count", "check_values", "check_bool", "check_choice",
+                         "task_passed", "_check_one", "_settle", "_fail", "_pass", "_emit", "_task_values",
+                         "WrongAnswer"),
+    "aerophoto.course.verdict": ("value_verdict", "count_verdict", "values_verdict", "bool_verdict",
+                                 "choice_verdict", "answer_call", "close", "_diagnose", "_paired", "_numbers",
+                                 "_whole_set_mistake", "Verdict"),
+    "aerophoto.course.wire": ("encode_answers", "scalar", "is_bool", "as_sequence", "_plain"),
+}
+"""The functions a check cell runs, by module: one replaced by cell code is reported (``patched``)."""
 
 
 def _module_of(obj) -> str:
@@ -77,9 +86,12 @@ def evidence(task=None) -> dict:
     hook = sys.excepthook
     ev["excepthook"] = hook is not sys.__excepthook__ and not _ours(hook)
     patched = []
+    for name, functions in _WATCHED.items():
+        module = sys.modules.get(name)
+        if module is not None:
+            patched += _patched_functions(module, functions, module.__file__)
     checks = sys.modules.get("aerophoto.checks")
     if checks is not None:
-        patched += _patched_functions(checks, _CHECK_FUNCTIONS, checks.__file__)
         if getattr(checks, "check_task", None) is not None and checks.check_task.__globals__ is not vars(checks):
             patched.append("aerophoto.checks (module replaced)")
     if task is not None:

@@ -1,10 +1,10 @@
 """The trusted check: the submitted values, graded in the instructor's process for the roster's variant.
 
 A check cell run while grading (``AEROPHOTO_GRADING`` set in the sandbox) emits the values it was given as
-plain JSON data (:data:`aerophoto.checks.ANSWERS_MIME`), before it checks anything.  Here, outside the
+plain JSON data (:data:`.wire.ANSWERS_MIME`), before it checks anything.  Here, outside the
 student's kernel, those records are read from the locked test cells of the executed notebook (nbgrader
-restores the test cells before running them), decoded (:func:`aerophoto.checks.decode_answers`) and graded
-with :func:`aerophoto.checks.grade_task` — visible and hidden checks — for the variant of the *student's*
+restores the test cells before running them), decoded (:func:`.wire.decode_answers`) and graded
+with :func:`.score.grade_task` — visible and hidden checks — for the variant of the *student's*
 record-book number, never the one the kernel claims.  That score is the one written into nbgrader's
 gradebook (:func:`write_scores`).
 
@@ -20,7 +20,9 @@ import json
 from dataclasses import dataclass, field
 
 from .common import COURSE_ID, Flag, digits, graded_tasks, is_test, nbg
-from .execute import executed_outcomes
+from .outcomes import executed_outcomes
+from .score import grade_task
+from .wire import ANSWERS_MIME, decode_answers
 
 
 @dataclass
@@ -45,8 +47,6 @@ class Verdict:
 
 def answer_records(nb) -> dict[str, list[dict]]:
     """check grade_id → the answer records found in that test cell's outputs (in order)."""
-    from ..checks import ANSWERS_MIME
-
     out: dict[str, list[dict]] = {}
     for cell in nb["cells"]:
         if not is_test(cell):
@@ -115,8 +115,6 @@ def evidence_flags(record: dict, expected_record_book: str | None, where: str) -
 
 def grade_executed(nb, record_book: str | None, *, tasks=None) -> list[Verdict]:
     """The trusted verdict on every task of an executed notebook (see the module notes)."""
-    from ..checks import decode_answers, grade_task
-
     tasks = list(tasks) if tasks is not None else graded_tasks(nb)
     v = variant_of(record_book)
     records = answer_records(nb)

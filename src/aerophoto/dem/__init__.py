@@ -5,7 +5,7 @@ module             what
 =================  ==========================================================================
 ``densification``  Lysenko's formula for the accuracy of height densification by block
                    phototriangulation (:func:`lysenko_mz_m`, read as explained in
-                   :data:`aerophoto.guide.a000.LYSENKO_READING`) and a block simulated on a
+                   :data:`aerophoto.guide.ch16.LYSENKO_READING`) and a block simulated on a
                    terrain to hold it against (:func:`block_layout`, :func:`block_precision`)
 ``surface``        a map sheet (:class:`Sheet`), the regular DEM (:func:`grid_dem`), the
                    structural lines of the relief (:func:`structural_lines`) and the TINs built

@@ -11,7 +11,7 @@ with n photos in the block, m points measured on each photo, s images of each
 point and r control points (опорные точки); H the flying height and b the
 photo base (the article's ρ, "продольный параллакс", 70 mm).  Two parts of
 the printed formula are garbled or ambiguous; this module reads them so
-(and :mod:`aerophoto.guide.a000` records why):
+(and :mod:`aerophoto.guide.ch16` records why):
 
 * **"zr" under the root is s·r.**  With s·r the root is exactly
   :math:`\\sqrt{u/N}` of a bundle block adjustment — u = 6n + 3(mn/s − r)

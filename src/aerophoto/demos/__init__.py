@@ -31,7 +31,11 @@ _SUBMODULES = (
     "site_views",  # views of the virtual world: the site as a map, a rendered photo (PhotoView)
     "spectral_explorer",  # soil reflectance under a camera's bands and a patch's composite (chapter 13)
     "measure",  # the measuring tool: readings of pricked points on a photo or plan by clicking (chapters 03, 04)
+    "own",  # the student's own results, shown once the task asking for them has passed
+    "lecture",  # a demo laid out on one projector screen for the lecture pages (every chapter with demos)
 )
+"""Every demo module, once: the one list (tests/test_chapter_key.py checks it against the files on disk; which
+chapter uses which is :attr:`aerophoto.book.Chapter.demo_modules`)."""
 
 __all__ = list(_SUBMODULES)
 

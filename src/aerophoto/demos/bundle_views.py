@@ -54,7 +54,7 @@ def block_figure(survey, ax=None):
 
 def survey_site_params(survey) -> dict:
     """The parameters of the site a survey block was flown over."""
-    from ..tasks.ch15 import MOUNTAIN_SITE
+    from ..labs.ch15 import MOUNTAIN_SITE
 
     return dict(MOUNTAIN_SITE)
 

@@ -184,9 +184,9 @@ def _data_ratio(ax) -> float:
 # =========================================================================== the resection
 def guide_points() -> pd.DataFrame:
     """The four known points of the guide's §11 table: X (north), Y (east), m; index I…IV."""
-    from ..guide import s11
+    from .. import guide
 
-    return s11.known_points()[["X, m", "Y, m"]]
+    return guide.ch10.known_points()[["X, m", "Y, m"]]
 
 
 @dataclass(frozen=True)

@@ -73,15 +73,15 @@ def plan_table_html(p: flight.FlightPlan, lay: flight.FlightLayout | None = None
 def guide_example_html(audit=None) -> str:
     """The guide's §2 example recomputed (left) beside its line-by-line audit (right), as HTML.
 
-    Reads the audit :func:`aerophoto.guide.s02.worked_example` (or ``audit``):
+    Reads the audit :func:`aerophoto.guide.ch01.worked_example` (or ``audit``):
     one row per printed line — the line as printed, the factors that follow
     from the line before, the value computed and rounded as the guide rounds —
     shaded where a printed factor or result does not follow, with the reasons
     under the table.
     """
-    from ..guide import s02
+    from .. import guide
 
-    a = s02.worked_example() if audit is None else audit
+    a = guide.ch01.worked_example() if audit is None else audit
     p = a.result
     left = p.table(rounded=True)[["quantity", "value", "unit"]].copy()
     left["quantity"] = [q.split(" (")[0] for q in left["quantity"]]
@@ -96,8 +96,8 @@ def guide_example_html(audit=None) -> str:
     hl = np.zeros(right.shape, dtype=bool)
     hl[differs, :] = True
     notes = []
-    for line in s02.LINES:
-        reasons = [v.reason for v in a.discrepancies if v.where == s02.line_where(line)]
+    for line in guide.ch01.LINES:
+        reasons = [v.reason for v in a.discrepancies if v.where == guide.ch01.line_where(line)]
         if reasons:
             notes.append(f"step {line.step}, {line.quantity}: {' '.join(reasons)}")
     return ("<div style='display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start'>"
@@ -138,12 +138,12 @@ def own_plan_table(variant, passed) -> pd.DataFrame:
 def own_side_allowance(variant, passed):
     """The guide's side-overlap allowance beside the exact one for the student's plan, once tasks 01.1–01.2 passed.
 
-    ``passed``: as in :func:`own_plan_table`.  Returns :func:`aerophoto.guide.s02.side_allowance_table` of the
+    ``passed``: as in :func:`own_plan_table`.  Returns :func:`aerophoto.guide.ch01.side_allowance_table` of the
     variant's plan, or a :class:`~aerophoto.demos.own.Locked` note (the table holds B_y and K, graded values).
     """
-    from ..guide import s02
+    from .. import guide
 
-    return after(passed, ["task-01-1", "task-01-2"], lambda: s02.side_allowance_table(flight.plan(variant)),
+    return after(passed, ["task-01-1", "task-01-2"], lambda: guide.ch01.side_allowance_table(flight.plan(variant)),
                  "this table holds your strip spacing B_y and your number of strips K.")
 
 

@@ -27,7 +27,7 @@ no timer: a slider event is followed at once by the full render.  From code,
 at the preview one; ``demo.render_full()`` turns a shown preview into the full
 picture at once (what the timer does); ``demo.result.preview`` says which is shown.
 
-Both are blitted (``LiveDemo.animated``, :class:`aerophoto.plots.Blitter`): a
+Both are blitted (``LiveDemo.animated``, :class:`aerophoto.blit.Blitter`): a
 move redraws the sheet, its marks, the title and the ΔI stems over a cached
 picture of the axes, whose limits are snapped (the sheet's to 20 mm, the ΔI
 chart's to round values) so that most moves leave them alone; the tables
@@ -38,7 +38,7 @@ Static figures for the notebook: :func:`correction_sheet` (the корректу�
 finished sheet with the guide's marginalia, at true scale on an ISO paper
 size) and :func:`export_sheet` (PNG and PDF, never overwriting silently).
 
-The student's own fotoschema (chapter 05's tasks, :mod:`aerophoto.tasks.ch05`):
+The student's own fotoschema (chapter 05's lab, :mod:`aerophoto.labs.ch05`):
 :func:`own_sheet_figure` draws it for measuring (the glued prints, the cuts,
 the numbered check points and the four points of the mean scale — no
 mismatch and no scale: those are the student's answers);
@@ -52,7 +52,7 @@ The demo opens on the guide's worked example, variant 00 (f = 100 mm,
 22 000).  A strip of four photos, like the guide's four prints, fits the
 10 × 5 km site at every scale; at large H = f·m a tilt could carry the
 photos off the site, and then the tilt is reduced to the largest that keeps
-them on it — the table says so (:func:`aerophoto.tasks._own.tilt_that_fits`).
+them on it — the table says so (:func:`aerophoto.labs.own.tilt_that_fits`).
 """
 
 from __future__ import annotations
@@ -197,7 +197,7 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
         1024 px, with light fall-off and fiducial marks) instead of sampling the
         ground directly
     """
-    from ..tasks._own import tilt_that_fits
+    from ..labs.own import tilt_that_fits
 
     t0 = time.perf_counter()
     if ground is None:
@@ -738,9 +738,9 @@ def export_sheet(fig, folder, stem: str = "fotoschema", *, overwrite: bool = Fal
 @functools.lru_cache(maxsize=2)
 def _own_prints(i: int, f_mm: float, frame_mm: float, m: float, px_percent: float, n_px: int) -> tuple:
     from .. import render
-    from ..tasks import _own
+    from ..labs.own import own_strip_of
 
-    strip, site = _own._own_strip(i, f_mm, frame_mm, m, px_percent)
+    strip, site = own_strip_of(i, f_mm, frame_mm, m, px_percent)
     return tuple(render.render_strip(site, strip, n_px))
 
 
@@ -758,7 +758,7 @@ def own_prints(variant, n_px: int = 1024) -> tuple:
 
 @functools.lru_cache(maxsize=4)
 def _own_sheet_image(variant, px_per_mm: float) -> tuple:
-    from ..tasks.ch05 import own_fotoschema
+    from ..labs.ch05 import own_fotoschema
 
     own = own_fotoschema(variant)
     return mo.sheet_raster(own.fs, own.site, px_per_mm, photos=list(own_prints(variant)))
@@ -784,7 +784,7 @@ def own_sheet_figure(variant, ax=None, *, px_per_mm: float = 5.0):
     and the points 36a … 39b of the mean scale (task 05.2) — and nothing they
     must compute: no mismatch ΔI and no scale.  Returns the Figure.
     """
-    from ..tasks.ch05 import own_fotoschema
+    from ..labs.ch05 import own_fotoschema
 
     own = own_fotoschema(variant)
     fs = own.fs
@@ -851,9 +851,9 @@ def student_sheet(variant, made_by: str = "", *, checked_by: str = "", year: int
     variant : the student's Variant (its record book goes on the sheet)
     made_by : the student's name
     scale_m : the mean scale to sign with; default the reference value of task 05.2 (6.1 from the
-        student's readings, :func:`aerophoto.tasks.ch05.answers_of`) — the instructor's and the report's side
+        student's readings, :func:`aerophoto.labs.ch05.answers_of`) — the instructor's and the report's side
     """
-    from ..tasks.ch05 import answers_of, own_fotoschema
+    from ..labs.ch05 import answers_of, own_fotoschema
 
     own = own_fotoschema(variant)
     image, extent = own_sheet_image(variant, px_per_mm)
@@ -890,6 +890,6 @@ def finished_sheet(variant, made_by: str = "", *, answered: bool, checked_by: st
 
 def own_numbers(variant) -> str:
     """The photo numbers of the student's strip as text ("36–39")."""
-    from ..tasks._own import FIRST_NUMBER, N_PHOTOS
+    from ..labs.own import FIRST_NUMBER, N_PHOTOS
 
     return f"{FIRST_NUMBER}–{FIRST_NUMBER + N_PHOTOS - 1}"

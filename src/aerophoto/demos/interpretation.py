@@ -178,9 +178,9 @@ KEY_VIEWS = {
 
 
 def _key_rows():
-    from ..guide import s09
+    from .. import guide
 
-    return [r for r in s09.TABLE_10 if r[5] is not None]
+    return [r for r in guide.ch08.TABLE_10 if r[5] is not None]
 
 
 #: how many rows of table 10 the site illustrates (the key's slider runs over them)
@@ -268,7 +268,7 @@ class KeyDemo(LiveDemo):
 
 # =========================================================================== the lab's photo
 def lab_figure(lab, camera: str = "colour film", ax=None, *, marks: bool = True):
-    """The student's photo (:class:`aerophoto.tasks.ch08.LabPhoto`) with its numbered marks, in photo mm."""
+    """The student's photo (:class:`aerophoto.labs.ch08.LabPhoto`) with its numbered marks, in photo mm."""
     fig, ax = plots.new_axes(ax, figsize=(7.0, 7.0))
     ax.imshow(lab.composite(camera), extent=lab.extent_mm, interpolation="nearest")
     if marks:

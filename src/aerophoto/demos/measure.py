@@ -32,7 +32,7 @@ API (for every chapter that measures)::
     tool.clear(name=None)     # forget one point or all
 
 :func:`photo_tool` and :func:`plan_tool` build one for a lab sheet of chapters 03–04
-(:class:`aerophoto.tasks.displacement_lab.LabSheet`): the student's photo with its
+(:class:`aerophoto.labs.displacement.LabSheet`): the student's photo with its
 fiducial marks, or the plan at 1:M with contours.
 """
 
@@ -333,7 +333,7 @@ class MeasureTool:
 def photo_tool(sheet, **kwargs) -> MeasureTool:
     """A tool on the student's photo of a lab sheet: the rendered photo in photo mm with the pricked points.
 
-    ``sheet`` is a :class:`aerophoto.tasks.displacement_lab.LabSheet` (anything with ``photo()``,
+    ``sheet`` is a :class:`aerophoto.labs.displacement.LabSheet` (anything with ``photo()``,
     ``marks("photo")`` and ``names``).  The principal point o is the crossing of the fiducial marks' axes.
     """
     photo = sheet.photo()

@@ -20,7 +20,7 @@ block flown without imperfections, widened to hold the prints at every
 position of the imperfection sliders — so a move leaves the axes, their
 limits and ticks alone and redraws only the mosaic, the outlines, the marks
 and the title over a cached picture of the rest (``LiveDemo.animated``,
-:class:`aerophoto.plots.Blitter`).  The board also lets the eye see a print
+:class:`aerophoto.blit.Blitter`).  The board also lets the eye see a print
 *move* when the flight is broken.  The raster's ground heights and brightness
 on the board are read once per board (:func:`rough_mosaic_raster` with
 ``extent_m``), each print is projected only over its own neighbourhood, and

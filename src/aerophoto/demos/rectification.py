@@ -93,7 +93,7 @@ def _photo(alpha_deg, lambda_deg, kappa_deg, n_px):
 @functools.lru_cache(maxsize=16)
 def _points(alpha_deg, lambda_deg, kappa_deg, sigma_mm, flat=True):
     """The four transformation points and the central point: photo mm (with pricking error) and base mm."""
-    from ..tasks.ch11 import rectification_lab_for
+    from ..labs.ch11 import rectification_lab_for
 
     cam = g.Camera(EXAMPLE["f_mm"])
     pose = _pose(alpha_deg, lambda_deg, kappa_deg, flat)
@@ -304,7 +304,7 @@ class TransformerDemo(LiveDemo):
 def residual_field(lab, *, relief: bool = True) -> pd.DataFrame:
     """Where every visible catalogue point lands after rectification on the lab's four points, against the truth.
 
-    ``lab`` is a :class:`aerophoto.tasks.ch11.RectificationLab`.  Returns one
+    ``lab`` is a :class:`aerophoto.labs.ch11.RectificationLab`.  Returns one
     row per point with ``x base, mm``, ``y base, mm`` (truth), ``dx, mm``,
     ``dy, mm`` (rectified − truth) and ``h, m`` (height above the control points' mean).
     """

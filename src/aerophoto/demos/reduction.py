@@ -24,7 +24,7 @@ of four photos 36 … 39 as in guide §13, and its sliders reach every variant
 10 × 5 km site it is reduced to the largest that keeps them on it, and the table
 says so.
 
-For the student's own strip (chapters 06 and 12, :mod:`aerophoto.tasks.ch06`):
+For the student's own strip (chapters 06 and 12, :mod:`aerophoto.labs.ch06`):
 :func:`own_site_figure`, :func:`own_templates_figure` and :func:`own_strip_figure`
 draw what the student works from — their photos over the site, their
 templates, their laid strip — without the error triangles, coefficients or
@@ -140,13 +140,13 @@ def strip_design(f_mm: float, m: float, max_tilt_deg: float = 0.0, n_photos: int
     Returns ``(site, strip, points)``: :func:`aerophoto.site.get_site`, a
     strip of ``n_photos`` flown along +X through the site's centre at 1:m
     with p_x = 60 % and tilts up to ``max_tilt_deg`` (seeded; reduced to the
-    largest that keeps the photos on the site, :func:`aerophoto.tasks._own.tilt_that_fits`
+    largest that keeps the photos on the site, :func:`aerophoto.labs.own.tilt_that_fits`
     — compare ``strip.imperfections.max_tilt_deg``), and
     :func:`aerophoto.triangulation.design_points` on it (the site's catalogue
     where it has a point at a design position).
     """
     from .. import simulate, site as site_mod
-    from ..tasks._own import tilt_that_fits
+    from ..labs.own import tilt_that_fits
 
     s = site_mod.get_site()
     cam = g.Camera(f_mm)
@@ -678,7 +678,7 @@ class ReductionDemo(LiveDemo):
 # =========================================================================== the student's own strip
 def own_site_figure(variant, ax=None):
     """The student's photos 36 … 39 over the virtual site with the points pricked on them (guide figure 21)."""
-    from ..tasks.ch06 import lab_strip
+    from ..labs.ch06 import lab_strip
 
     lab = lab_strip(variant)
     from .. import site as site_mod
@@ -701,7 +701,7 @@ def own_site_figure(variant, ax=None):
 
 def own_templates_figure(variant):
     """The student's four direction templates (guide figure 22), side by side."""
-    from ..tasks.ch06 import lab_strip
+    from ..labs.ch06 import lab_strip
 
     tm = lab_strip(variant).templates
     fig = plots.figure(figsize=(13.0, 4.4))
@@ -722,11 +722,11 @@ def own_strip_figure(variant, ax=None):
 
     Drawn in the student's geodetic axes (x up, y right along the strip) and
     without the error triangles, the coefficients and the corrections — those
-    the student computes from the tables (:class:`aerophoto.tasks.ch06.StripReadings`).
+    the student computes from the tables (:class:`aerophoto.labs.ch06.StripReadings`).
     """
     import dataclasses
 
-    from ..tasks.ch06 import lab_strip, tracing_frame
+    from ..labs.ch06 import lab_strip, tracing_frame
 
     lab = lab_strip(variant)
     phi, R, shift = tracing_frame(variant)  # drawn where the tables measure it: the tracing on the table

@@ -38,7 +38,7 @@ CAMERA_NAMES = tuple(spectral.CAMERAS)
 def demo_patch():
     """Variant 00's soil patch (the layer of task 13.3's patch), built once."""
     from ..site.soils import soil_layer
-    from ..tasks import ch13
+    from ..labs import ch13
     from ..variants import variant_for_index
 
     p = ch13.patch_of(variant_for_index(0))
@@ -259,7 +259,7 @@ def plot_soil_facts(ax=None):
 
 
 def plot_patch(patch, ax=None):
-    """A student's patch (:class:`aerophoto.tasks.ch13.Patch`): its composite and the survey's soil map."""
+    """A student's patch (:class:`aerophoto.labs.ch13.Patch`): its composite and the survey's soil map."""
     from matplotlib.colors import ListedColormap
 
     from ..site.soils import SOIL_CLASSES

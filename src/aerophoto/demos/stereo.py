@@ -13,7 +13,7 @@
   stereo model's vertical exaggeration (B/H against e/d); :class:`BaseHeightView`.
 
 Both open on the guide's example (f = 100 mm, 1:12 000, p_x = 60 %,
-:func:`aerophoto.tasks.ch07.example_lab`); a student may give another pair
+:func:`aerophoto.labs.ch07.example_lab`); a student may give another pair
 (``FloatingMarkDemo(lab=...)``) — on the student's own pair the demo reads
 parallaxes only (``measure_only``), never heights.
 """
@@ -166,7 +166,7 @@ class FloatingMarkDemo(LiveDemo):
 
     Parameters
     ----------
-    lab : :class:`aerophoto.tasks.ch07.StereoLab` or None
+    lab : :class:`aerophoto.labs.ch07.StereoLab` or None
         The pair; None is the guide's example.
     n_px : int
         The photos' pixels a side (1536: 0.12 mm pixels, 1.4 m on the ground at 1:12 000).
@@ -181,7 +181,7 @@ class FloatingMarkDemo(LiveDemo):
             "fuse into one mark resting on the surface; then read its height. Larger p lifts the mark.")
 
     def __init__(self, lab=None, n_px: int = 1536, *, measure_only: bool = False, **values):
-        from ..tasks import ch07
+        from ..labs import ch07
 
         self.lab = ch07.example_lab() if lab is None else lab
         self.images = ch07.lab_images(self.lab, n_px)

@@ -271,7 +271,7 @@ def stereo_print(images, path, *, mode: str = "free viewing", centre_mm=None, si
 
     Parameters
     ----------
-    images : :class:`aerophoto.tasks.ch07.PairImages`
+    images : :class:`aerophoto.labs.ch07.PairImages`
     mode : {"anaglyph", "free viewing", "stereoscope"}
         An anaglyph; a pair for free viewing with conjugate points one eye base
         (65 mm) apart; or a pair for the lens-mirror stereoscope, its base

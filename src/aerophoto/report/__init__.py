@@ -16,7 +16,7 @@ is drawn at true size on the A sheet that holds it, signed with the student's ow
 
 Security: the workbook is read, never run (:mod:`aerophoto.report.answers`): the answer cells are parsed
 and evaluated by a tiny evaluator (numbers, arithmetic, ``math.*``, ``v.<attr>``, earlier answers), and
-each task is graded by the trusted check (:func:`aerophoto.checks.grade_task`) for the variant of the
+each task is graded by the trusted check (:func:`aerophoto.course.score.grade_task`) for the variant of the
 record book.  Typesetting: Typst (:mod:`aerophoto.report.document`).
 """
 

@@ -134,12 +134,12 @@ def _chapter_notebook(workbook: Path, ch) -> Path | None:
 
 def _registry_tasks(number: str) -> tuple[tuple, str]:
     """The chapter's graded tasks and, when they cannot be loaded (a chapter being written), why."""
-    from .. import tasks
+    from .. import gradebook
 
-    if number not in tasks.CHAPTER_MODULES:
+    if not gradebook.has_tasks(number):
         return (), ""
     try:
-        return tuple(tasks.chapter_tasks(number)), ""
+        return tuple(gradebook.chapter_tasks(number)), ""
     except Exception as exc:  # one broken chapter must not keep the student from the rest of the report
         return (), f"the chapter's tasks could not be loaded ({type(exc).__name__})"
 
@@ -169,7 +169,7 @@ def _resolve_record_book(record_book, books: dict) -> str:
 
 
 def _task_status(t, v, env: dict) -> TaskStatus:
-    from ..checks import grade_task
+    from ..course.score import grade_task
 
     raw = {n: env.get(n, Ellipsis) for n in t.names}
     unread = {n: x.reason for n, x in raw.items() if isinstance(x, UNREADABLE)}
@@ -301,10 +301,10 @@ def _inputs_table(doc: Document, t, v) -> None:
     """The task's inputs when they are a small table (what the student works from; never an answer)."""
     import pandas as pd
 
-    from .. import tasks
+    from .. import gradebook
 
     try:
-        inp = tasks.get(t.task).inputs(v)
+        inp = gradebook.task_inputs(t.task, v)
     except Exception:  # an input the package cannot give is left out, never guessed
         return
     if isinstance(inp, pd.Series):
@@ -324,9 +324,9 @@ def _label(task_id: str) -> str:
 
 
 def _task_block(doc: Document, t: TaskStatus, v) -> None:
-    from .. import tasks
+    from .. import gradebook
 
-    task = tasks.get(t.task)
+    task = gradebook.task(t.task)
     doc.heading(3, f"Задача {_label(t.task)}", t.title)
     if not t.attempted:
         doc.par(NOT_DONE, "missing")

@@ -223,11 +223,76 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     n = int(SIZE_M / _T)
     x = _grid(n)
     X, Y = np.meshgrid(x, x)
-    cls = np.full((n, n), _C["meadow"], np.uint8)
-    grain = np.ones((n, n), np.float32)
+    c = _Canvas(X=X, Y=Y, cls=np.full((n, n), _C["meadow"], np.uint8), grain=np.ones((n, n), np.float32), rng=rng)
     feats: dict = {}
+    # the painting order matters: later classes paint over earlier ones, and the seeded draws follow it
+    rv = _river_course(c, feats)
+    dem, s_dem = _valley_dem()
+    _paint_fields(c, feats)
+    raised = _paint_forests_and_bogs(c, rv, feats)
+    stacks = _paint_meadows(c, rv, feats)
+    _paint_lake_brook_tributary(c, rv, feats)
+    _paint_river_water(c, rv)
+    _paint_roads_and_railway(c, rv, feats)
+    cls, grain = c.cls, c.grain
 
-    # ---- the river: centre line, width widening downstream, islands
+    # ---- fine grain everywhere (±3 %), seeded
+    grain *= (1.0 + 0.03 * rng.standard_normal((n, n))).astype(np.float32)
+
+    # ---- soil: humus and moisture tied to relief (low ground: more of both)
+    from scipy.ndimage import map_coordinates
+
+    Zt = map_coordinates(dem, [Y.ravel() / s_dem, X.ravel() / s_dem], order=1).reshape(n, n).astype(np.float32)
+    low_ness = np.clip((Zt.max() - Zt) / (Zt.max() - Zt.min() + 1e-9), 0, 1)
+    humus, moist = _soil_fields(low_ness, X, Y)
+
+    # ---- objects: the canopy of crowns, haystacks, bog pines
+    objs = _objects(rng, cls, dem, s_dem, stacks, raised)
+    params = SiteParams(width_m=SIZE_M, height_m=SIZE_M, relief_m=float(dem.max() - dem.min()),
+                        base_height_m=float(dem.min()), seed=int(seed), texture_m=_T, dem_spacing_m=s_dem)
+    tex = np.full((n, n), 255, np.uint8)
+    cat = pd.DataFrame({"id": pd.Series([], dtype=np.int64), "kind": pd.Series([], dtype=object),
+                        "X_m": pd.Series([], dtype=float), "Y_m": pd.Series([], dtype=float),
+                        "Z_m": pd.Series([], dtype=float), "control": pd.Series([], dtype=bool)})
+    site = Site(params=params, dem=dem, texture=tex, cover=cls, catalogue=cat, features=feats, _levels=[],
+                objects=objs)
+    for arr in (cls, grain, humus, moist):
+        arr.flags.writeable = False
+    return InterpretationSite(site=site, classes=cls, grain=grain, humus_pct=humus, moisture_pct=moist,
+                              features=feats, seed=int(seed))
+
+
+@dataclass(frozen=True, eq=False)
+class _Canvas:
+    """What the painters of :func:`build_interpretation_site` share: the texel centres ``X``, ``Y`` (m, shape
+    (n, n)), the class map ``cls`` and the multiplicative ``grain`` they paint in place, and the seeded ``rng``."""
+
+    X: np.ndarray
+    Y: np.ndarray
+    cls: np.ndarray
+    grain: np.ndarray
+    rng: np.random.Generator
+
+
+@dataclass(frozen=True, eq=False)
+class _River:
+    """The river on the texel grid: distance ``d`` from its centre line, signed offset ``off`` (m, north +),
+    arc length ``s`` (m), half-width ``half`` (m, widened at the islands), the masks of the islands, of the
+    shallows below them and of the water; all shape (n, n)."""
+
+    d: np.ndarray
+    off: np.ndarray
+    s: np.ndarray
+    half: np.ndarray
+    islands: np.ndarray
+    tails: np.ndarray
+    water: np.ndarray
+
+
+def _river_course(c: _Canvas, feats: dict) -> _River:
+    """The river: centre line, width widening downstream (36 → 46 m), two teardrop islands (``feats``: river,
+    river_width_m, islands).  Paints nothing: the water goes on last (:func:`_paint_river_water`)."""
+    n = c.X.shape[0]
     rx = np.arange(-20.0, SIZE_M + 21.0, 6.0)
     river = np.column_stack([rx, _river_y(rx)])
     width = 36.0 + 10.0 * (rx + 20.0) / (SIZE_M + 40.0)
@@ -251,12 +316,17 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
         x_tail = float(np.interp(s_head + L, s_river, rx))
         islands.append({"head_m": (x_head, float(_river_y(x_head))), "tail_m": (x_tail, float(_river_y(x_tail))),
                         "length_m": L, "width_m": 2 * B * 0.96})
-    water = d_r <= half
     feats["river"] = river
     feats["river_width_m"] = width
     feats["islands"] = islands
+    return _River(d=d_r, off=off_r, s=s_r, half=half, islands=isl_mask, tails=tail_mask, water=d_r <= half)
 
-    # ---- the DEM (8 m): valley along the river falling east, northern watershed, the brook's valley
+
+def _valley_dem() -> tuple:
+    """The DEM, 8 m spacing: a valley along the river falling east, the northern watershed, the brook's valley.
+
+    Returns ``(dem, spacing_m)``, heights in metres, shape (201, 201).
+    """
     s_dem = 8.0
     nd = int(SIZE_M / s_dem) + 1
     xd = np.arange(nd) * s_dem
@@ -264,8 +334,13 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     dist_dem = np.abs(YD - _river_y(XD))
     dem = (150.0 + 5.0 * (1.0 - XD / SIZE_M) + 12.0 * (1.0 - np.exp(-(dist_dem / 240.0) ** 2))
            + 9.0 / (1.0 + np.exp(-(YD - 1250.0) / 70.0)) - 3.0 * np.exp(-((XD - 1330.0) / 45.0) ** 2) * (YD < _river_y(XD)))
+    return dem, s_dem
 
-    # ---- arable fields, south-east: straight edges, furrows
+
+def _paint_fields(c: _Canvas, feats: dict) -> None:
+    """Arable fields, south-east and two north of the river: straight edges, furrows, stubble rows (``feats``:
+    fields, as (kind, x0, x1, y0, y1) in metres)."""
+    X, Y, cls, grain, rng = c.X, c.Y, c.cls, c.grain, c.rng
     fields = []
     kinds = ("ploughed field", "crop", "stubble", "crop", "ploughed field", "stubble", "crop", "ploughed field")
     k = 0
@@ -290,7 +365,13 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
         fields.append((kind, fx0, fx1, 905.0, 1120.0))
     feats["fields"] = fields
 
-    # ---- forest stands, shrub, the raised bog, the low bog
+
+def _paint_forests_and_bogs(c: _Canvas, rv: _River, feats: dict) -> np.ndarray:
+    """Forest stands, the raised bog with its lakelets (seeded), the low bog edged by shrub (``feats``: stands,
+    bogs).  Returns the raised bog's mask (its pines are objects, :func:`_objects`)."""
+    X, Y, cls, grain, rng = c.X, c.Y, c.cls, c.grain, c.rng
+    n = X.shape[0]
+    off_r, half = rv.off, rv.half
     stands = {"pine forest": (40.0, 270.0, 1090.0, 1560.0), "spruce forest": (480.0, 860.0, 1150.0, 1570.0),
               "deciduous forest": (560.0, 930.0, 50.0, 350.0)}
     for name, (x0, x1, y0, y1) in stands.items():
@@ -307,21 +388,27 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     lakelets = []
     for _ in range(6):
         while True:
-            c = rng.uniform([1120, 1300], [1480, 1500])
-            if ((c[0] - 1300) / 250) ** 2 + ((c[1] - 1400) / 150) ** 2 < 0.5:
+            ctr = rng.uniform([1120, 1300], [1480, 1500])
+            if ((ctr[0] - 1300) / 250) ** 2 + ((ctr[1] - 1400) / 150) ** 2 < 0.5:
                 break
         r = rng.uniform(7.0, 16.0)
-        m = (X - c[0]) ** 2 + (Y - c[1]) ** 2 < r * r
+        m = (X - ctr[0]) ** 2 + (Y - ctr[1]) ** 2 < r * r
         cls[m] = _C["deep water"]
-        lakelets.append((float(c[0]), float(c[1]), float(r)))
+        lakelets.append((float(ctr[0]), float(ctr[1]), float(r)))
     feats["bogs"] = {"raised": {"centre_m": (1300.0, 1400.0), "axes_m": (250.0, 150.0), "lakelets": lakelets},
                      "low": {"x_m": (1150.0, 1500.0)}}
     low = (X > 1150 + 10 * np.sin(Y / 15)) & (X < 1500) & (off_r < -half - 25) & (off_r > -half - 125 - 20 * np.sin(X / 40))
     cls[low] = _C["low bog"]
     low_edge = low & ((off_r > -half - 35) | (off_r < -half - 110 - 20 * np.sin(X / 40)))
     cls[low_edge] = _C["shrub"]
+    return raised
 
-    # ---- meadows on the floodplain: mown strips, wet patches; haystacks
+
+def _paint_meadows(c: _Canvas, rv: _River, feats: dict) -> list:
+    """Meadows on the floodplain: mown strips, wet patches, and 14 haystacks (seeded; ``feats``: haystacks).
+    Returns the haystacks as (X, Y, height, radius) in metres."""
+    X, Y, cls, grain, rng = c.X, c.Y, c.cls, c.grain, c.rng
+    off_r, half = rv.off, rv.half
     mead = (X > 80) & (X < 820) & (off_r < -half - 20) & (off_r > -half - 230) & (cls == _C["meadow"])
     mown = mead & (((X - 80) // 60) % 3 == 1)
     cls[mown] = _C["mown meadow"]
@@ -337,8 +424,14 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     feats["haystacks"] = np.array(stacks)
     for xs_, ys_, _h, r_ in stacks:
         cls[(X - xs_) ** 2 + (Y - ys_) ** 2 < r_ * r_] = _C["haystack"]
+    return stacks
 
-    # ---- the lake; the brook with the pond and its dam; the tributary
+
+def _paint_lake_brook_tributary(c: _Canvas, rv: _River, feats: dict) -> None:
+    """The lake; the brook with the pond and its dam; the tributary entering at 35° (``feats``: lake, brook,
+    pond, dam, tributary)."""
+    X, Y, cls = c.X, c.Y, c.cls
+    n = X.shape[0]
     lake_rho = _ellipse(n, (270.0, 230.0), 170.0, 95.0, 20.0)
     cls[lake_rho < 1.0] = _C["shallow water"]
     cls[lake_rho < 0.88] = _C["deep water"]
@@ -365,22 +458,32 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     trib = np.array([[300.0, 1610.0], [330.0, 1380.0], [380.0, 1150.0], join + 260 * np.array([-math.cos(a), math.sin(a)]),
                      join + 140 * np.array([-math.cos(a), math.sin(a)]), join])
     d_t, _, _ = _polyline_sn(trib, n, 30.0)
-    cls[(d_t < 5.0) & ~water] = _C["shallow water"]
-    cls[(d_t < 3.0) & ~water] = _C["deep water"]
+    cls[(d_t < 5.0) & ~rv.water] = _C["shallow water"]
+    cls[(d_t < 3.0) & ~rv.water] = _C["deep water"]
     feats["tributary"] = trib
 
-    # ---- the river's water over everything; islands; shallows below them
+
+def _paint_river_water(c: _Canvas, rv: _River) -> None:
+    """The river's water over everything: deep with a shallow margin; the islands (meadow, shrub in the middle),
+    the shallows and sand spits below them; ripples on the water's grain."""
+    cls, grain = c.cls, c.grain
+    water, d_r, off_r, half = rv.water, rv.d, rv.off, rv.half
     cls[water] = _C["deep water"]
     cls[water & (d_r > half - 4.0)] = _C["shallow water"]
-    cls[tail_mask] = _C["shallow water"]
-    cls[isl_mask] = _C["meadow"]
-    cls[isl_mask & (np.abs(off_r) < 0.5 * np.max(half))] = _C["shrub"]
-    spit = tail_mask & (np.abs(off_r) < 2.0)
+    cls[rv.tails] = _C["shallow water"]
+    cls[rv.islands] = _C["meadow"]
+    cls[rv.islands & (np.abs(off_r) < 0.5 * np.max(half))] = _C["shrub"]
+    spit = rv.tails & (np.abs(off_r) < 2.0)
     cls[spit] = _C["sand bank"]
     ripple = water & (d_r < half - 4.0)
-    grain[ripple] = (1.0 + 0.05 * np.sin(2 * np.pi * s_r[ripple] / 7.0 + off_r[ripple] / 3.0)).astype(np.float32)
+    grain[ripple] = (1.0 + 0.05 * np.sin(2 * np.pi * rv.s[ripple] / 7.0 + off_r[ripple] / 3.0)).astype(np.float32)
 
-    # ---- roads with ditches, the railway (painted last)
+
+def _paint_roads_and_railway(c: _Canvas, rv: _River, feats: dict) -> None:
+    """The roads with shoulders and ditches, then the railway with its two rails, painted last (``feats``:
+    asphalt, gravel, railway, railway_radius_m, flow_azimuth_deg)."""
+    cls, grain = c.cls, c.grain
+    n = cls.shape[0]
     yy = np.arange(-5.0, SIZE_M + 6.0, 5.0)
     asphalt = np.column_stack([1000.0 + 38.0 * np.sin(yy / 55.0) + 20.0 * np.sin(yy / 23.0), yy])
     d_a, _, _ = _polyline_sn(asphalt, n, 20.0)
@@ -389,7 +492,7 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     d_g, _, _ = _polyline_sn(gravel, n, 20.0)
     rail = _arc_polyline((-10.0, 560.0), 0.0, [("s", 460), ("a", 700, -25), ("s", 1300)])
     d_rl, _, _ = _polyline_sn(rail, n, 20.0)
-    not_water = ~water
+    not_water = ~rv.water
     for d, w, road in ((d_g, 3.0, "gravel road"), (d_a, 3.5, "asphalt road")):
         cls[(d >= w + 1.0) & (d < w + 3.0) & not_water] = _C["ditch"]
         cls[(d < w + 1.0) & not_water] = _C["dirt road"]  # shoulders
@@ -404,31 +507,6 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     feats["railway"] = rail
     feats["railway_radius_m"] = 700.0
     feats["flow_azimuth_deg"] = FLOW_AZIMUTH_DEG
-
-    # ---- fine grain everywhere (±3 %), seeded
-    grain *= (1.0 + 0.03 * rng.standard_normal((n, n))).astype(np.float32)
-
-    # ---- soil: humus and moisture tied to relief (low ground: more of both)
-    from scipy.ndimage import map_coordinates
-
-    Zt = map_coordinates(dem, [Y.ravel() / s_dem, X.ravel() / s_dem], order=1).reshape(n, n).astype(np.float32)
-    low_ness = np.clip((Zt.max() - Zt) / (Zt.max() - Zt.min() + 1e-9), 0, 1)
-    humus, moist = _soil_fields(low_ness, X, Y)
-
-    # ---- objects: the canopy of crowns, haystacks, bog pines
-    objs = _objects(rng, cls, dem, s_dem, stacks, raised)
-    params = SiteParams(width_m=SIZE_M, height_m=SIZE_M, relief_m=float(dem.max() - dem.min()),
-                        base_height_m=float(dem.min()), seed=int(seed), texture_m=_T, dem_spacing_m=s_dem)
-    tex = np.full((n, n), 255, np.uint8)
-    cat = pd.DataFrame({"id": pd.Series([], dtype=np.int64), "kind": pd.Series([], dtype=object),
-                        "X_m": pd.Series([], dtype=float), "Y_m": pd.Series([], dtype=float),
-                        "Z_m": pd.Series([], dtype=float), "control": pd.Series([], dtype=bool)})
-    site = Site(params=params, dem=dem, texture=tex, cover=cls, catalogue=cat, features=feats, _levels=[],
-                objects=objs)
-    for arr in (cls, grain, humus, moist):
-        arr.flags.writeable = False
-    return InterpretationSite(site=site, classes=cls, grain=grain, humus_pct=humus, moisture_pct=moist,
-                              features=feats, seed=int(seed))
 
 
 def _soil_fields(low_ness, X, Y):

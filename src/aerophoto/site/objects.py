@@ -386,15 +386,41 @@ def build_objects(b, dem: np.ndarray, river, roads: list, village_c, tex: np.nda
         xy = np.asarray(xy, float).reshape(-1, 2)
         return bilinear(dem, xy[:, 0] / s, xy[:, 1] / s)
 
-    def cover_near(p, radius):
-        ring = [p] + [p + radius * np.array([math.cos(a), math.sin(a)]) for a in np.linspace(0, 2 * np.pi, 12, False)]
-        xy = np.array(ring)
-        c = np.clip(np.floor(xy[:, 0] / t).astype(int), 0, cover.shape[1] - 1)
-        r = np.clip(np.floor(xy[:, 1] / t).astype(int), 0, cover.shape[0] - 1)
-        return cover[r, c]
-
     poly = _Poly()
-    # ---- houses: boxes on the painted roofs
+    _raise_houses(poly, b, rng, ground)
+    clear = _open_ground(b, river, roads, cover)
+    _raise_structures(poly, rng, village_c, clear, ground, W, Hs)
+    # ---- the embankment and bridge of the paved road that crosses the river
+    _embankment(poly, [r for r in roads if r["kind"] == "paved"], river, ground)
+    n_poly = len(poly.planes)
+    ell_c, ell_r, ell_alb, ell_ground, ell_top, e_kind, e_names = _crowns(b, rng, ground)
+    ell_bbox = np.column_stack([ell_c[:, 0] - ell_r[:, 0], ell_c[:, 0] + ell_r[:, 0], ell_c[:, 1] - ell_r[:, 0],
+                                ell_c[:, 1] + ell_r[:, 0], ell_ground - 0.5, ell_top])
+    # ---- the forest canopy: stands of 14–24 m; crowns higher where the texture's crowns are bright
+    canopy = _canopy(rng, tex, cover == C["forest"], t)
+    objs = SiteObjects(
+        planes=np.array(poly.planes).reshape(-1, MAX_PLANES, 4),
+        face=np.array(poly.face, np.uint8).reshape(-1, MAX_PLANES),
+        textured=np.array(poly.tex, bool).reshape(-1, MAX_PLANES),
+        albedo=np.array(poly.albedo, np.float32).reshape(-1, 2),
+        kind=np.array(poly.kind + e_kind, np.int64),
+        centre_m=np.vstack([np.array(poly.centre, float).reshape(-1, 2), ell_c[:, :2]]),
+        ground_Z_m=np.r_[np.array(poly.ground, float), ell_ground],
+        top_Z_m=np.r_[np.array(poly.top, float), ell_top],
+        bbox=np.vstack([np.array(poly.bbox, float).reshape(-1, 6), ell_bbox]),
+        ell_centre=ell_c, ell_radii=ell_r, ell_albedo=ell_alb, canopy_dm=canopy, texel_m=float(t),
+        names=tuple(poly.names + e_names))
+    assert objs.n_polyhedra == n_poly
+    objs = replace(objs, points=object_points(objs, dem, P, first_id))
+    for a in (objs.planes, objs.face, objs.textured, objs.albedo, objs.kind, objs.centre_m, objs.ground_Z_m,
+              objs.top_Z_m, objs.bbox, objs.ell_centre, objs.ell_radii, objs.ell_albedo, objs.canopy_dm):
+        a.flags.writeable = False
+    return objs
+
+
+def _raise_houses(poly: _Poly, b, rng, ground) -> None:
+    """The houses: boxes on the painted roofs, gabled under the bright (slate, tin) roofs, flat under the dark
+    ones; heights, pitch and wall tone from ``rng`` (the builder's object stream), in the houses' order."""
     hc, hh, ha = b.houses
     roof_tone = b.house_roof_tone
     for j, (c, (hw, hd), a) in enumerate(zip(hc, hh, ha)):
@@ -419,8 +445,22 @@ def build_objects(b, dem: np.ndarray, river, roads: list, village_c, tex: np.nda
         R = math.hypot(hw, hd)
         poly.add(planes, faces, [], (roof_tone[j], wall), "house", np.asarray(c, float), float(ground(c)[0]), top,
                  (c[0] - R, c[0] + R, c[1] - R, c[1] + R, z_bottom, top), f"house {j + 1}")
-    houses_xy = np.asarray(hc, float).reshape(-1, 2)
-    paved = [r for r in roads if r["kind"] == "paved"]
+
+
+def _open_ground(b, river, roads: list, cover: np.ndarray):
+    """A test of a place (X, Y in metres) for a tall structure: 300 m inside the site, 25 m from houses and
+    roads, 150 m from the river, and fields, meadow or gardens all round (15 m)."""
+    from .model import COVER_CODES as C
+
+    W, Hs, t = b.W, b.Hs, b.t
+    houses_xy = np.asarray(b.houses[0], float).reshape(-1, 2)
+
+    def cover_near(p, radius):
+        ring = [p] + [p + radius * np.array([math.cos(a), math.sin(a)]) for a in np.linspace(0, 2 * np.pi, 12, False)]
+        xy = np.array(ring)
+        c = np.clip(np.floor(xy[:, 0] / t).astype(int), 0, cover.shape[1] - 1)
+        r = np.clip(np.floor(xy[:, 1] / t).astype(int), 0, cover.shape[0] - 1)
+        return cover[r, c]
 
     def clear_of_things(p, min_house=25.0, min_road=25.0):
         if not (300.0 < p[0] < W - 300.0 and 300.0 < p[1] < Hs - 300.0):
@@ -433,7 +473,12 @@ def build_objects(b, dem: np.ndarray, river, roads: list, village_c, tex: np.nda
             return False
         return bool(np.all(np.isin(cover_near(p, 15.0), [C["arable field"], C["meadow"], C["garden"]])))
 
-    # ---- tall structures near the village (and the mast on open ground north of it)
+    return clear_of_things
+
+
+def _raise_structures(poly: _Poly, rng, village_c, clear_of_things, ground, W: float, Hs: float) -> None:
+    """The tall structures: a chimney and a water tower near the village, a 64 m mast on open ground north of it
+    (in the central photos' overlap), each at a random clear spot 120 m from the others."""
     vc = np.asarray(village_c, float)
     structures = (("chimney", 150.0, 450.0, dict(r_bottom=2.2, r_top=1.4, height=42.0, albedo=0.55)),
                   ("water tower", 150.0, 450.0, None),
@@ -461,10 +506,14 @@ def build_objects(b, dem: np.ndarray, river, roads: list, village_c, tex: np.nda
             R = spec["r_bottom"] + 0.5
             poly.add(planes, faces, [], (spec["albedo"], spec["albedo"]), kind, p, z0, z0 + spec["height"],
                      (p[0] - R, p[0] + R, p[1] - R, p[1] + R, zb, z0 + spec["height"]), kind)
-    # ---- the embankment and bridge of the paved road that crosses the river
-    _embankment(poly, paved, river, ground)
-    n_poly = len(poly.planes)
-    # ---- crowns: single trees and garden trees
+
+
+def _crowns(b, rng, ground) -> tuple:
+    """The crowns of single trees (10–20 m) and garden trees (4–8 m) as ellipsoids on the ground.
+
+    Returns ``(centre, radii, albedo, ground_Z, top_Z, kinds, names)``: shapes (E, 3) m, (E, 2) m (across, half
+    depth), (E,) float32, (E,) m, (E,) m, and lists of E kind codes and names.
+    """
     tr_xy, tr_r, tr_tone = b.tree_crowns
     gt_xy, gt_r, gt_tone = b.garden_crowns
     e_c, e_r, e_alb, e_kind, e_ground, e_top, e_names = [], [], [], [], [], [], []
@@ -489,28 +538,7 @@ def build_objects(b, dem: np.ndarray, river, roads: list, village_c, tex: np.nda
     ell_alb = np.concatenate(e_alb).astype(np.float32) if e_alb else np.zeros(0, np.float32)
     ell_ground = np.concatenate(e_ground) if e_ground else np.zeros(0)
     ell_top = np.concatenate(e_top) if e_top else np.zeros(0)
-    ell_bbox = np.column_stack([ell_c[:, 0] - ell_r[:, 0], ell_c[:, 0] + ell_r[:, 0], ell_c[:, 1] - ell_r[:, 0],
-                                ell_c[:, 1] + ell_r[:, 0], ell_ground - 0.5, ell_top])
-    # ---- the forest canopy: stands of 14–24 m; crowns higher where the texture's crowns are bright
-    canopy = _canopy(rng, tex, cover == C["forest"], t)
-    objs = SiteObjects(
-        planes=np.array(poly.planes).reshape(-1, MAX_PLANES, 4),
-        face=np.array(poly.face, np.uint8).reshape(-1, MAX_PLANES),
-        textured=np.array(poly.tex, bool).reshape(-1, MAX_PLANES),
-        albedo=np.array(poly.albedo, np.float32).reshape(-1, 2),
-        kind=np.array(poly.kind + e_kind, np.int64),
-        centre_m=np.vstack([np.array(poly.centre, float).reshape(-1, 2), ell_c[:, :2]]),
-        ground_Z_m=np.r_[np.array(poly.ground, float), ell_ground],
-        top_Z_m=np.r_[np.array(poly.top, float), ell_top],
-        bbox=np.vstack([np.array(poly.bbox, float).reshape(-1, 6), ell_bbox]),
-        ell_centre=ell_c, ell_radii=ell_r, ell_albedo=ell_alb, canopy_dm=canopy, texel_m=float(t),
-        names=tuple(poly.names + e_names))
-    assert objs.n_polyhedra == n_poly
-    objs = replace(objs, points=object_points(objs, dem, P, first_id))
-    for a in (objs.planes, objs.face, objs.textured, objs.albedo, objs.kind, objs.centre_m, objs.ground_Z_m,
-              objs.top_Z_m, objs.bbox, objs.ell_centre, objs.ell_radii, objs.ell_albedo, objs.canopy_dm):
-        a.flags.writeable = False
-    return objs
+    return ell_c, ell_r, ell_alb, ell_ground, ell_top, e_kind, e_names
 
 
 def _canopy(rng, tex, forest, t) -> np.ndarray:

@@ -13,42 +13,39 @@ Look-ups by grade id::
     tasks.inputs("task-03-1", v)
 
 The student-facing checks (:func:`aerophoto.checks.check_task`) and the
-instructor's grader (:func:`aerophoto.checks.grade_task`) both read the task
+instructor's grader (:func:`aerophoto.course.score.grade_task`) both read the task
 from here; the notebooks only name the task and pass their variables.
+Only the rubrics live here: the students' lab worlds the tasks are set on (the
+own strip, the stereo pair, the photo to rectify, the survey block …) are
+:mod:`aerophoto.labs`, which this package imports and which never imports it.
 Submodules load on first use.
 """
 
 from __future__ import annotations
 
+import functools
 import importlib
 import re
+from collections.abc import Mapping
+from types import MappingProxyType
 
+from .. import _chapters
 from .base import KINDS, Answer, Hidden, Task
 
 __all__ = ["Answer", "Hidden", "Task", "KINDS", "get", "all_tasks", "chapter_tasks", "inputs", "answers",
-           "CHAPTER_MODULES"]
+           "CHAPTER_MODULES", "chapter_modules"]
 
-#: the chapter modules, by notebook number
-CHAPTER_MODULES = {
-    "00": "ch00",
-    "01": "ch01",
-    "02": "ch02",
-    "03": "ch03",
-    "04": "ch04",
-    "05": "ch05",
-    "06": "ch06",
-    "07": "ch07",
-    "08": "ch08",
-    "09": "ch09",
-    "10": "ch10",
-    "11": "ch11",
-    "12": "ch12",
-    "13": "ch13",
-    "14": "ch14",
-    "15": "ch15",
-    "16": "ch16",
-    "17": "ch17",
-}
+
+@functools.cache
+def chapter_modules() -> Mapping[str, str]:
+    """The chapter modules by notebook number, ``{"00": "ch00", …}`` (read-only): the modules ``chNN`` on disk.
+
+    The naming rule (:mod:`aerophoto._chapters`) replaces a list kept by hand (tests/test_chapter_key.py checks
+    one module per chapter of :data:`aerophoto.book.CHAPTERS`); read on first use, importing the package reads
+    nothing.  ``CHAPTER_MODULES`` is the same mapping.
+    """
+    return MappingProxyType({name[2:]: name for name in _chapters.chapter_modules(__path__)})
+
 
 _ID = re.compile(r"^task-(\d\d)-(\d+)$")
 
@@ -56,9 +53,9 @@ _ID = re.compile(r"^task-(\d\d)-(\d+)$")
 def chapter_tasks(number: str) -> tuple:
     """The tasks of notebook ``number`` (``"03"``), in order."""
     number = f"{int(number):02d}" if str(number).isdigit() else str(number)
-    mod = CHAPTER_MODULES.get(number)
+    mod = chapter_modules().get(number)
     if mod is None:
-        raise ValueError(f"chapter {number!r} has no graded tasks; chapters with tasks: {sorted(CHAPTER_MODULES)}")
+        raise ValueError(f"chapter {number!r} has no graded tasks; chapters with tasks: {sorted(chapter_modules())}")
     return tuple(importlib.import_module(f".{mod}", __name__).TASKS)
 
 
@@ -76,7 +73,7 @@ def get(task_id: str) -> Task:
 
 def all_tasks() -> tuple:
     """Every graded task of the book, chapter by chapter."""
-    return tuple(t for n in CHAPTER_MODULES for t in chapter_tasks(n))
+    return tuple(t for n in chapter_modules() for t in chapter_tasks(n))
 
 
 def inputs(task_id: str, v):
@@ -90,7 +87,9 @@ def answers(task_id: str, v) -> dict:
 
 
 def __getattr__(name: str):
-    if name in CHAPTER_MODULES.values():
+    if name == "CHAPTER_MODULES":
+        return chapter_modules()
+    if _chapters.CHAPTER_MODULE.fullmatch(name) and name in chapter_modules().values():
         module = importlib.import_module(f".{name}", __name__)
         globals()[name] = module
         return module

@@ -3,7 +3,7 @@
 The variant itself is the input (``inputs(v)`` is None); the reference
 answers are :func:`aerophoto.flight.plan` (v), with the guide's relief
 allowance 40·h/H for both overlaps (guide §2, step 3 — the exact side-overlap
-allowance of :mod:`aerophoto.guide.s02` is shown in the chapter, not graded).
+allowance of :mod:`aerophoto.guide.ch01` is shown in the chapter, not graded).
 :func:`typical_slips` gives the values that typical mistakes produce — among
 them the guide's own misprinted factors of step 5 (7.2 and 12.6 cm: the
 relief allowance left out).

@@ -1,6 +1,6 @@
 """Graded tasks of chapter 03 (guide §4): the relief correction of the student's own photo — tables 2, 3, 4.
 
-Every student gets their own photo of the virtual site (:func:`aerophoto.tasks.displacement_lab.relief_sheet`):
+Every student gets their own photo of the virtual site (:func:`aerophoto.labs.displacement.relief_sheet`):
 their variant's f, 1:m, α and λ, six points pricked in two zones (I, 1, 2 on low
 ground, II, 3, 4 on high ground) and the same points on a plan at 1:10 000.  The
 student **measures** the points' photo coordinates and the bases' plan lengths
@@ -33,11 +33,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..displacement import base_lengths_mm
+from ..labs.displacement import RELIEF_BASES, RELIEF_NAMES, relief_sheet
 from .base import Answer, Hidden, Task, submitted_number
-from .displacement_lab import RELIEF_BASES, RELIEF_NAMES, relief_sheet
 
 __all__ = ["TOL_XY_MM", "TOL_LEN_MM", "TOL_M_I", "TOL_M_PART", "TOL_M_CP", "TOL_DM_PCT", "BASE_LABELS",
-           "ZONES", "numbers", "scale_answers", "scale_spec", "scale_hidden", "ReliefTable2", "ReliefTable3", "ReliefTable4", "TASKS"]
+           "ZONES", "numbers", "scale_answers", "scale_spec", "scale_hidden", "sheet_answers", "sheet_hidden",
+           "ReliefTable2", "ReliefTable3", "ReliefTable4", "TASKS"]
 
 #: a coordinate read with the measuring tool (to 0.1 mm) may be this far from the truth, mm
 TOL_XY_MM = 0.2
@@ -132,6 +133,33 @@ def scale_hidden(got: dict, bases: tuple, M: float, *, lsn_name: str = "lsn_mm",
     return out
 
 
+def sheet_answers(sheet, table) -> dict:
+    """The answers of a lab sheet's first table (tasks 03.1 and 04.2): the points' x, y on the photo (mm), the
+    plan lengths l_пл (mm) and the scale columns of ``table`` (:func:`scale_answers`).
+
+    ``sheet`` is an :class:`aerophoto.labs.displacement.LabSheet`; ``table`` its
+    :class:`~aerophoto.displacement.ScaleTable` (guide table 2 or 5).
+    """
+    xy = sheet.photo_xy_mm
+    return {"x_mm": _floats(xy[:, 0]), "y_mm": _floats(xy[:, 1]), "lpl_mm": _floats(sheet.l_plan_mm),
+            **scale_answers(table)}
+
+
+def sheet_hidden(got: dict, sheet, names: tuple, bases: tuple) -> list:
+    """Hidden checks of a lab sheet's first table (tasks 03.1 and 04.2): l_сн from the student's own x, y (within
+    0.06 mm), then every scale column from the student's previous one (:func:`scale_hidden`, with their l_пл).
+
+    ``names`` are the sheet's points in the order of ``x_mm``/``y_mm``, ``bases`` its (zone point, point) pairs.
+    """
+    xy = [numbers(got.get(k), len(names)) for k in ("x_mm", "y_mm")]
+    lsn = numbers(got.get("lsn_mm"), len(bases))
+    dev = None
+    if xy[0] is not None and xy[1] is not None and lsn is not None:
+        dev = _dev(lsn, base_lengths_mm(names, np.column_stack(xy), bases))
+    lpl = numbers(got.get("lpl_mm"), len(bases))
+    return [Hidden("l_сн from your x, y", dev, 0.0, tol_abs=0.06), *scale_hidden(got, bases, sheet.M, l_plan=lpl)]
+
+
 # =========================================================================== task 03.1
 @dataclass(frozen=True)
 class ReliefTable2(Task):
@@ -152,25 +180,16 @@ class ReliefTable2(Task):
     )
 
     def inputs(self, v):
-        """The student's lab sheet (:class:`aerophoto.tasks.displacement_lab.LabSheet`): photo, plan, heights."""
+        """The student's lab sheet (:class:`aerophoto.labs.displacement.LabSheet`): photo, plan, heights."""
         return relief_sheet(int(v.i))
 
     def answers(self, v) -> dict:
         sheet = relief_sheet(int(v.i))
-        xy = sheet.photo_xy_mm
-        return {"x_mm": _floats(xy[:, 0]), "y_mm": _floats(xy[:, 1]), "lpl_mm": _floats(sheet.l_plan_mm),
-                **scale_answers(sheet.work().table2)}
+        return sheet_answers(sheet, sheet.work().table2)
 
     def hidden(self, v, got) -> list:
         """l_сн from the student's own coordinates; every scale column from the student's previous one."""
-        xy = [numbers(got.get(k), len(RELIEF_NAMES)) for k in ("x_mm", "y_mm")]
-        lsn = numbers(got.get("lsn_mm"), len(RELIEF_BASES))
-        dev = None
-        if xy[0] is not None and xy[1] is not None and lsn is not None:
-            dev = _dev(lsn, base_lengths_mm(RELIEF_NAMES, np.column_stack(xy), RELIEF_BASES))
-        lpl = numbers(got.get("lpl_mm"), len(RELIEF_BASES))
-        return [Hidden("l_сн from your x, y", dev, 0.0, tol_abs=0.06),
-                *scale_hidden(got, RELIEF_BASES, relief_sheet(int(v.i)).M, l_plan=lpl)]
+        return sheet_hidden(got, relief_sheet(int(v.i)), RELIEF_NAMES, RELIEF_BASES)
 
 
 # =========================================================================== task 03.2

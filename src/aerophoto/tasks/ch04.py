@@ -1,7 +1,7 @@
 """Graded tasks of chapter 04 (guide §5): the tilt correction of the student's own photo — tables 5, 6, 7.
 
 Every student gets their own photo of the plain of the virtual site
-(:func:`aerophoto.tasks.displacement_lab.tilt_sheet`): their variant's f, 1:m,
+(:func:`aerophoto.labs.displacement.tilt_sheet`): their variant's f, 1:m,
 tilt α and the direction λ of the positive principal vertical (counter-clockwise
 from the photo's +x axis), nine points pricked in three zones along the principal
 vertical (I, 1, 2 on the far side; II, 3, 4 near the isocentre; III, 5, 6 on the
@@ -32,10 +32,10 @@ import numpy as np
 
 from .. import displacement as d
 from .. import geometry as g
-from ..displacement import base_lengths_mm
+from ..labs.displacement import TILT_BASES, TILT_NAMES, tilt_sheet
 from .base import Answer, Hidden, Task, submitted_number
-from .ch03 import TOL_LEN_MM, TOL_XY_MM, numbers, scale_answers, scale_hidden, scale_spec
-from .displacement_lab import TILT_BASES, TILT_NAMES, tilt_sheet
+from .ch03 import (TOL_LEN_MM, TOL_XY_MM, numbers, scale_answers, scale_hidden, scale_spec, sheet_answers,
+                   sheet_hidden)
 
 __all__ = ["BASE_LABELS", "ZONES", "TOL_PHI_DEG", "Isocentre", "TiltTable5", "TiltTable6", "TiltTable7", "TASKS"]
 
@@ -110,25 +110,16 @@ class TiltTable5(Task):
     )
 
     def inputs(self, v):
-        """The student's lab sheet (:class:`aerophoto.tasks.displacement_lab.LabSheet`): photo and plan."""
+        """The student's lab sheet (:class:`aerophoto.labs.displacement.LabSheet`): photo and plan."""
         return tilt_sheet(int(v.i))
 
     def answers(self, v) -> dict:
         sheet = tilt_sheet(int(v.i))
-        xy = sheet.photo_xy_mm
-        return {"x_mm": _floats(xy[:, 0]), "y_mm": _floats(xy[:, 1]), "lpl_mm": _floats(sheet.l_plan_mm),
-                **scale_answers(sheet.work().table5)}
+        return sheet_answers(sheet, sheet.work().table5)
 
     def hidden(self, v, got) -> list:
         """l_сн from the student's own coordinates; every scale column from the student's previous one."""
-        xy = [numbers(got.get(k), len(TILT_NAMES)) for k in ("x_mm", "y_mm")]
-        lsn = numbers(got.get("lsn_mm"), len(TILT_BASES))
-        dev = None
-        if xy[0] is not None and xy[1] is not None and lsn is not None:
-            dev = _dev(lsn, base_lengths_mm(TILT_NAMES, np.column_stack(xy), TILT_BASES))
-        lpl = numbers(got.get("lpl_mm"), len(TILT_BASES))
-        return [Hidden("l_сн from your x, y", dev, 0.0, tol_abs=0.06),
-                *scale_hidden(got, TILT_BASES, tilt_sheet(int(v.i)).M, l_plan=lpl)]
+        return sheet_hidden(got, tilt_sheet(int(v.i)), TILT_NAMES, TILT_BASES)
 
 
 # =========================================================================== task 04.3

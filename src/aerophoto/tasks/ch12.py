@@ -4,7 +4,7 @@ Task 12.1 uses formula (13.1) read with n³ + 11n + 34
 (:mod:`aerophoto.triangulation.zhukov`) with the student's own inputs; the
 direction error m_ε of a variant is defined once here, :func:`m_eps_arcmin`.
 Tasks 12.2 and 12.3 use the student's own strip of chapter 06
-(:func:`aerophoto.tasks.ch06.strip_readings`: the same four photos 36 … 39, the
+(:func:`aerophoto.labs.ch06.strip_readings`: the same four photos 36 … 39, the
 same readings): table 12 with all six bases between the four control points,
 and table 13 — the corrections from the other middle centre, 38, with the
 six-base mean.
@@ -19,8 +19,8 @@ import numpy as np
 
 from .. import triangulation as tri
 from .base import Answer, Hidden, Task
-from .ch06 import (POINT_ORDER, TOL_COEFF, CorrectionsTask, StripReadings, _numbers, _readings, _verdict_hidden,
-                   coefficients_from_control, strip_readings)
+from ..labs.ch06 import POINT_ORDER, StripReadings, shared_readings, strip_readings
+from .ch06 import TOL_COEFF, CorrectionsTask, _numbers, _verdict_hidden, coefficients_from_control
 
 __all__ = ["M_ALLOWED_MM", "N_BASES", "m_eps_arcmin", "ZhukovInputs", "zhukov_inputs", "ControlSpacing",
            "TABLE12", "TABLE12_LABELS", "CENTRE_13", "CORRECTION_POINTS_13", "SpreadCheck", "Table13", "TASKS"]
@@ -175,7 +175,7 @@ class SpreadCheck(Task):
         return strip_readings(v)
 
     def _coefficients(self, v):
-        return coefficients_from_control(_readings(v).control, float(v.M), TABLE12)
+        return coefficients_from_control(shared_readings(v).control, float(v.M), TABLE12)
 
     def answers(self, v) -> dict:
         c = self._coefficients(v)

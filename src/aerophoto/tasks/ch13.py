@@ -13,7 +13,7 @@ The three maps of task 13.1 (:func:`map_scales`): a map at twice the photo's sca
 mosaic reduced twice), a district map ten times smaller than the photos and a regional one forty times
 smaller: 1 : 2m, 1 : 10m, 1 : 40m with the student's m = 12 000 + 100i.
 
-The patch of tasks 13.2–13.3 (:func:`patch_of`): a square 10 cm × 10 cm on the student's photo, i.e.
+The patch of tasks 13.2–13.3 (:func:`aerophoto.labs.ch13.patch_of`): a square 10 cm × 10 cm on the student's photo, i.e.
 0.1·m metres on the ground (1.2–2.19 km), in 200 × 200 cells of 0.5 mm on the photo (m/2000 metres), centred
 at X = 1200 + 76i m and 300 + 100·(i mod 3) m north of the river's centre line, so every patch holds the
 floodplain and the slopes above it.  It is photographed bare (as in spring, before the crops come up: the
@@ -23,25 +23,21 @@ The pit is at the patch's cell (50 + i mod 100, 150 − i mod 100) (row, column 
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 
 from .. import soilmap, spectral
-from ..guide import s14
+from .. import guide
+from ..labs.ch13 import Patch, patch_of
 from .base import Answer, Hidden, Task, submitted_number
 
-__all__ = ["MAP_FACTORS", "CAMERA", "PATCH_CELLS", "map_scales", "Patch", "patch_of", "majority_agreement_pct",
-           "ScaleClasses", "PitReflectance", "ContourInterpretation", "TASKS"]
+__all__ = ["MAP_FACTORS", "SEED", "map_scales", "majority_agreement_pct", "ScaleClasses", "PitReflectance",
+           "ContourInterpretation", "TASKS"]
 
 #: task 13.1: the maps' scale denominators as multiples of the photo's m
 MAP_FACTORS = (2, 10, 40)
-#: the composite of task 13.3
-CAMERA = "colour-infrared film"
-#: cells along each side of the patch
-PATCH_CELLS = 200
 #: the k-means seed of task 13.3
 SEED = 0
 
@@ -49,64 +45,6 @@ SEED = 0
 def map_scales(v) -> tuple:
     """Task 13.1's three scale denominators for variant ``v``: 2m, 10m, 40m."""
     return tuple(int(round(f * float(v.m))) for f in MAP_FACTORS)
-
-
-@dataclass(frozen=True, eq=False)
-class Patch:
-    """The student's patch: its place, the bare soil's composite and the field survey's soil map.
-
-    Attributes
-    ----------
-    extent_m : (X0, X1, Y0, Y1) on the site, m
-    spacing_m : cell size on the ground, m (0.5 mm on the photo)
-    composite : (200, 200, 3) float32, the colour-infrared composite (NIR, red, green), 0…1
-    soil_map : (200, 200) uint8, the soil class of each cell (:data:`aerophoto.site.soils.SOIL_CLASSES`)
-    pit : (row, column) of the soil pit
-    pit_soil : the pit's topsoil: ``moisture_pct``, ``humus_pct``, ``particle_mm``, ``parent`` (keywords of
-        :func:`aerophoto.spectral.soil_reflectance`) and ``soil`` (its class)
-    """
-
-    extent_m: tuple
-    spacing_m: float
-    composite: np.ndarray
-    soil_map: np.ndarray
-    pit: tuple
-    pit_soil: dict
-
-    def legend(self) -> pd.DataFrame:
-        """The soil classes of the survey map (names only; the areas are the student's to find)."""
-        from ..site.soils import SOIL_CLASSES
-
-        return pd.DataFrame([(k, c.name, c.ru) for k, c in SOIL_CLASSES.items()],
-                            columns=["code", "soil", "почва"]).set_index("code")
-
-
-@functools.lru_cache(maxsize=4)
-def _patch(i: int, m: float) -> Patch:
-    from ..site import get_site
-    from ..site.soils import soil_layer
-
-    site = get_site()
-    side = 0.1 * m
-    Xc = 1200.0 + 76.0 * i
-    river = site.features["river"]
-    Yc = float(np.interp(Xc, river[:, 0], river[:, 1])) + 300.0 + 100.0 * (i % 3)
-    ext = (Xc - side / 2, Xc + side / 2, Yc - side / 2, Yc + side / 2)
-    layer = soil_layer(site, extent_m=ext, spacing_m=side / PATCH_CELLS)
-    comp = layer.composite(CAMERA)
-    comp.flags.writeable = False
-    r, c = 50 + i % 100, 150 - i % 100
-    code = int(layer.code[r, c])
-    pit = {"moisture_pct": round(float(layer.moisture_pct[r, c]), 1),
-           "humus_pct": round(float(layer.humus_pct[r, c]), 1),
-           "particle_mm": round(float(layer.particle_mm[r, c]), 2),
-           "parent": layer.classes[code].parent, "soil": layer.classes[code].name}
-    return Patch(ext, side / PATCH_CELLS, comp, layer.code, (r, c), pit)
-
-
-def patch_of(v) -> Patch:
-    """Tasks 13.2–13.3's patch for variant ``v`` (cached)."""
-    return _patch(int(v.i), float(v.m))
 
 
 def majority_agreement_pct(labels, truth) -> float:
@@ -129,7 +67,7 @@ class ScaleClasses(Task):
     points = 2
     cross_variant = False  # five options: another variant's answer is no sign of a mix-up
     spec = tuple(
-        Answer(f"class_{f}m", f"class of a soil map at 1 : {f}·m", kind="choice", options=s14.CLASS_NAMES,
+        Answer(f"class_{f}m", f"class of a soil map at 1 : {f}·m", kind="choice", options=guide.ch13.CLASS_NAMES,
                hint="compare the denominator with the ranges of guide §14 — and mind the gaps between them.")
         for f in MAP_FACTORS
     )
@@ -139,12 +77,12 @@ class ScaleClasses(Task):
                              "scale denominator": list(map_scales(v))}).set_index("map")
 
     def answers(self, v) -> dict:
-        return {f"class_{f}m": s14.soil_map_scale_class(d) for f, d in zip(MAP_FACTORS, map_scales(v))}
+        return {f"class_{f}m": guide.ch13.soil_map_scale_class(d) for f, d in zip(MAP_FACTORS, map_scales(v))}
 
     def hidden(self, v, got) -> list:
         # a smaller map is never of a larger class: the named classes of the three answers do not go back
         # ("between classes" names no class and is skipped; an answer that is no option fails)
-        rank = {"detailed": 0, "large-scale": 1, "medium-scale": 2, "small-scale": 3, s14.BETWEEN: None}
+        rank = {"detailed": 0, "large-scale": 1, "medium-scale": 2, "small-scale": 3, guide.ch13.BETWEEN: None}
         answers = [got.get(f"class_{f}m") for f in MAP_FACTORS]
         if not all(isinstance(a, str) and a in rank for a in answers):
             ok = None

@@ -25,8 +25,8 @@ module         what                                                             
 
 The 2-D ray geometry (intersections, error triangles, resection) and the
 similarity fits are :mod:`aerophoto.plane`'s; the guide's printed tables 8
-and 9 and their audits are :mod:`aerophoto.guide.s07`, the reading of
-formula (13.1) :data:`aerophoto.guide.s13.ZHUKOV_READING`.
+and 9 and their audits are :mod:`aerophoto.guide.ch06`, the reading of
+formula (13.1) :data:`aerophoto.guide.ch12.ZHUKOV_READING`.
 
 Units and frames
 ----------------

@@ -261,26 +261,73 @@ def design_points(
     r_max = camera.f_mm / 30.0
     r_centre = min(r_max, float(centre_search_mm))
 
-    # the photo base b_t from photo t to photo t+1, measured on photo t (mm, along the image of the
-    # next o); the design geometry uses the plane of the mean height (positions are nominal anyway)
+    o_next, o_prev = _photo_bases(camera, poses, terrain)
+    specs = _design_specs(camera, numbers, o_next, o_prev, centre_offset_mm=centre_offset_mm, r_max=r_max,
+                          control_layout=control_layout, side_overlap_percent=side_overlap_percent,
+                          tie_from_edge_mm=tie_from_edge_mm)
+
+    # a tie point must be seen on three photos: where tilts turn the photos against each other the triple
+    # overlap's middle is not at x = 0 of photo t; slide the design position along the strip to the place
+    # that keeps it furthest inside all three frames (only where x = 0 would come within 5 mm of an edge)
+    for j, (name, kind, t, xy, control, exact) in enumerate(specs):
+        if kind == "tie":
+            specs[j] = (name, kind, t, _centre_in_overlap(camera, poses, terrain, t, xy, o_next[t]), control, exact)
+
+    # exact terrain points at the design positions: one DEM intersection per photo
+    ground = np.zeros((len(specs), 3))
+    for t in range(N):
+        rows = [j for j, sp in enumerate(specs) if sp[2] == t]
+        if rows:
+            ground[rows] = _photo_to_ground(camera, poses[t], np.array([specs[j][3] for j in rows]), terrain)
+
+    XYZ, source = _catalogue_or_terrain(camera, poses, cat, specs, ground, search_radius_mm=search_radius_mm,
+                                        r_centre=r_centre)
+    names = _unique_names([sp[0] for sp in specs])
+    kinds = tuple(sp[1] for sp in specs)
+    photo = np.array([sp[2] for sp in specs], dtype=int)
+    return StripPoints(names, kinds, XYZ, photo, source, numbers)
+
+
+def _photo_bases(camera: g.Camera, poses: list, terrain) -> tuple:
+    """The photo bases of a strip, measured on the photos: ``(o_next, o_prev)``.
+
+    ``o_next[t]`` (shape (N − 1, 2), mm) is the image of photo t+1's principal point on photo t, ``o_prev[t]``
+    (a dict for t = 1 … N − 1) that of photo t−1's.  The design geometry uses the plane of the mean height
+    (the positions are nominal anyway).
+    """
+    N = len(poses)
     z_ref = 0.5 * (float(getattr(terrain, "z_min_m", 0.0)) + float(getattr(terrain, "z_max_m", 0.0)))
     O = np.array([g.photo_to_plane(camera, pose, np.zeros(2), z_ref) for pose in poses])
     o_next = np.array([g.ground_to_photo(camera, poses[t], O[t + 1]) for t in range(N - 1)])
     o_prev = {t: g.ground_to_photo(camera, poses[t], O[t - 1]) for t in range(1, N)}
+    return o_next, o_prev
 
-    def along(t, frac, y):
-        """Photo point on photo t at fraction ``frac`` of the base towards photo t+1, offset y across."""
-        d = o_next[t] / np.hypot(*o_next[t])
-        n = np.array([-d[1], d[0]])
-        return frac * o_next[t] + y * n
 
-    def along_back(t, frac, y):
-        """On photo t at fraction ``frac`` of the base towards photo t−1 (y to the left of the flight)."""
-        back = o_prev[t]
-        d = -back / np.hypot(*back)  # forward direction
-        n = np.array([-d[1], d[0]])
-        return frac * back + y * n
+def _along(base, frac: float, y: float) -> np.ndarray:
+    """Photo point at fraction ``frac`` of the photo ``base`` (mm, towards the next photo), offset ``y`` mm across
+    (to the left of the base)."""
+    d = base / np.hypot(*base)
+    n = np.array([-d[1], d[0]])
+    return frac * base + y * n
 
+
+def _along_back(back, frac: float, y: float) -> np.ndarray:
+    """Photo point at fraction ``frac`` of the base ``back`` towards the previous photo (mm), ``y`` mm to the left
+    of the flight."""
+    d = -back / np.hypot(*back)  # forward direction
+    n = np.array([-d[1], d[0]])
+    return frac * back + y * n
+
+
+def _design_specs(camera: g.Camera, numbers: tuple, o_next, o_prev, *, centre_offset_mm, r_max: float,
+                  control_layout: str, side_overlap_percent: float, tie_from_edge_mm: float) -> list:
+    """The design positions of a strip's points (guide §13 steps 2–3; the layouts in :func:`design_points`).
+
+    Returns a list of ``(name, kind, photo index, xy mm, control, exact)``: working centres, orienting points
+    (Cyrillic letters), tie points (Latin letters) and control points (``first/1`` …), in that order.
+    """
+    N = len(numbers)
+    half = camera.half_mm
     specs = []  # (name, kind, photo, xy, control, exact)
     if centre_offset_mm is None:
         offs = np.zeros((N, 2))
@@ -302,39 +349,40 @@ def design_points(
         for sgn in (+1, -1):
             lab = _CYR[letter] if letter < len(_CYR) else f"О{letter + 1}"
             letter += 1
-            specs.append((lab, "orienting", t, along(t, 0.5, sgn * y_side), False, False))
+            specs.append((lab, "orienting", t, _along(o_next[t], 0.5, sgn * y_side), False, False))
     tl = 0
     for t in range(1, N - 1):
         for sgn in (+1, -1):
             lab = _LAT[tl] if tl < len(_LAT) else f"t{tl + 1}"
             tl += 1
-            specs.append((lab, "tie", t, along(t, 0.0, sgn * y_tie), False, False))
+            specs.append((lab, "tie", t, _along(o_next[t], 0.0, sgn * y_tie), False, False))
     first, last = numbers[0], numbers[-1]
-    ctl = [(f"{first}/1", 0, along(0, 0.25, +y_ctl)), (f"{first}/2", 0, along(0, 0.25, -y_ctl)),
-           (f"{last}/1", N - 1, along_back(N - 1, 0.25, +y_ctl)),
-           (f"{last}/2", N - 1, along_back(N - 1, 0.25, -y_ctl))]
+    head, tail = o_next[0], o_prev[N - 1]
+    ctl = [(f"{first}/1", 0, _along(head, 0.25, +y_ctl)), (f"{first}/2", 0, _along(head, 0.25, -y_ctl)),
+           (f"{last}/1", N - 1, _along_back(tail, 0.25, +y_ctl)),
+           (f"{last}/2", N - 1, _along_back(tail, 0.25, -y_ctl))]
     if control_layout == "ends":
-        ctl = ctl[:2] + [(f"{first}/3", 0, along(0, -0.5, -y_ctl)), (f"{first}/4", 0, along(0, -0.5, +y_ctl))] \
-            + ctl[2:] + [(f"{last}/3", N - 1, along_back(N - 1, -0.5, -y_ctl)),
-                         (f"{last}/4", N - 1, along_back(N - 1, -0.5, +y_ctl))]
+        ctl = ctl[:2] + [(f"{first}/3", 0, _along(head, -0.5, -y_ctl)), (f"{first}/4", 0, _along(head, -0.5, +y_ctl))] \
+            + ctl[2:] + [(f"{last}/3", N - 1, _along_back(tail, -0.5, -y_ctl)),
+                         (f"{last}/4", N - 1, _along_back(tail, -0.5, +y_ctl))]
     for lab, t, xy in ctl:
         specs.append((lab, "control", t, xy, True, False))
+    return specs
 
-    # a tie point must be seen on three photos: where tilts turn the photos against each other the triple
-    # overlap's middle is not at x = 0 of photo t; slide the design position along the strip to the place
-    # that keeps it furthest inside all three frames (only where x = 0 would come within 5 mm of an edge)
-    for j, (name, kind, t, xy, control, exact) in enumerate(specs):
-        if kind == "tie":
-            specs[j] = (name, kind, t, _centre_in_overlap(camera, poses, terrain, t, xy, o_next[t]), control, exact)
 
-    # exact terrain points at the design positions: one DEM intersection per photo
-    ground = np.zeros((len(specs), 3))
-    for t in range(N):
-        rows = [j for j, sp in enumerate(specs) if sp[2] == t]
-        if rows:
-            ground[rows] = _photo_to_ground(camera, poses[t], np.array([specs[j][3] for j in rows]), terrain)
+def _catalogue_or_terrain(camera: g.Camera, poses: list, cat, specs: list, ground, *, search_radius_mm: float,
+                          r_centre: float) -> tuple:
+    """The ground point of every design position: the nearest usable catalogue point, else the exact terrain point.
 
-    names, kinds, XYZ, photo, source = [], [], [], [], []
+    A catalogue point serves if it is imaged on every photo the design point must be seen on, at least
+    :data:`_SEEN_MARGIN_MM` inside the frame, and lies within ``search_radius_mm`` of the design position
+    (within ``r_centre`` of o for a working centre); each serves once; a control position prefers surveyed
+    control points, other positions never take them.  Returns ``(XYZ, source)``: shape (n, 3) metres and
+    ``"catalogue"``/``"terrain"`` per point.
+    """
+    N = len(poses)
+    half = camera.half_mm
+    XYZ, source = [], []
     used = set()
     cat_photo = None
     if cat is not None:
@@ -370,12 +418,14 @@ def design_points(
             if np.isfinite(dist[jj]) and near:
                 P, src = cXYZ[jj], "catalogue"
                 used.add(jj)
-        names.append(name)
-        kinds.append(kind)
         XYZ.append(np.asarray(P, dtype=float))
-        photo.append(t)
         source.append(src)
-    # unique names (a catalogue may reuse labels)
+    return np.array(XYZ), tuple(source)
+
+
+def _unique_names(names: list) -> tuple:
+    """The names made unique (a catalogue may reuse labels): a repeat of ``n`` becomes ``n#1``, ``n#2``, …"""
+    names = list(names)
     seen = {}
     for i, n in enumerate(names):
         if n in seen:
@@ -383,7 +433,7 @@ def design_points(
             names[i] = f"{n}#{seen[n]}"
         else:
             seen[n] = 0
-    return StripPoints(tuple(names), tuple(kinds), np.array(XYZ), np.array(photo, dtype=int), tuple(source), numbers)
+    return tuple(names)
 
 
 #: a catalogue point replaces a design point only if it is imaged at least this far inside every frame

@@ -4,7 +4,7 @@
 
 The scan prints the radicand as n⁰ + 11n + 34; the book reads n³ (the
 superscript 3 scanned as 0) — the reasons are in
-:data:`aerophoto.guide.s13.ZHUKOV_READING`, and :func:`bridge_variance_factor`
+:data:`aerophoto.guide.ch12.ZHUKOV_READING`, and :func:`bridge_variance_factor`
 is the error-propagation argument behind them.  ``reading`` selects the
 radicand everywhere: ``"n3"`` (the book), ``"n2"``, ``"n0"`` (as scanned).
 """

@@ -15,7 +15,7 @@ c.ExchangeCollect.check_owner = True
 # grading sandbox (no course folder, no network, nobody's rights).  The trusted scores and the flags come only
 # from `aerophoto-course autograde` — grade with that.
 c.Autograde.autograde_preprocessors = [
-    "aerophoto.course.execute.SandboxExecute",
+    "aerophoto.course.sandbox_execute.SandboxExecute",
     "nbgrader.preprocessors.IgnorePattern",
     "nbconvert.preprocessors.ClearMetadataPreprocessor",
     "nbgrader.preprocessors.LimitOutput",

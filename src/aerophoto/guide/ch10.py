@@ -1,4 +1,4 @@
-"""Guide §11 (ground control): the coordinate table of the four known points, checked in its own datum.
+"""Chapter 10 · guide §11 (ground control): the coordinate table of the four known points, checked in its own datum.
 
 §11 closes its resection (обратная засечка) with a table of four known
 points I–IV: plane coordinates X, Y and height H, and beside them the

@@ -3,8 +3,8 @@
 Every student flies **their own strip**: four photos 36 … 39 with their
 variant's camera f, scale 1:m and forward overlap p_x (guide §1), over the
 virtual site (:func:`aerophoto.site.get_site`).  Chapter 05 glues it into a
-fotoschema (:mod:`aerophoto.tasks.ch05`), chapters 06 and 12 triangulate it
-(:mod:`aerophoto.tasks.ch06`, :mod:`aerophoto.tasks.ch12`).
+fotoschema (:mod:`aerophoto.labs.ch05`), chapters 06 and 12 triangulate it
+(:mod:`aerophoto.labs.ch06`; graded in :mod:`aerophoto.tasks.ch06`, :mod:`aerophoto.tasks.ch12`).
 
 * **Where.**  The strip is flown along +X (east).  Where it lies on the site
   depends on the variant number i (:func:`strip_position`): the first photo's
@@ -38,7 +38,7 @@ import numpy as np
 from .. import geometry as g
 
 __all__ = ["N_PHOTOS", "FIRST_NUMBER", "MAX_TILT_DEG", "MAX_TILT_OFFSET_MM", "SITE_MARGIN_M", "own_tilt_deg",
-           "tilt_growth_m", "tilt_that_fits", "strip_position", "own_strip", "reading_rng", "read_mm"]
+           "tilt_growth_m", "tilt_that_fits", "strip_position", "own_strip", "own_strip_of", "reading_rng", "read_mm"]
 
 #: photos in the student's strip (guide §3 hands out four contact prints; §13 numbers them 36 … 39)
 N_PHOTOS = 4
@@ -123,7 +123,12 @@ def strip_position(variant, site) -> tuple:
 
 
 @functools.lru_cache(maxsize=128)
-def _own_strip(i: int, f_mm: float, frame_mm: float, m: float, px_percent: float):
+def own_strip_of(i: int, f_mm: float, frame_mm: float, m: float, px_percent: float):
+    """The own strip of variant ``i`` flown with these f (mm), frame side (mm), 1:m and p_x (%): ``(strip, site)``.
+
+    :func:`own_strip` for a variant's own numbers; a hand-made variant (another f, m or p_x) flies from the
+    same place rule.  Cached per process (128 strips); the arrays are shared — read them, do not change them.
+    """
     from .. import simulate
     from .. import site as site_mod
     from ..variants import variant_for_index
@@ -150,7 +155,7 @@ def own_strip(variant):
 
     Built once per variant and process; the strip's arrays are shared — read them, do not change them.
     """
-    return _own_strip(int(variant.i), float(variant.f_mm), float(variant.frame_mm), float(variant.m),
+    return own_strip_of(int(variant.i), float(variant.f_mm), float(variant.frame_mm), float(variant.m),
                       float(variant.px_percent))
 
 

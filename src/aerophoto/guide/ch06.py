@@ -1,4 +1,4 @@
-"""Guide §7 (single-strip phototriangulation): tables 8 and 9, transcribed once and audited.
+"""Chapter 06 · guide §7 (single-strip phototriangulation): tables 8 and 9, transcribed once and audited.
 
 Table 8 gives the reduction coefficients K = l_осн/l_воск of the four bases
 around a free strip, from four control points with coordinates (X north,

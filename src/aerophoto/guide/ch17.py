@@ -1,4 +1,4 @@
-"""Article 003 (Mikheeva, Yaltykhov, Vashcheva): the printed numbers of the map-updating error budget, audited.
+"""Chapter 17 · article 003 (Mikheeva, Yaltykhov, Vashcheva): the printed numbers of the map-updating error budget, audited.
 
 The article estimates the RMS error of every stage of updating a topographic map at a digital
 photogrammetric station, on the ground, and adds them root-sum-square (its formula 10) for two

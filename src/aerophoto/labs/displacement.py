@@ -254,7 +254,7 @@ class LabSheet:
         guide's formula gives with the exact one (the camera model), and how far each corrected point lies from
         where a perfect correction puts it.  For the instructor, or for a student whose tasks have passed.
         """
-        from ..guide.s04 import display_frame
+        from ..guide.ch03 import display_frame
 
         w = self.work()
         if self.kind == "relief":

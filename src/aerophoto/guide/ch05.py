@@ -1,4 +1,4 @@
-"""Guide §6 ("Изготовление одномаршрутной фотосхемы"): what the section prints, as data with notes.
+"""Chapter 05 · guide §6 ("Изготовление одномаршрутной фотосхемы"): what the section prints, as data with notes.
 
 §6 prints no worked numeric table — no printed value follows from other
 printed values — so it has no :class:`~aerophoto.guide.audit.Audit`.  What it

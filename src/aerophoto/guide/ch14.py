@@ -1,4 +1,4 @@
-"""Article 001 (accuracy of phototriangulation networks): the formulas as reconstructed, and its printed numbers.
+"""Chapter 14 · article 001 (accuracy of phototriangulation networks): the formulas as reconstructed, and its printed numbers.
 
 The article is a textbook section (formula numbers 10.20–10.21, figures 10.7–10.8).
 The scan lost both formulas and the accumulation scheme between them; what it
@@ -119,7 +119,7 @@ def examples() -> Audit:
         ("n for the plan (real)", "bases", n_plan), ("n for the plan (whole, ≤ 0.3 mm)", "bases", n_whole),
         ("allowed m_Z (h = 2.5 m)", "m", mz), ("n for heights (real)", "bases", n_h),
     ], columns=["quantity", "unit", "value"]).set_index("quantity")
-    notes = ("The formulas are the book's reconstruction (aerophoto.guide.a001.RECONSTRUCTION): the scan lost them.",
+    notes = ("The formulas are the book's reconstruction (aerophoto.guide.ch14.RECONSTRUCTION): the scan lost them.",
              "The coefficients of (10.21) are fixed by the first example, so its m_X, m_Y, m_Z, m_D follow by "
              "construction; the two design examples are independent checks of the reconstruction.")
     return Audit("article 001", "Worked numbers of article 001. Error accumulation and control spacing", table,

@@ -1,4 +1,4 @@
-"""Guide §4 (relief displacement): tables 2, 3 and 4 as printed, recomputed and audited.
+"""Chapter 03 · guide §4 (relief displacement): tables 2, 3 and 4 as printed, recomputed and audited.
 
 The worked example of §4 corrects a photo for relief.  Its printed inputs —
 the bases' lengths l_пл and l_сн (tables 2 and 4, photoplan 1:M with
@@ -11,7 +11,7 @@ rule of :mod:`aerophoto.guide.audit` (within 0.6 of a unit of the last printed
 digit), and the reason wherever a value does not follow.  :func:`discrepancies`
 lists them all.
 
-The scale tables of §5 (tables 5 and 7, :mod:`aerophoto.guide.s05`) have the
+The scale tables of §5 (tables 5 and 7, :mod:`aerophoto.guide.ch04`) have the
 layout of tables 2 and 4 and are audited by the same helpers
 (:func:`scale_values`, :func:`printed_scale_frame`, :func:`display_frame`).
 

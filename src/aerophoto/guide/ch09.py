@@ -1,4 +1,4 @@
-"""Guide §10 (plan correction by mutual projective grids): the section's inputs and steps, as data.
+"""Chapter 09 · guide §10 (plan correction by mutual projective grids): the section's inputs and steps, as data.
 
 §10 prints no table and no numbers to audit: it lists the materials (a
 1:10 000 topographic map, a photo of the new survey, tracing paper), the

@@ -1,4 +1,4 @@
-"""Guide §3 ("Оценка качества материалов аэросъёмки"): table 1, the visual control of the photos.
+"""Chapter 02 · guide §3 ("Оценка качества материалов аэросъёмки"): table 1, the visual control of the photos.
 
 Table 1 records, for four photos of the guide's example (nos. 542–545), the
 photographic quality judged by eye: sharpness (резкость), the rendering of

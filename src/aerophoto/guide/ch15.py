@@ -1,4 +1,4 @@
-"""Article 002 (aerial photo-referencing of gravimetric points in high mountains): its tables, audited.
+"""Chapter 15 · article 002 (aerial photo-referencing of gravimetric points in high mountains): its tables, audited.
 
 Table 1 (the technology of the method) has no numbers: :func:`technology` gives it
 in English beside the part of the package that does each computational step

@@ -1,4 +1,4 @@
-"""Guide §13 (phototriangulation): formula (13.1) as printed, its reading, and the guide's inputs to it.
+"""Chapter 12 · guide §13 (phototriangulation): formula (13.1) as printed, its reading, and the guide's inputs to it.
 
 §13's tables 12 and 13 are blank forms (no printed numbers to audit).  What
 the section prints is Zhukov's formula (13.1) for the spacing of control

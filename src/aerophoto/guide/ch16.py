@@ -1,4 +1,4 @@
-"""Article 000 (contours on a 1:2000 photoplan from DEM points): Lysenko's formula as printed, its reading, the audit.
+"""Chapter 16 · article 000 (contours on a 1:2000 photoplan from DEM points): Lysenko's formula as printed, its reading, the audit.
 
 The article prints one formula — F. F. Lysenko's prediction of the accuracy of height densification
 by analytical block phototriangulation — with its inputs and result (m_z = 14 cm), and reports
@@ -110,7 +110,7 @@ def lysenko() -> Audit:
                          columns=["quantity", "unit", "value"]).set_index("quantity")
     notes = (
         "Formula as printed: " + LYSENKO_PRINTED + "; read as m_z = m_p·(H/b)·√(3(2ns + mn − s·r)/(2mns)), "
-        "m_p = 0.025 mm (see guide.a000.LYSENKO_READING).",
+        "m_p = 0.025 mm (see guide.ch16.LYSENKO_READING).",
         "Measured in the article: densification 12 cm RMS (predicted 14 cm); for a normal error of RMS 12 cm, "
         "79 % of the errors lie within 15 cm — the article counted 70 % for its structural DEM's contours.",
         "The article's requirement for h = 0.5 m is a mean error of 15 cm (0.3·h); 12 cm RMS is a mean error "

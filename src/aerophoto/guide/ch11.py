@@ -1,4 +1,4 @@
-"""Guide §12 (rectification of photos of flat ground): table 11 and the list of plan coordinates, audited.
+"""Chapter 11 · guide §12 (rectification of photos of flat ground): table 11 and the list of plan coordinates, audited.
 
 Table 11 ("Определение среднего коэффициента деформации фотобумаги и
 толщины подложки") gives six lengths l₁…l₆ on the glass control grid (l₀)

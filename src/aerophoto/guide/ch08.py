@@ -1,4 +1,4 @@
-"""Guide §9 (interpretation of aerial photos, дешифрирование аэроснимков): the conditions and table 10.
+"""Chapter 08 · guide §9 (interpretation of aerial photos, дешифрирование аэроснимков): the conditions and table 10.
 
 §9 prints no computed numbers.  It defines interpretation and interpretability (дешифрируемость), lists eight
 conditions of photographing that decide it (:data:`CONDITIONS`), the direct keys (прямые дешифровочные признаки:

@@ -1,4 +1,4 @@
-"""Guide §8 (the lens-mirror stereoscope; studying the stereo model of the ground): the section's terms and steps.
+"""Chapter 07 · guide §8 (the lens-mirror stereoscope; studying the stereo model of the ground): the section's terms and steps.
 
 §8 prints no table and no computed numbers: it defines the stereo effect
 (стереоскопический эффект, стереоэффект) — direct (прямой) when the left photo

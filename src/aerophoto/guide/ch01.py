@@ -1,4 +1,4 @@
-"""Guide §2 ("Расчёт параметров аэросъёмки"): the worked example of the survey calculation, and its audit.
+"""Chapter 01 · guide §2 ("Расчёт параметров аэросъёмки"): the worked example of the survey calculation, and its audit.
 
 The guide works the twelve steps of the survey calculation for the inputs of
 variant i = 0 (f = 100 mm, 1:12 000, p_x = 60 %, p_y = 30 %, L_x = 25 km,

@@ -1,4 +1,4 @@
-"""Guide §5 (tilt displacement): tables 5, 6 and 7 as printed, recomputed and audited.
+"""Chapter 04 · guide §5 (tilt displacement): tables 5, 6 and 7 as printed, recomputed and audited.
 
 The worked example of §5 corrects a photo for tilt.  Its printed inputs — the
 bases' lengths l_пл and l_сн (tables 5 and 7, M = 10 000) and the points'
@@ -29,7 +29,7 @@ from .. import displacement as d
 from .. import geometry as g
 from .._validate import check_range
 from .audit import Audit, discrepancy_frame
-from .s04 import SIGN_REASON, display_frame, printed_scale_frame, scale_values, value
+from .ch03 import SIGN_REASON, display_frame, printed_scale_frame, scale_values, value
 
 __all__ = [
     "SOURCE",

@@ -1,4 +1,4 @@
-"""Guide §14 (aerial and space photos in soil mapping): its facts as data.
+"""Chapter 13 · guide §14 (aerial and space photos in soil mapping): its facts as data.
 
 §14 prints no numeric table to audit.  What it states as facts — the classes of soil maps by scale, the
 shape of a soil's reflectance curve and what moves it, the keys a soil interpreter uses and the steps of the

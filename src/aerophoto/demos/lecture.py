@@ -34,7 +34,7 @@ LECTURE_CSS = """<style>
 .aerophoto-lecture .aerophoto-table td.num { white-space: nowrap; }
 .aerophoto-lecture .aerophoto-table tbody th { text-align: left; font-weight: normal; }
 .aerophoto-lecture .aerophoto-table ul { margin-top: 2px !important; font-size: 15px; }
-.aerophoto-lecture .widget-html-content { line-height: 1.3; }
+.aerophoto-lecture .widget-html-content { line-height: 1.3; font-size: 15px; }
 .aerophoto-lecture .aerophoto-lecture-title { font-size: 20px; font-weight: bold; margin: 0 0 2px 0; }
 .aerophoto-lecture .aerophoto-lecture-title span { font-weight: normal; color: #444; font-size: 16px; }
 .aerophoto-lecture .aerophoto-legend { font-size: 15px !important; }

@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from matplotlib import patheffects
 import pandas as pd
 
 from .. import geometry as g
@@ -218,11 +219,15 @@ class TransformerView:
                               interpolation="antialiased")
         (self.hh,) = a.plot([], [], "-.", color=_C["blue"], lw=1.6, label="principal horizontal hh")
         (self.hh_pts,) = a.plot([], [], "x", color=_C["blue"], ms=7, mew=1.6)
+        # a dark outline under the pink triangles: they stay visible on the grey photo with any colour vision
         (self.base,) = a.plot([], [], "^", mfc="none", mec=_C["control"], mew=2.4, ms=12,
-                              label="points on the base planchet")
+                              label="points on the base planchet",
+                              path_effects=[patheffects.withStroke(linewidth=4.4, foreground="black")])
         (self.images,) = a.plot([], [], "o", color=_C["orange"], ms=7, label="their images on the screen")
         self.arrows = a.quiver(np.zeros(5), np.zeros(5), np.zeros(5), np.zeros(5), angles="xy", scale_units="xy",
-                               scale=1.0, color=_C["vermillion"], width=0.006, zorder=5)
+                               scale=1.0, color=_C["vermillion"], width=0.006, zorder=5,
+                               label="misses (lengthened ×k)")
+        a.legend(loc="upper right")  # the key; a live demo shows it beside the figure (LiveDemo.legend_beside)
 
     def update(self, r: TransformerResult) -> None:
         s = r.current

@@ -369,6 +369,10 @@ _LEGENDS = {
     "not yet": "ещё нет",
     "within": "в допуске",
     "start": "начало",
+    "misses (lengthened ×k)": "невязки (удлинены ×k)",
+    "points on the base planchet": "точки на планшете основы",
+    "their images on the screen": "их изображения на экране",
+    "principal horizontal hh": "главная горизонталь hh",
 }
 
 #: English → Russian

@@ -221,3 +221,32 @@ def test_ipc_folder_is_sealed_after_start(tmp_path):
 
 
 
+
+
+def test_one_recipe_for_the_grader_and_the_hub():
+    from aerophoto.course.bwrap import BwrapOptions, bwrap_argv, is_root
+    from aerophoto.course.limits import GRADING, HUB_INSTRUCTOR, HUB_STUDENT
+
+    # the limits: one record, the hub's and the grader's differing only where they should
+    assert GRADING == Limits() and HUB_INSTRUCTOR.memory_mb > HUB_STUDENT.memory_mb >= GRADING.memory_mb
+    assert HUB_STUDENT.prlimit_args() == ["--as=3221225472", "--nofile=4096", "--nproc=512", "--core=0", "--"]
+    assert "--cpu=900:905" in GRADING.prlimit_args() and "--fsize=67108864" in GRADING.prlimit_args()
+    hub = BwrapOptions(limits=HUB_STUDENT, uid=30001, gid=30002, hostname="aerophoto", network=True,
+                       ro_binds=(("/srv/book/notebooks", "/srv/book/notebooks"),),
+                       binds=(("/srv/home/a", "/home/a"), ("/srv/x", "/srv/nbgrader/exchange")), chdir="/home/a")
+    argv = bwrap_argv(hub, ["jupyterhub-singleuser"])
+    assert argv[-1] == "jupyterhub-singleuser" and "--clearenv" not in argv
+    assert argv[argv.index("--chdir") + 1] == "/home/a"
+    # read-only before read-write, each under fresh parents; /dev/shm and /tmp sized by the limits
+    assert argv.index("/srv/book/notebooks") < argv.index("/srv/home/a") < argv.index("/srv/x")
+    assert argv[argv.index("/home/a") - 2] == "--bind" and "/home" in argv
+    assert argv[argv.index("/dev/shm") - 3: argv.index("/dev/shm")] == ["--size", str(64 * 1024 * 1024), "--tmpfs"]
+    assert "--as=3221225472" in argv and "--cpu=900:905" not in argv
+    if is_root():
+        assert "--unshare-net" not in argv and "--unshare-pid" in argv
+        assert "--reuid=30001" in argv and "--regid=30002" in argv
+    grading = bwrap_argv(BwrapOptions(env={"HOME": "/sbx"}, work="/sbx", chdir="/sbx"), ["python"])
+    assert grading[grading.index("--clearenv") + 1: grading.index("--clearenv") + 4] == ["--setenv", "HOME", "/sbx"]
+    assert "/dev/shm" not in grading and "--cpu=900:905" in grading
+    if is_root():
+        assert "--unshare-net" in grading and f"--reuid={NOBODY}" in grading

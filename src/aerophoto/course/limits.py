@@ -32,7 +32,9 @@ class Limits:
     shm_mb : size of a private ``/dev/shm`` (None: none is mounted)
     output_mb : outputs kept per notebook on the instructor's side (more is dropped, flagged)
     message_mb : the largest single message accepted from the kernel (a larger one ends the connection)
-    cell_s : wall time of one cell, s (nbclient's per-cell timeout; ``aerophoto-course --timeout``'s default)
+    cell_s : the default wall time of one cell, s (``aerophoto-course --timeout``'s default,
+        :data:`~.common.DEFAULT_TIMEOUT_S`); the time a run uses is nbclient's ``timeout`` (``--timeout``,
+        ``c.ExecutePreprocessor.timeout`` in the course's config)
     """
 
     memory_mb: int | None = 3072

@@ -441,7 +441,8 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=Non
         return html_subscripts(shown), shown != text or len(text) <= 12
 
     hl = None if highlight is None else np.asarray(highlight, dtype=bool)
-    head = "".join(f"<th scope='col'>{html_subscripts(_tr(str(c)))}</th>" for c in df.columns)
+    head = "".join(f"<th scope='col'>{html_subscripts(_tr(str(c)))}</th>" if str(c).strip()
+                   else f"<th scope='col'><span class='aerophoto-sr'>{_tr('value')}</span></th>" for c in df.columns)
     index_name = html_subscripts(_tr(str(df.index.name or "")))
     # a header for the row labels' column, read by screen readers even when the table shows none
     index_head = (f"<th scope='col'>{index_name}</th>" if index_name

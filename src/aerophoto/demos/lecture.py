@@ -30,6 +30,7 @@ LECTURE_CSS = """<style>
 .aerophoto-lecture .widget-toggle-button, .aerophoto-lecture select { font-size: 16px; }
 .aerophoto-lecture .widget-slider, .aerophoto-lecture .widget-dropdown { margin-top: 1px; margin-bottom: 1px; }
 .aerophoto-lecture .aerophoto-table { font-size: 15px !important; line-height: 1.3; }
+.aerophoto-lecture .aerophoto-table table { width: 100%; }
 .aerophoto-lecture .aerophoto-table td, .aerophoto-lecture .aerophoto-table th { padding: 1px 6px; }
 .aerophoto-lecture .aerophoto-table td.num { white-space: nowrap; }
 .aerophoto-lecture .aerophoto-table tbody th { text-align: left; font-weight: normal; }
@@ -171,8 +172,9 @@ def lecture_view(demo, title: str = "", subtitle: str = "", *, full_screen: bool
     # horizontal scroll bar); the side column keeps at least 280 px for the key, the status and the table
     figure = w.Box([demo.figure_widget()], layout=w.Layout(flex="0 1 auto", min_width="0"))
     figure.add_class("aerophoto-fluid")
+    # at most 760 px wide, its tables the column's width: a table does not jump in width as its texts change
     side = w.VBox([demo.legend, demo.status, demo.table],
-                  layout=w.Layout(margin="0 0 0 12px", flex="1 1 280px", min_width="280px"))
+                  layout=w.Layout(margin="0 0 0 12px", flex="1 1 280px", min_width="280px", max_width="760px"))
     main = w.HBox([figure, side], layout=w.Layout(align_items="flex-start"))
     view = w.VBox([top, band, main], layout=w.Layout(width="100%",
                                                      min_height=f"{SCREEN_HEIGHT_PX}px" if full_screen else None))

@@ -41,11 +41,16 @@ def test_middle_factors():
 def test_the_reconstructed_1021_reproduces_the_article():
     e = acc.strip_errors_mm(10, 0.01, f_mm=70, b_mm=70)
     assert round(e["X"], 2) == 0.08 and round(e["Z"], 2) == 0.08
-    assert round(e["D"], 2) == 0.11 and round(e["Y"], 2) == 0.05
+    assert round(e["Y"], 2) == 0.05
+    # m_D is the plan error (the legend): √(m_X² + m_Y²) = 0.094 mm; the printed 0.11 is √2·m_X (the other reading)
+    assert e["D"] == pytest.approx(math.hypot(e["X"], e["Y"])) and round(e["D"], 3) == 0.094
+    assert round(acc.COEFF_D_SQRT2 * 0.01 * 10**1.5, 2) == 0.11
     assert acc.strip_errors_mm(10, 0.01, f_mm=140, b_mm=70)["Z"] == pytest.approx(2 * e["Z"])
-    # the design examples: n ≈ 7.7 (printed 8) and n ≈ 3.0 ("2–3")
-    assert acc.plan_bases(20000, 10000, 0.02) == pytest.approx(7.71, abs=0.01)
-    assert acc.whole_bases(acc.plan_bases(20000, 10000, 0.02)) == 7
+    # the design examples: n ≈ 8.6 → 8 as printed (the other reading: 7.7 → 7) and n ≈ 3.0 ("2–3")
+    assert acc.plan_bases(20000, 10000, 0.02) == pytest.approx(8.61, abs=0.01)
+    assert (0.15 / (0.2968 * 0.02)) ** (2 / 3) == pytest.approx(acc.plan_bases(20000, 10000, 0.02), abs=0.01)
+    assert acc.whole_bases(acc.plan_bases(20000, 10000, 0.02)) == 8
+    assert acc.whole_bases((0.15 / (acc.COEFF_D_SQRT2 * 0.02)) ** (2 / 3)) == 7
     assert acc.allowed_height_error_m(2.5) == pytest.approx(0.5208, abs=1e-4)
     assert acc.height_bases(20000, 0.02, contour_interval_m=2.5, f_mm=100, b_mm=100) == pytest.approx(3.00, abs=0.01)
 
@@ -181,16 +186,18 @@ def test_block_precision_bad_input(block3):
 
 
 # ----------------------------------------------------------------------------------------------- article 001's audit
-def test_article_001_audit_names_the_two_numbers_that_do_not_follow():
+def test_article_001_audit_names_the_one_number_that_does_not_follow():
     a = guide.ch14.examples()
     bad = a.discrepancies
-    assert len(bad) == 2
-    assert {p.quantity for p in bad} == {"m_D as √(m_X² + m_Y²) of the printed m_X, m_Y, mm",
-                                         "bases between plan control n"}
+    assert len(bad) == 1
+    assert {p.quantity for p in bad} == {"m_D, mm"}  # 0.11 printed, 0.094 by the legend's plan error
+    assert bad[0].printed == 0.11 and bad[0].computed == pytest.approx(0.0939, abs=1e-4)
+    n = next(p for p in a.values if p.quantity == "bases between plan control n")
+    assert n.follows and n.printed == 8 and "7" in n.note
     assert all(p.reason for p in bad)
     assert all(not p.reason for p in a.values if p.follows)
     assert "n³" in guide.ch14.RECONSTRUCTION and "(10.21)" in guide.ch14.RECONSTRUCTION
-    assert len(guide.ch14.discrepancies()) == 2
+    assert len(guide.ch14.discrepancies()) == 1
 
 
 # ----------------------------------------------------------------------------------------------- the live demo

@@ -53,6 +53,10 @@ DEMOS = [
     ("block_accuracy", "BlockErrorDemo", [({"sigma_um": 8}, True), ({"every": 6}, True),
                                           ({"layout": "perimeter"}, True), ({"quantity": "height"}, False),
                                           ({"sigma_um": 12}, True)]),
+    # chapter 15: σ, the blunder and a layout already factorised move the points, ellipses, arrows and |w| only
+    ("block_adjustment_live", "BlockAdjustmentDemo", [({"sigma_um": 8}, True), ({"blunder": "off"}, True),
+                                                      ({"blunder_mm": 0.3, "blunder": "on"}, True),
+                                                      ({"layout": "corners"}, True), ({"sigma_um": 30}, True)]),
     ("dem_contours", "ContourDemo", [({"mz_m": 0.13}, True), ({"spacing_m": 40}, True), ({"structural": "on"}, True),
                                      ({"interval_m": 1.0}, True), ({"sheet": "plain (6–7 km E, 0.2–1.2 km N)"}, True)]),
     ("error_budget", "BudgetDemo", [({"M_c": 10500}, True), ({"P_um": 20}, True), ({"M_k": 5000.0}, True),

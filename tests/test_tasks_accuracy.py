@@ -1,6 +1,8 @@
 """The graded tasks of chapters 14 and 15 (aerophoto.tasks.ch14, ch15): references pass, slips are named, hidden
 checks catch answers that do not hold together, and every variant 00–99 works."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -46,9 +48,18 @@ def test_task_14_1_example_inputs_and_answers():
     s = tasks.inputs("task-14-1", v)
     assert (s.m, s.M, s.f_mm, s.b_mm, s.mq_mm, s.contour_m) == (12000, 10000, 100, 72, 0.01, 1.0)
     a = tasks.answers("task-14-1", v)
-    assert a["mD_mm"] == pytest.approx(0.35 * 0.01 * 1000**0.5)
+    assert a["mD_mm"] == pytest.approx(math.hypot(0.25, 0.16) * 0.01 * 1000**0.5)  # the plan error (legend)
     assert a["mZ_m"] == pytest.approx(0.25 * 0.01 * 100 / 72 * 1000**0.5 * 12)
-    assert a["n_plan"] == 17 and a["n_height"] == 2
+    assert a["n_plan"] == 19 and a["n_height"] == 2  # 19.2 (the other reading, m_D = √2·m_X: 17.2)
+    assert tasks.answers("task-14-1", variant_for_index(71))["n_plan"] == 8  # 8.88 (other reading: 7.96 → 7)
+
+
+def test_task_14_1_names_the_other_reading_of_m_D():
+    v = VARIANTS[0]
+    for name, value in (("mD_mm", 0.35 * 0.01 * 1000**0.5), ("n_plan", 17)):
+        g = _grade("task-14-1", v, **{name: value})
+        msg = next(m for n, ok, m, _ in g.checks if n == name)
+        assert not g.passed and "other reading of m_D" in msg, msg
 
 
 #: a spread of variants for the default run; every variant runs with -m exhaustive (a step of .ci/run; ~2.5 min)

@@ -38,7 +38,8 @@ def _reference(task_id, v):
         return {"dp_mm": dps, **out}
     d = tasks.inputs("task-07-3", v)
     h, H = d["h_m"], v.f_mm / 1000 * v.m
-    return {"dp_relief_mm": b * h / (H - h), "V": (b / v.f_mm) / (d["eye_base_mm"] / d["viewing_distance_mm"])}
+    b0 = d["B_m"] * d["f_mm"] / H  # the base of the normalised pair, not the pricked principal points' b
+    return {"dp_relief_mm": b0 * h / (H - h), "V": (b0 / v.f_mm) / (d["eye_base_mm"] / d["viewing_distance_mm"])}
 
 
 @pytest.mark.parametrize("i", range(100))
@@ -88,7 +89,8 @@ def test_inputs_and_answers_are_deterministic_and_differ_between_variants():
     b = tasks.answers("task-07-2", variant_for_index(40))
     assert a["dhD_m"] != b["dhD_m"]
     d = tasks.inputs("task-07-3", V3)
-    assert d == {"h_m": 30.0, "H_m": V3.f_mm / 1000 * V3.m, "eye_base_mm": 65.0, "viewing_distance_mm": 250.0}
+    assert d == {"h_m": 30.0, "H_m": V3.f_mm / 1000 * V3.m, "B_m": ch07.stereo_lab(V3).B_record_m, "f_mm": V3.f_mm,
+                 "eye_base_mm": 65.0, "viewing_distance_mm": 250.0}
 
 
 @pytest.mark.parametrize("task_id, name, hint", [
@@ -101,6 +103,7 @@ def test_inputs_and_answers_are_deterministic_and_differ_between_variants():
     ("task-07-2", "dhD_m", "air base B is in metres"),
     ("task-07-3", "dp_relief_mm", "small form"),
     ("task-07-3", "V", "not the other way round"),
+    ("task-07-3", "dp_relief_mm", "pricked principal points"),
 ])
 def test_typical_slips_are_named(task_id, name, hint):
     v = V3

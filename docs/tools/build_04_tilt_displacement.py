@@ -94,7 +94,7 @@ $\\delta_\\alpha < 0$, towards $c$ for $\\delta_\\alpha > 0$, only when $|\\delt
 error of the approximate formula is about $r_c\\cos\\varphi\\,\\sin\\alpha/f$ — under 5 % at the frame's edge
 for $f = 100$ mm and $\\alpha = 3^\\circ$, but growing with $\\alpha$.
 """, id="theory-formula"),
-    md("""
+    md(r"""
 ## The displacement explorer — tilt in front
 
 The same explorer as in chapter 03, with the ground flat and the tilt arrows shown. Blue: the exact

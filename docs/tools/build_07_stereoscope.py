@@ -7,12 +7,32 @@ Cells are identified by id; the notebook is written without outputs.
 
 from pathlib import Path
 
+from aerophoto import tasks
 from aerophoto.nbtools import code, md, notebook, write
 
 from build_09_plan_correction import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "07_stereoscope.ipynb"
+
+
+def _bias_table() -> str:
+    """The pricked base b against b₀ = B·f/H over the 100 variants, grouped by f (a markdown table, ~90 s)."""
+    import pandas as pd
+
+    from aerophoto.variants import variant_for_index
+
+    rows = []
+    for i in range(100):
+        lab = tasks.ch07.stereo_lab(variant_for_index(i))
+        rows.append((lab.f_mm, 100.0 * abs(lab.b_mm / lab.b_flat_mm - 1.0)))
+    df = pd.DataFrame(rows, columns=["f", "bias"])
+    out = ["| f, mm | variants | mean \\|b − b₀\\|, % | largest \\|b − b₀\\|, % |", "|---|---|---|---|"]
+    for lo, hi in ((100, 300), (300, 600), (600, 900), (900, 1100)):
+        g = df[(df["f"] > lo - (lo == 100)) & (df["f"] <= hi)]["bias"]
+        out.append(f"| {lo}–{hi} | {len(g)} | {g.mean():.1f} | {g.max():.1f} |")
+    return "\n".join(out)
+
 
 CELLS = [
     md("""
@@ -230,6 +250,21 @@ pd.DataFrame({"value": [lab.camera.f_mm, lab.m, lab.B_m, b1, b2, lab.left.pose.a
                     "tilt α₂, °", "points seen on both photos", "largest y-parallax, original photos, mm",
                     "… on the normalised photos, mm"]).round(4)
 """, id="example-pair"),
+    md(r"""
+**Two photo bases.** The base pricked from the principal points, $b = (b_1 + b_2)/2$, and the base of the
+normalised pair, $b_0 = B\,f/H$ — the parallax of a point on the mean plane, what the parallax bar measures against —
+are not the same on tilted photos. A tilt α moves the principal point away from the nadir by about $f\,\mathrm{tg}\,\alpha$
+(chapter 04), so each pricked base carries the two photos' tilts: with the half-degree tilts of this pair
+$b$ is 73.85 mm against $b_0$ = 72.68 mm, 1.6 % long. The bias grows with $f$: at $f$ = 730 mm (variant 63) half a
+degree is 6.4 mm on the photo, and one variant's pricked base comes out about 3 % long; over the hundred variants
+the two differ by 4.4 % on average and by up to 22 % for the longest lenses (the table, computed when the book
+is built: the variants grouped by focal length, so that no one's own answer shows). Heights and exaggerations built on $b$
+inherit that error; built on $b_0$ they do not. So task 07.1 asks for $b$ (it is what a student measures with a
+ruler on the prints, and the task checks the measuring), and task 07.3, which computes what a height does to the
+parallaxes, uses $b_0 = B\,f/H$ from the navigation record's $B$.
+
+""" + _bias_table() + """
+""", id="base-bias"),
     md("""
 The photos, tilted by about half a degree and turned by a degree of crab, show y-parallaxes up to about a
 millimetre — too much to fuse comfortably; after normalisation none is left (to rounding). The anaglyph above was made from the normalised photos. The same piece of
@@ -378,12 +413,13 @@ reading error costs metres — and a house of 4 m may not show at all.
     md("""
 ## Task 07.3 — what a height does to your parallaxes (graded)
 
-The site's relief is $h = Z_{max} - Z_{min}$ (your variant: 30 m). With your photo base $b$ from task 07.1 and
-$H = f\\cdot m$ compute
+The site's relief is $h = Z_{max} - Z_{min}$ (your variant: 30 m). With the base of your normalised pair
+$b_0 = B\\,f/H$ — the navigation record's air base $B$ and $H = f\\cdot m$, both in the table below; not the $b$ of the
+pricked principal points from task 07.1, which your photos' tilts shift ("Two photo bases" above) — compute
 
-* `dp_relief_mm` — the parallax difference of $h$: $\\Delta p = b\\,h/(H - h)$, mm (tolerance 0.005 mm);
+* `dp_relief_mm` — the parallax difference of $h$: $\\Delta p = b_0\\,h/(H - h)$, mm (tolerance 0.005 mm);
 * `V` — the vertical exaggeration of your stereo model viewed at $d$ = 250 mm with the eye base $e$ = 65 mm:
-  $V = (B/H)/(e/d)$, with $B/H = b/f$.
+  $V = (B/H)/(e/d)$, with $B/H = b_0/f$.
 """, id="task-07-3"),
     code("""
 tasks.inputs("task-07-3", v)

@@ -125,6 +125,54 @@ calls the objects that point to something unseen **indicators** (индикат�
     code("""
 guide.ch08.keys_table()
 """, id="theory-keys-table"),
+    md(r"""
+## How interpretation is organised (guide §9)
+
+**By content** (по содержанию) the guide divides interpretation into two kinds. **Topographic** interpretation
+(топографическое) finds every element of the landscape a topographic map shows and puts it into the map's symbols;
+at small scales, for geographic maps and for dividing a region into types of terrain, it becomes **landscape**
+interpretation (ландшафтное). **Special** interpretation (специальное, тематическое or **branch**, отраслевое) serves
+one trade: geological, geomorphological, soil (chapter 13), hydrological, meteorological, military — or, for land
+management, the farmland and the boundaries of land holdings; it usually shows the topographic elements as well, in
+a simplified form.
+
+**By method** (методы) the work is done in the **field** (полевой: on the ground with the photo in hand), from the
+air (**aerovisual**, аэровизуальный: looking down from a slow aircraft or helicopter), in the **office**
+(камеральный: from the photos alone, with keys and reference samples), or **combined** (комбинированный: office
+work checked and completed in the field — the usual way). Within any method the **ways** (способы) of reading are
+**visual** (by eye and stereoscope), **measuring** (масштабный: sizes and heights from the scale and the
+parallaxes, as in task 08.3 and chapter 07) or both.
+
+**The general order of work:** study the area on topographic maps and small-scale photos; fly reconnaissance
+routes and observe from the air; survey sample areas on the ground to make **reference samples** (эталоны
+дешифрирования); then interpret in the office, going back to the field for more samples where needed. The office
+work itself runs: look through the strip of photos; view the stereo pairs under a stereoscope for the relief; analyse
+the terrain; interpret and compare with the samples. Where the area is split among photos, the results are
+**matched across the boundaries** of neighbouring working areas (сводка): the same object must get the same class
+and the same characteristics on both sides, nothing may be lost at the seam, and an object added by measurement is
+checked from two or three points that are sure on both photos.
+
+**§9's three steps for the relief.** The guide's exercise starts from the relief: (1) study how the **tone**
+depends on the **steepness and exposure of the slopes**; (2) find the links between the relief and the objects that
+betray it — streams, gullies; (3) with both, look at the pair under the stereoscope. Step 1 is the Lambert law of
+the conditions demo above: a slope facing the sun is brighter than level ground, one turned away darker, and the
+steeper the slope the larger the difference — so on one photo the same grass can take any tone from dark to light.
+""", id="theory-organisation"),
+    code("""
+import numpy as np
+slope = np.linspace(0.0, 45.0, 46)
+fig, ax = plots.new_axes(None, figsize=(7.5, 4.0))
+for aspect, name in ((180.0, "facing the sun (south)"), (90.0, "east"), (270.0, "west"), (0.0, "turned away (north)")):
+    ax.plot(slope, interpretation.slope_illumination(slope, aspect, 40.0, 180.0), label=name)
+ax.set_xlabel("slope steepness, °")
+ax.set_ylabel("brightness / level ground")
+ax.set_title("Tone of a slope, sun 40° high in the south")
+ax.legend()
+plots.static(fig, alt="Brightness of a slope relative to level ground against its steepness from 0 to 45 degrees, "
+                      "sun 40 degrees high in the south. South-facing slopes brighten to about 1.36 times level ground "
+                      "at 45 degrees, east and west slopes (one curve) darken slowly to about 0.8, north-facing "
+                      "slopes darken fast and reach the shadow level, about 0.35, at 40 degrees.")
+""", id="figure-slope-tone"),
     md("""
 ## Table 10: the keys of topographic interpretation
 
@@ -162,7 +210,7 @@ and Q, and the river's flow read with table 10's keys.
 example = labs.ch08.example_photo()
 plots.static(di.lab_figure(example),
              alt="A colour aerial photo of the interpretation site with six yellow numbered marks, two blue marks P "
-                 "and Q on two forest stands, and two red marks A and B on opposite banks of the river.", dpi=72)
+                 "and Q on two forest stands, and two red marks A and B on opposite banks of the river.", dpi=150)
 """, id="example-1"),
     code("""
 labs.ch08.example_key()
@@ -177,6 +225,10 @@ text exactly, e.g. `obj1 = "lake (озеро)"`):
 * `obj1` … `obj6` — the names of objects 1 to 6.
 
 Each name is graded on its own (half a point for each right one).
+
+The photo is drawn at its full resolution (1024 px across, 150 dpi). To look closer, open it in a browser tab of
+its own (right-click → *Open image in new tab*) and zoom there, or zoom the page (Ctrl and +); the colour-infrared
+copy below it helps to tell water, forest and fields apart.
 """, id="task-08-1"),
     code("""
 lab = tasks.inputs("task-08-1", v)
@@ -188,11 +240,11 @@ for name in labs.ch08.OBJECT_NAMES:
     code("""
 plots.static(di.lab_figure(lab),
              alt="Your colour aerial photo of the interpretation site with six numbered yellow marks, two blue "
-                 "marks P and Q on two forest stands, and red marks A and B on the two banks of the river.", dpi=72)
+                 "marks P and Q on two forest stands, and red marks A and B on the two banks of the river.", dpi=150)
 """, id="task-08-1-photo"),
     code("""
 plots.static(di.lab_figure(lab, "colour-infrared film"),
-             alt="The same photo as colour infrared: vegetation red, water black, with the same marks.", dpi=72)
+             alt="The same photo as colour infrared: vegetation red, water black, with the same marks.", dpi=150)
 """, id="task-08-1-cir"),
     answer_cell("task-08-1"),
     check_cell("task-08-1"),
@@ -212,12 +264,15 @@ On your photo:
 ## Task 08.3 — the river's width by the scale (graded)
 
 Marks A and B stand on the two banks of the river, across its flow. Their photo coordinates, read on your photo, are
-in the table below (mm), and your photo's scale is $1:m$ (printed with the photo above). Compute
+in the table below (mm). The scale to use is **this photo's own**, `lab.m`, printed above the table (between
+1:8 000 and 1:9 500) — not the 1:m of your variant in the banner at the top, which is the scale of the course's
+flight (chapters 01–07), a different photo. Compute
 
 * `width_m` — the river's width on the ground, $|AB| \\cdot m$, in metres (tolerance 5 %: the scale of a tilted
   photo of uneven ground is not quite $1:m$ everywhere).
 """, id="task-08-3"),
     code("""
+print(f"this photo's scale: 1:{lab.m:.0f}")
 lab.marks_table().loc[["A", "B"]]
 """, id="task-08-3-data"),
     answer_cell("task-08-3"),

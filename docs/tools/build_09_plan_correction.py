@@ -7,12 +7,17 @@ Cells are identified by id; the notebook is written without outputs.
 
 from pathlib import Path
 
+from aerophoto.demos.plan_correction import grid_node_misses
 from aerophoto.nbtools import code, md, notebook, write
 
 from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "09_plan_correction.ipynb"
+
+#: the grids figure's largest node misses, mm: the same numbers its titles print (grid_node_misses)
+MISS = grid_node_misses(alpha_deg=10.0, n=4)
+MISS_C, MISS_P = f"{MISS['central']:.2f}", f"{MISS['proportional']:.2f}"
 
 
 CELLS = [
@@ -30,9 +35,9 @@ a grid on the photo and a grid on the plan whose cells correspond, built on four
 
 1. see why a photo of flat ground and its plan are related by a **projective transformation**
    (проективное преобразование) fixed by four points, and what that means for a grid;
-2. compare the two ways of drawing the grids the guide names — **central directions**
-   (центральные направления) and **proportional division** (пропорциональное деление) — and find that only
-   the first gives cells that truly correspond;
+2. compare the three ways of drawing the grids the guide names — **similar figures** (подобные фигуры),
+   **proportional division** (пропорциональное деление) and **central directions** (центральные направления) —
+   and find that only the last gives cells that truly correspond;
 3. move the sliders of the plan-correction explorer: tilt, grid density, the spread of the four points;
 4. carry the changes of your own new photo onto your own old plan, and check them.
 """, id="title"),
@@ -87,17 +92,22 @@ photo's cell $(j, i)$ maps exactly onto the plan's cell $(j, i)$. What is left i
 the compass places a point by proportion, which treats the small cell as if it had no perspective. That error
 falls as $1/n^2$.
 
-The figure shows both on the example's new photo, tilted by 10° to make the difference visible. Green circles are
-the exact images of the plan grid's nodes.
-""", id="grids-theory"),
+The figure shows both on the example's new photo, tilted by 10° to make the difference visible. In each panel the
+plan's grid is drawn by the same method as the photo's, and the green circles are the exact images of the plan
+grid's nodes on the photo. With central directions every node sits on its circle (largest miss {MISS_C} mm); with
+equal parts the nodes miss their circles by up to {MISS_P} mm. (Compared with the images of the plan's
+*equal-part* grid, even the exact central grid would seem to miss: the two methods do not give the same grid, and
+what matters is that photo and plan are drawn alike.)
+""".format(MISS_C=MISS_C, MISS_P=MISS_P), id="grids-theory"),
     code("""
 plots.static(pc.grids_figure(alpha_deg=10.0, n=4),
              alt="Two panels with the same quadrilateral of four control points on a photo tilted by 10 degrees. "
                  "Left: a 4 by 4 grid drawn by central directions; its grid lines converge to the points where "
-                 "opposite sides meet, and every node sits on a green circle, the exact image of the plan grid's "
-                 "node. Right: the grid of proportional division (equal parts of each side); its nodes miss the "
-                 "green circles by up to several millimetres.")
-""", id="figure-grids"),
+                 "opposite sides meet, and every node sits on a green circle, the exact image of the node of the "
+                 "plan's grid drawn the same way (largest miss {MISS_C} mm). Right: the grid of proportional "
+                 "division (equal parts of each side, on photo and plan); its nodes miss the green circles by up "
+                 "to {MISS_P} mm.")
+""".replace("{MISS_C}", MISS_C).replace("{MISS_P}", MISS_P), id="figure-grids"),
     md("""
 How the error of the transfer depends on the grid's density, for three tilts (the example's four points; every
 point inside their quadrilateral):
@@ -115,6 +125,25 @@ At the guide's tilt of 3° and a 1:10 000 plan, proportional division leaves err
 the plan (1.2 mm here) — twelve metres on the ground, more than a plan may carry (article 001 puts the mean error
 of a clear contour point at 0.5 mm). With central directions a 4 × 4 grid is already within a tenth of a
 millimetre inside the four points, and 8 × 8 within a few hundredths.
+
+### The third way: similar figures
+
+The guide's step 1 names three ways of building the mutual grids (взаимно-проектные сетки): **similar figures**,
+proportional division and central directions (guide §10). In the method of **similar figures** (способ подобных
+фигур) the figure of the control points is cut into triangles — here the quadrilateral by its diagonal into two —
+and a change is carried into the matching triangle on the plan so that it keeps its place relative to the
+triangle's corners (with a proportional compass, or by eye): each triangle is treated as *similar* to its image, an
+affine map. That is exact for a vertical photo of flat ground and wrong for a tilted one, because a central
+projection does not keep ratios along a line — the same fault as equal parts, at the scale of the whole figure.
+`pc.three_methods_study` carries 625 points inside the example's quadrilateral all three ways:
+""", id="similar-theory"),
+    code("""
+pc.three_methods_study().round(3)
+""", id="similar-study"),
+    md("""
+Similar figures err about as much as proportional division — 1.1 mm at 3° against 0.08 mm for a 4 × 4 grid of
+central directions — and for the same reason: both assume that the photo keeps proportions. With more control
+points the triangles shrink and so does the error; with four, only central directions are exact.
 
 ## The plan-correction explorer
 
@@ -226,7 +255,8 @@ The corrected plan has one scale everywhere.
   each other: cell-by-cell transfer converges to the exact map as $1/n^2$.
 * Grids of **proportional division** (equal parts of the sides), which the guide's step 3 describes, are not:
   their error depends on the tilt and the spread of the points, not on the density — above a millimetre on a
-  1:10 000 plan at the guide's 3°.
+  1:10 000 plan at the guide's 3°. The third way the guide names, **similar figures** (triangles carried as if
+  similar), errs as much: 1.1 mm at 3°.
 * Changes outside the four points are extrapolated and quickly lose accuracy: put the points at the corners of
   the working area.
 

@@ -5,12 +5,26 @@
 
 from pathlib import Path
 
+from aerophoto.guide import s11
 from aerophoto.nbtools import code, md, notebook, write
 
 from build_09_plan_correction import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "10_ground_control.ipynb"
+
+#: §11's shift, computed (guide.ch10.shift_summary): the text prints these, never typed-in numbers
+_S = s11.shift_summary()
+SHIFT = {"dX_km": f"{abs(_S['mean_dX_m']) / 1000:.1f}", "dY_km": f"{abs(_S['mean_dY_m']) / 1000:.1f}",
+         "dlat_min": f"{_S['mean_dlat_min']:.1f}", "dlon_min": f"{_S['mean_dlon_min']:.1f}",
+         "rel_m": f"{_S['max_relative_m']:.0f}"}
+
+
+def _shift(text: str) -> str:
+    """Fill <dX_km>, <dY_km>, <dlat_min>, <dlon_min>, <rel_m> with the computed shift."""
+    for k, val in SHIFT.items():
+        text = text.replace(f"<{k}>", val)
+    return text
 
 CELLS = [
     md("""
@@ -156,12 +170,12 @@ the computed X, Y are ranges):
     code("""
 guide.ch10.coordinate_table()
 """, id="example-1"),
-    md("""
+    md(_shift("""
 **What the table turns out to contain.** The X, Y are *not* the Gauss–Krüger coordinates of the printed φ, λ:
-every point is off by nearly the same amount, about 17.4 km in X and 28.8 km in Y, and projected back the X, Y fall
-some 10′ south and 27′ west of the printed latitudes and longitudes. A common shift is what a local (conditional)
-coordinate system or invented numbers would give. Even with the shift removed the four points disagree by up to
-about 115 m, more than reading φ, λ to 5″ (all the printed seconds are multiples of 5) would explain. So the table's
+every point is off by nearly the same amount, about <dX_km> km in X and <dY_km> km in Y, and projected back the X, Y
+fall <dlat_min>′ south and <dlon_min>′ west of the printed latitudes and longitudes (the mean of the four points).
+A common shift is what a local (conditional) coordinate system or invented numbers would give. Even with the shift removed the four points disagree by up to
+about <rel_m> m, more than reading φ, λ to 5″ (all the printed seconds are multiples of 5) would explain. So the table's
 plane coordinates and its geographic coordinates come from two different sources. A resection works in plane
 coordinates: below we use X, Y.
 
@@ -169,7 +183,7 @@ coordinates: below we use X, Y.
 
 The guide prints no measured angles. Take the explorer's starting station and compute what a theodolite there
 would read, then resect it back and check it:
-""", id="example-2-theory"),
+"""), id="example-2-theory"),
     code("""
 import numpy as np
 
@@ -185,6 +199,35 @@ example.table()
     code("""
 control.check_resection(example, K[3], g, M=10000).table()
 """, id="example-3"),
+    md(r"""
+**How loose is the check?** Here the tolerance is 210″ — three and a half minutes of arc, for angles a theodolite
+reads to a few seconds. Which blunder (грубая ошибка) would it catch? Put a blunder of 30″ to 10′ into one of the
+two measured angles, resect again and compute the check:
+""", id="check-blunder-theory"),
+    code("""
+import pandas as pd
+
+rows = []
+for which in ("β1", "β2"):
+    for blunder_s in (30.0, 60.0, 120.0, 300.0, 600.0):
+        d = blunder_s / 3600.0
+        bad = control.resect(K[0], K[1], K[2], b1 + d * (which == "β1"), b2 + d * (which == "β2"))
+        chk = control.check_resection(bad, K[3], g, M=10000)
+        rows.append((which, blunder_s, np.hypot(*(bad.point - P_true)), chk.discrepancy_arcsec, not chk.ok))
+pd.DataFrame(rows, columns=["angle", "blunder, ″", "station moved, m", "Δγ, ″", "caught"]).set_index(
+    ["angle", "blunder, ″"]).round(1)
+""", id="check-blunder"),
+    md(r"""
+A blunder in β₁ shows in γ about 1.5 times enlarged, one in β₂ only 0.64 times (γ is measured from C, on β₂'s
+side of the figure, and shares its geometry). So the check catches a blunder in β₁ from about 2.3′ and one in β₂
+only from about 5.5′: a misread minute on the circle, the commonest blunder of all, passes unseen. That is the
+price of tying the tolerance to the plan rather than to the instrument: every blunder that passes moves the
+station by less than about 1 m — 0.1 mm at 1:10 000, the accuracy the plan asks for — so it does no harm *to the
+plan*. A check meant to catch blunders would be set from the angles' own precision: with an RMS of 15″ per angle,
+Δγ has an RMS of $15''\sqrt{1 + 1.5^2 + 0.64^2} = 29''$, three times that is 86″, and blunders from about 1′ in β₁ and
+2.2′ in β₂ would be caught — two to three times finer. The book keeps the plan's tolerance, as its purpose is the
+plan, and the task asks for it; it is worth knowing what it lets through.
+""", id="check-blunder-notes"),
     md("""
 ## Task 10.1 — your resection (graded)
 
@@ -217,7 +260,7 @@ If the check fails, one of the measured angles is wrong: the station must be mea
 """, id="task-10-2"),
     answer_cell("task-10-2"),
     check_cell("task-10-2"),
-    md("""
+    md(_shift("""
 ## Summary
 
 * Sparse control is laid in rows across the strips, the rows as many bases apart as Zhukov's formula allows for
@@ -227,10 +270,10 @@ If the check fails, one of the measured angles is wrong: the station must be mea
   through the three points (the danger circle) it is undetermined, near it weak. A third angle to a fourth point
   checks it.
 * The guide's §11 table: its X, Y are not the Pulkovo 1942 Gauss–Krüger coordinates of its φ, λ — all four are
-  shifted by about 17.4 km and 28.8 km, and even the relative positions disagree by up to 115 m.
+  shifted by about <dX_km> km and <dY_km> km, and even the relative positions disagree by up to <rel_m> m.
 
 Next: **11 · Rectification**.
-""", id="summary"),
+"""), id="summary"),
 ]
 
 

@@ -59,9 +59,23 @@ transformation carries that displacement onto the base, multiplied by $K_t$. Tha
 photos of **flat** ground (равнинной местности); on hilly ground the photo must be rectified in zones of height,
 or orthorectified on a DEM.
 
+## Step 1: the base (основа)
+
+Before any projection the guide's step 1 makes the **base** of the photo plan: stiff white paper glued onto
+aluminium (or aircraft plywood, or a plastic that hardly deforms). On it the coordinate grid is drawn, the
+transformation points are plotted from their coordinates or from the phototriangulation (chapter 12), and so are
+the corners of the map sheets (трапеции). If the transformer is to use each photo's **central point**, its place on
+the base is found graphically with a tracing of central directions. For the transformer itself one does not put
+the base on the screen but copies of its parts — only the transformation and central points of one photo, on
+plastic or stiff paper: the **transformation planchets** (трансформационные планшеты), one per photo. Step 2 (the
+substrate, below) prepares the paper; step 3 is the transformer.
+
 ## The photo transformer's sequence (guide §12, step 3, figure 20)
 
-The operator:
+Setting up: light on; the negative in the cassette emulsion down, its principal point roughly at the cassette's
+centre, pressed flat under its cover glass; the screen horizontal, on it the **substrate** (подложка) of the
+computed thickness and over it the planchet, flattened under glass; the lens's diaphragm fully open, so the
+image is bright. Then the operator:
 
 1. brings the **central point** of the photo onto its place on the base and turns the planchet to the image;
 2. changes the enlargement until the misses at diagonally opposite points are about equal and opposite;
@@ -73,6 +87,12 @@ The operator:
 
 and repeats until every point is within 0.4 mm. The package does the same, each motion choosing its own settings
 by least squares over the points (`aerophoto.rectify.transformer_sequence??`).
+
+**The exposure.** With the points matched, the planchet and the substrate are taken away (the substrate's
+thickness now puts the paper where the image has the size the deformed paper needs — step 2); the lens is stopped
+down and covered with its orange filter, under which the photo paper is not sensitive; the paper goes onto the
+screen under the cover glass; the filter is opened for the exposure, and the developed print is the rectified
+photo, ready to be cut along its working area and mounted on the base.
 """, id="theory"),
     md("""
 ## The photo transformer, live

@@ -35,6 +35,7 @@ the scan has garbled; we work out what it must say and test it against simulated
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
+import math
 import pandas as pd
 from aerophoto import tasks, triangulation
 from aerophoto.demos.reduction import (ReductionDemo, TemplateView, StripView, AccumulationView, reduction_model,
@@ -126,7 +127,7 @@ readings fall far below the simulation once the strip is longer than three or fo
 crosses the 0.35 mm line between 4 and 5 bases (0.288 mm at 4, 0.361 mm at 5), (13.1) at 3.9 bases
 (`triangulation.zhukov_bases_continuous`) — a formula for planning is allowed to be a little cautious.
 
-One more remark on the inputs: at $p_x = 60\,\%$ the base of an 18 cm frame is $0.4 	imes 180 = 72$ mm, not
+One more remark on the inputs: at $p_x = 60\,\%$ the base of an 18 cm frame is $0.4 \times 180 = 72$ mm, not
 the guide's "≈ 60 mm" (that is the base of a 15 cm frame, or of an 18 cm frame at $p_x \approx 67\,\%$).
 """, id="zhukov-notes"),
     md(r"""

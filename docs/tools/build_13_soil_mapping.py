@@ -260,6 +260,30 @@ alone an unreliable key, adds the indirect keys — the floodplain, the hollows,
 interpreter to the field, with routes through every doubtful contour.
 """, id="task-13-3-note"),
     md(r"""
+## Space and scanner images, and the overlay technique (guide §14)
+
+**Space photos** (космические фотоснимки) change the balance of the keys. Against them: a coarser **resolution**
+(разрешение) takes away the shape, size and texture of the plants that are the best indicator of a soil, and the
+much smaller ratio of base to height, with the coarser image, blunts the **stereo** view — a height is read from a
+parallax as $\Delta h = H\,\Delta p/b$ on the photo, so at the same $\Delta p$ a pair with a ten times smaller $b/H$
+hides relief ten times higher, and the micro-relief that points to soils (hollows, low ridges) is lost. For them: one
+image covers a large region under the same light and season, so brightness can be compared from one end to the
+other; seen from that height the vegetation masks the ground less, and the image's own blur generalises the
+brightness into areas of soils that differ in reflectance. **Scanner images** (сканерные изображения) resolve even
+less than photos (television frames likewise), but a photometric scanner measures the brightness in its band more
+selectively and more exactly than film: with the band chosen well (chapter 13's spectral explorer), reading soils
+from brightness becomes more reliable.
+
+**The overlay technique** (the Delft training centre's method, for complex soil cover or a beginner): instead of
+drawing the soil contours at once, put two or three **transparent sheets** over the photo and on each outline, in
+its own colour, the areas of one group of keys — say, tone on the first, relief elements (hollows, slopes, the
+floodplain) on the second, vegetation or land use on the third. Laid together, the sheets cut the photo into areas
+with different *combinations* of direct and indirect keys; those combined areas are the candidate soil contours
+(контурное почвенное дешифрирование) — the same idea as task 13.3's tone areas, with the indirect keys as more
+layers. Sure contours are then drawn in solid lines, doubtful ones dashed, and the field routes go through the
+dashed ones.
+""", id="space-overlay"),
+    md(r"""
 ## Summary
 
 * Soil maps are **detailed** (1:5000 and larger), **large-scale** (1:10 000–1:25 000), **medium-scale**

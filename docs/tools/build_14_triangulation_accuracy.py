@@ -130,21 +130,31 @@ $d$ by the errors of a single model, giving its formula (10.21) — lost in the 
 ($m_D$, $m_Z$, $m$, $m_q$, $f$, $b$) and a worked example. The book's reading (`guide.ch14.RECONSTRUCTION`):
 
 $$m_X = 0.25\,m\,m_q\sqrt{n^3},\quad m_Y = 0.16\,m\,m_q\sqrt{n^3},\quad m_Z = 0.25\,m\,m_q\,\frac{f}{b}\sqrt{n^3},
-\quad m_D = 0.35\,m\,m_q\sqrt{n^3}.$$
+\quad m_D = \sqrt{m_X^2 + m_Y^2} = 0.297\,m\,m_q\sqrt{n^3}.$$
 
 With the $n^3/3$ form of (10.20) the recipe is $\tfrac12\sqrt{(n/2)^3/3} = \sqrt{n^3/96}$; the printed
 example ($n = 10$, $m_q = 0.01$ mm, $f = b = 70$ mm → $m_X = m_Z = 0.08$, $m_D = 0.11$, $m_Y = 0.05$ mm)
-fixes the coefficients, and the article's two design examples — 8 bases between plan control, 2–3
-between height control — check them independently. The audit:
+fixes the coefficients 0.25 and 0.16, and the article's two design examples — 8 bases between plan
+control, 2–3 between height control — check them independently.
+
+**What is $m_D$? Two readings.** The article's legend calls $m_D$ (beside $m_Z$) the error of the network
+*in plan* (в плане) — the plan error $m_D = \sqrt{m_X^2 + m_Y^2}$, coefficient $\sqrt{0.25^2 + 0.16^2} = 0.297$,
+0.094 mm in the example. But the example prints $m_D = 0.11$ mm, which is $\sqrt2\,m_X$ (coefficient
+0.35), as if the error across the strip were as large as along it. One of the two printed numbers must be
+a slip, and the article's own design example decides which: with the plan error the control spacing for
+$m = 20\,000$, $M = 10\,000$, $m_q = 0.02$ mm is $n = \bigl(0.15/(0.297 \cdot 0.02)\bigr)^{2/3} = 8.6$, so
+**8 bases, as printed**; with $\sqrt2\,m_X$ it is 7.7, so 7, and the printed 8 would be a second slip. The
+book adopts the legend's reading — it explains the design example and leaves one slip (the 0.11), where the
+other reading leaves two — and the graded task follows it; the task's text says so, and an answer made
+with $\sqrt2\,m_X$ is told which reading it used. The audit:
 """, id="theory-1021"),
     code("""
 guide.ch14.examples()
 """, id="example-1"),
     md(r"""
-Two printed numbers do not follow. $m_D = 0.11$ mm is not the plan error $\sqrt{m_X^2 + m_Y^2} = 0.094$ mm
-of the printed $m_X$ and $m_Y$ — it is $\sqrt2\,m_X$. And $n = 8$ is 7.7 rounded to the nearest whole
-number: with 8 bases the plan error is 0.32 mm on the map, over the 0.3 mm allowed, so 7 is the spacing
-that keeps it.
+One printed number does not follow: $m_D = 0.11$ mm is not the plan error $\sqrt{m_X^2 + m_Y^2} = 0.094$ mm of
+the printed $m_X$ and $m_Y$ — it is $\sqrt2\,m_X$. The design example's $n = 8$ follows (8.6 bases; the other
+reading would give 7.7 → 7: the audit table's row "other reading").
 
 **Is the recipe right?** The middle's error and the end's are correlated (the same link errors make
 both), so halving is not the whole story. For the walk of a walk fitted to both ends the exact variance at
@@ -166,14 +176,16 @@ exact = np.array([acc.middle_factor_exact(int(k)) for k in L])
 pd.DataFrame({"n": L, "simulated middle, µm": mid * 1000,
               "exact law / simulated": d_free * exact / mid,
               "article's recipe / simulated": d_free * acc.middle_factor_article(L) / mid,
-              "(10.21) m_Z, µm": acc.strip_errors_mm(L, 0.01, f_mm=70, b_mm=70)["Z"] * 1000}).set_index("n").round(2)
+              "(10.21) m_Z, µm": acc.strip_errors_mm(L, 0.01, f_mm=70, b_mm=70)["Z"] * 1000,
+              "(10.21) / simulated": acc.strip_errors_mm(L, 0.01, f_mm=70, b_mm=70)["Z"] / mid}).set_index("n").round(2)
 """, id="recipe-table"),
     md(r"""
 Two things to read here. With the free strip's $d$, the exact law stays 17–29 % above the simulated middle
 (the control on the first and last models holds six points each, and the free strip's $d$ includes errors
 that do not accumulate), a roughly constant factor; the recipe drifts from +17 % to −10 % and keeps
-falling as the strip grows — the right power of $n$, the wrong constant. And the reconstructed (10.21) is about twice the
-simulation: the coefficients of the article's single-model errors (its formula 8.40) carry more than the
+falling as the strip grows — the right power of $n$, the wrong constant. And the reconstructed (10.21) lies above
+the simulation by a factor of 1.2 (2 bases) to 1.65 (8 bases), about 1.5 for long strips (the last column): the
+coefficients of the article's single-model errors (its formula 8.40) carry more than the
 measuring error of six points — identification, film and lens distortions that the simulation does not
 have. "More rigorous formulas take the method, the control layout and the number of points per model
 into account", as the article says.
@@ -182,7 +194,7 @@ into account", as the article says.
 
 From (10.21) the spacing of plan control follows from the allowed error: the map's RMS error of a
 contour point is $1.25 \times 0.5 = 0.6$ mm, densification gets half, $m_D \le 0.3$ mm on the map, i.e.
-$0.3\,M/m$ mm on the photo, and $n = \bigl(0.3\,M/(m \cdot 0.35\,m_q)\bigr)^{2/3}$
+$0.3\,M/m$ mm on the photo, and $n = \bigl(0.3\,M/(m \cdot 0.297\,m_q)\bigr)^{2/3}$
 (`acc.plan_bases`). For heights: $m_Z \le \tfrac12 \cdot 1.25 \cdot h/3$ for a contour interval $h$
 (`acc.height_bases`). Chapter 12's Zhukov formula (13.1) answers the same question for the graphical
 radial triangulation with direction templates (m_ε = 4.5′, b = 72 mm, $k_i = m/M$):
@@ -260,7 +272,8 @@ Your survey: the photo scale 1:m and focal length f of your variant, a map at 1:
 base b = 72 mm, your parallax error $m_q$ and contour interval $h$ (below). With the reconstructed
 (10.21) compute
 
-* `mD_mm` — the plan error $m_D$ in the middle of **10** bases, mm at the photo scale;
+* `mD_mm` — the plan error $m_D = \sqrt{m_X^2 + m_Y^2}$ in the middle of **10** bases, mm at the photo scale (the
+  book's reading of the article's $m_D$, coefficient 0.297 — not $\sqrt2\,m_X$);
 * `mZ_m` — the height error $m_Z$ in the middle of 10 bases, **metres on the ground**;
 * `n_plan` — the largest whole number of bases between plan control with $m_D \le 0.3$ mm on the map;
 * `n_height` — the largest whole number of bases between height control with
@@ -300,8 +313,10 @@ mc_v = tasks.inputs("task-14-2", v)
   within a few per cent.
 * Control at both ends removes the linear part; the middle is worst. The article's recipe (n → n/2,
   halved) has the right $n^{3/2}$ growth but misses the correlation of middle and end: the exact factor is
-  $\sqrt{(n^3+2n)/48}$. The reconstructed (10.21) — coefficients 0.25, 0.16, 0.35 — reproduces the
-  article's example and design numbers; its printed $m_D$ is $\sqrt2\,m_X$, and its "8 bases" should be 7.
+  $\sqrt{(n^3+2n)/48}$. The reconstructed (10.21) — coefficients 0.25, 0.16 and, for the plan error
+  $m_D = \sqrt{m_X^2 + m_Y^2}$ the legend names, 0.297 — reproduces the article's design numbers (8 bases, 2–3
+  bases); its printed $m_D = 0.11$ mm is $\sqrt2\,m_X$, the one slip of this reading (read as $\sqrt2\,m_X$, the
+  "8 bases" would become 7).
 * The control spacing follows from the allowed error as $(\text{allowed})^{2/3}$; heights need denser
   control than plan; Zhukov's graphical strip needs control 2.5–8 times more often.
 * A bundle-adjusted block is 1.5–2 times more accurate than a strip with the same control.

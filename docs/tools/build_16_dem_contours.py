@@ -46,6 +46,7 @@ them.
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
+import math
 from aerophoto import dem, guide, plots, tasks
 from aerophoto.demos.dem_contours import ContourDemo, ContourView, contour_frame, spacing_study_figure
 from aerophoto.site import get_site
@@ -80,6 +81,35 @@ triangle it is 1/2. Hence the prediction the demo shows,
 
 $$m_{contour} \approx \sqrt{m_{interp}^2 + k\,m_z^2},\qquad k = 4/9 \text{ (grid)},\ 1/2 \text{ (TIN)}.$$
 """, id="theory"),
+    md(r"""
+### Independent or correlated node errors?
+
+The factor 4/9 assumes that the node errors are **independent** — every node off by its own random amount, so
+that a weighted mean of four of them averages part of the error away. That is how the demo and the study below
+model them (12 cm of independent noise per node gives $\sqrt{4/9}\cdot 12 = 8$ cm). But the 12 cm of the
+article is the error of the **densification** (сгущение): the heights of a stereo model follow from the control
+the block triangulation gave it, and an error there tilts or bends the whole model — a **block deformation**
+that neighbouring nodes 30 m apart share almost entirely. Correlated errors are not averaged down: for node
+errors correlated as $\rho(r) = e^{-r/L}$ the share left between nodes is
+$\overline{\sum_i\sum_j w_i w_j \rho_{ij}}$, from 4/9 for $L = 0$ to 1 for $L \gg d$
+(`dem.correlated_noise_factor`). For the article's 30 m grid:
+""", id="theory-correlated"),
+    code("""
+import pandas as pd
+L_m = [0.0, 30.0, 100.0, 300.0, 1000.0]   # correlation length of the node errors, m
+k = [dem.correlated_noise_factor(30.0, L) for L in L_m]
+pd.DataFrame({"correlation length L, m": L_m, "share k of m_z² left": k,
+              "contour error from m_z = 12 cm, cm": [math.sqrt(x) * 12 for x in k]}
+             ).set_index("correlation length L, m").round(3)
+""", id="correlated-table"),
+    md(r"""
+A stereo pair at 1:4500 covers about 800 × 320 m, and a block deformation spans several models, so $L$ is
+hundreds of metres: the node errors reach the contours nearly whole, **11–12 cm rather than 8 cm**. The book
+takes this correlated reading as the realistic one: the node error that matters is the model's, not a random
+pointing error of each node (the stereocomparator's 0.005 mm is ten times smaller). The independent model of
+the demo is the optimistic limit; it is kept there because it shows what interpolation can do for the part of
+the error that *is* independent — the pointing of each node.
+""", id="correlated-argument"),
     md(r"""
 ## Lysenko's formula for height densification
 
@@ -143,6 +173,32 @@ predicts, and a small block does worse than its count suggests. With the article
 gives 12.8 cm; the article printed 14 cm and measured 12 cm.
 """, id="sim-summary"),
     md(r"""
+### The article's accuracy figures, audited
+
+The article checked its contours against contours drawn on the same photo plan with the SD-3 plotter
+(универсальный прибор СД-3), whose own error, from geodetic check points, it measured at **14 cm**. Two of
+its statements do not sit with that:
+
+* **31 cm for the regular DEM.** The article "takes the DEM and the SD-3 as equally accurate", i.e. divides
+  the RMS of their differences by √2 — although it has just measured the SD-3 at 14 cm. With independent
+  errors the difference's RMS is $31\sqrt2 = 43.8$ cm, and the DEM's own error is
+  $\sqrt{43.8^2 - 14^2} = 41.5$ cm: worse than printed, and the conclusion (the grid fails the 15 cm) stands.
+* **12 cm for the structural DEM**, the RMS of the DEM − SD-3 differences. For independent errors the RMS of a
+  difference is at least that of either term, $\sqrt{m_{DEM}^2 + 14^2} \ge 14$ cm — **12 cm is impossible**.
+  Either the 12 cm is again per instrument (differences / √2: 17.0 cm, leaving $\sqrt{17.0^2 - 14^2} = 9.6$ cm
+  for the DEM), or the two errors are positively correlated — both drawings rest on the same densified
+  models, so they share the block's deformation (the argument above), and their difference hides it.
+  Either way the structural DEM's 12 cm is not the error of its contours against the ground.
+""", id="sd3-audit"),
+    code("""
+m_sd3 = 0.14   # the SD-3's RMS error against geodetic points, m
+rows = [("regular: 31 cm as 'equally accurate' (diff / √2)", 0.31 * math.sqrt(2), math.sqrt(2 * 0.31**2 - m_sd3**2)),
+        ("structural: 12 cm as the RMS of the differences", 0.12, float("nan")),
+        ("structural: 12 cm as diff / √2", 0.12 * math.sqrt(2), math.sqrt(2 * 0.12**2 - m_sd3**2))]
+pd.DataFrame(rows, columns=["reading", "RMS of DEM − SD-3, m", "DEM's own error (independent), m"]).set_index(
+    "reading").round(3)   # nan: no real error fits, a difference cannot be smaller than the SD-3's 14 cm
+""", id="sd3-audit-table"),
+    md(r"""
 ## Live: contours of a sheet of the site
 
 One 1 km × 1 km sheet (a 1:2000 trapezoid) in the site's hills. The colour is the DEM's error, DEM − true
@@ -164,7 +220,8 @@ demo
 
 * Set m_z = 0: at d = 30 m the contours sit on the dashed ones — the site's hills are broad, and a 30 m
   grid follows them to a few millimetres. The whole 8 cm error of the article's example is the
-  densification's.
+  densification's (modelled as independent node errors; correlated as a block deformation, 11–12 cm — see
+  "Independent or correlated node errors?").
 * Keep m_z = 0 and raise d to 150 m: now the straight lines between nodes cut the bends (14 cm); switch
   the structural lines on and the error drops by a tenth — the triangles now bend along the spurs.
 * Put m_z back to 0.12 m and switch the lines on at d = 30 m: the error *grows* slightly — a TIN averages
@@ -209,7 +266,8 @@ plots.static(spacing_study_figure(study),
 **What the site shows, and what it does not.**
 
 * At the article's 30 m step the interpolation error on the site is about 6 mm; the contours' error is
-  the densification's, √(4/9)·12 cm = 8 cm, exactly as predicted — well inside the article's 15 cm.
+  the densification's, √(4/9)·12 cm = 8 cm, exactly as predicted for independent node errors — well inside
+  the article's 15 cm. Correlated as a block deformation they would leave 11–12 cm, still inside.
 * The structural lines pay off only where the step is coarse against the landforms, and modestly: a
   tenth at 150 m, where the triangles then bend along the spurs. With node errors and a fine step they
   even cost a little: a TIN averages the node errors less than bilinear squares.
@@ -276,7 +334,11 @@ own: an RMS from 40 errors is uncertain by about 1/√80 ≈ 11 %.
   12.8 cm for the article's block — the article printed 14 cm — and agrees within about 5 % with a
   simulated block whose control is spread over it; with control on the edge only it is too optimistic.
 * Contours from a DEM carry the node errors, reduced by interpolation (4/9 of their variance on a grid,
-  1/2 on a TIN), and the interpolation error, which grows with the step.
+  1/2 on a TIN) only as far as they are independent — a block deformation shared by neighbouring nodes passes
+  whole (11–12 cm, not 8, for the article's 12 cm) — and the interpolation error, which grows with the step.
+* The article's 31 cm assumes the DEM and the SD-3 equally accurate although the SD-3 was measured at 14 cm
+  (independent errors: 41.5 cm), and its 12 cm RMS of DEM − SD-3 differences is below the SD-3's own 14 cm —
+  impossible for independent errors.
 * On the site's smooth hills a 30 m grid is as good as its nodes; structural lines help only at coarse
   steps, and at equal density they do not beat the grid — the article's gain needs ground with breaks
   of slope (and grid points on roofs), which the site does not have.

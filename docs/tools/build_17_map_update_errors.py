@@ -25,7 +25,8 @@ When a topographic map is **updated** (обновление карт) at a **dig
 work: control points, scanning, phototriangulation, a DEM, orthorectification, mosaicking, vectorising.
 Each link adds its own error. Article 003 lists the links, gives each an RMS error, adds them up and
 asks whether the result meets the instruction: a **mean error** (средняя ошибка) of at most 0.4 mm on the
-map for buildings. Its answer is "not quite" — 0.44–0.45 mm.
+map for buildings. Its answer is "not quite" — 0.44–0.45 mm; with its own rule for mean errors applied to
+the transfer between strips, 0.50 mm.
 
 **In this chapter you will**
 
@@ -40,6 +41,7 @@ map for buildings. Its answer is "not quite" — 0.44–0.45 mm.
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
+import math
 from aerophoto import budget, guide, plots, tasks
 from aerophoto.demos.error_budget import BudgetDemo, budget_figure
 v = aerophoto.setup(RECORD_BOOK)
@@ -71,7 +73,7 @@ The map's 0.4 mm mean error is therefore an RMS error of 0.5 mm.
 | phototriangulation | построение сетей фототриангуляции, m_ф | $m_{x,y} = 0.84\,M_c\,\sigma$ (7), $m_D = \sqrt2\,m_{x,y}$ (8), σ = 0.5·P | GPS and a gyro-stabilised mount; P the scanning pixel |
 | DEM | создание ЦМР, m_ЦМР | 1.25 · 0.3 mm on the map | the instruction's largest relief distortion, 0.3 mm |
 | orthorectification and mosaic | ортотрансформирование и монтаж, m_орт | 1.25 · 0.1 mm | what is left of the 0.7 mm allowed misfit at a seam after 2 × 0.3 mm of relief |
-| transfer between strips | перенос точек на смежные маршруты, m_н/м | $\sqrt{[d^2]/(2(n-1))}$ (9), d = 0.5 mm, n = 50 | double measurements of common points |
+| transfer between strips | перенос точек на смежные маршруты, m_н/м | $\sqrt{[d^2]/(2(n-1))}$ (9), d = 0.5 mm (a mean), n = 50 | double measurements of common points |
 | vectorising | векторизация, m_вект | 0.11 mm on the map | the authors' experiment, table 1 |
 
 Three rows are not estimates but **tolerances** of the instruction turned into RMS errors: the DEM,
@@ -117,9 +119,15 @@ instruction's other transfer rule (40 µm on the photo), and the two errors of t
 guide.ch17.text_values()
 """, id="example-4"),
     md(r"""
-**One slip.** Formula (9) with every one of n = 50 discrepancies equal to d = 0.5 mm gives
-$0.5\sqrt{50/98} = 0.357$ mm — 0.36, not the printed 0.35 (which is d/√2 = 0.354, the value for very
-many points). The tables carry 0.35 on; the book's budget uses 0.357 and says so.
+**One slip, and its fix.** The instruction's d = 0.5 mm is the **mean** discrepancy of the common points
+(средние расхождения). Formula (9), the RMS from double measurements, takes the discrepancies themselves,
+$[d^2] = \sum d_i^2$; the article puts the mean in as if every discrepancy were exactly 0.5 mm and gets
+$0.5\sqrt{50/98} = 0.357$ mm (printed 0.35, the many-points value d/√2 = 0.354). Its own rule (1) turns a mean
+error into an RMS first: the discrepancies have an RMS of 1.25·0.5 = 0.625 mm, and (9) then gives
+$0.625\sqrt{50/98} = 0.446$ mm (for many points $1.25\cdot0.5/\sqrt2 = 0.442$ mm). The tables carry 0.35 on; the
+book's budget uses 0.446 mm (`budget.transfer_from_mean_mm`) — for the 1:2000 plan $m_d = 0.621$ mm and
+$v_d = 0.497$ mm (0.618 and 0.494 with 0.442), against the article's 0.56 and 0.45. The verdict stands, further
+from the 0.4 mm.
 
 ### Tables 4 and 5 — the stages on the ground and the total
 """, id="example-4-summary"),
@@ -132,7 +140,8 @@ guide.ch17.table5()
     md(r"""
 Table 5 follows from table 4. Its 1:2000 mean error, 0.45 mm, was divided from the rounded
 m_d = 0.56 mm (0.56/1.25 = 0.448); from the unrounded 0.5558 mm it is 0.4447 — still within the rounding
-rule. With formula (9)'s 0.357 mm the totals hardly move (notes under the table); the verdict stands.
+rule. With the transfer at 0.446 mm the totals grow to 0.62 mm RMS, 0.50 mm mean (notes under the table);
+the verdict stands.
 All the discrepancies of article 003:
 """, id="example-summary"),
     code("""
@@ -164,8 +173,8 @@ demo
 * Move the map scale from 1:2000 to 1:10 000: almost nothing changes — five of the seven stages are
   defined on the map and scale with it. Only scanning and triangulation, fixed on the photo, shrink.
 * Choose "DEM of accuracy m_h": the article's DEM row is a DEM with a height error of about 2.1 m at
-  1:2000 (0.375 mm × 2000 × 153/53.5). A DEM good to 0.5 m drops the mean error to 0.34 mm — and the
-  transfer between strips becomes the largest stage.
+  1:2000 (0.375 mm × 2000 × 153/53.5). A DEM good to 0.5 m drops the mean error to 0.40 mm — just over
+  the tolerance, because the transfer between strips, already the largest stage, stays.
 * Choose "no DEM" and raise Δh: by the article's formula (2) a plane is enough while the relief stays
   within about ±1 m at 1:2000 and ±5 m at 1:10 000 (h_пред in the table).
 * A coarser scan (P = 42 µm) and smaller photos (1:15 000) matter little at 1:2000: the mean error goes
@@ -182,17 +191,57 @@ budget.scenarios(10_000, 16, 2000).round(2)
     code("""
 plots.static(budget_figure(budget.budget(10_000, 16, 2000)),
              alt="Bars of the seven stages' RMS errors on a 1:2000 map from 1:10 000 photos: the DEM (0.375 mm) "
-                 "and the transfer between strips (0.357 mm) are the longest, control and orthorectification "
-                 "0.125 mm, vectorising 0.11 mm, triangulation and scanning below 0.05 mm; the total, 0.56 mm, "
+                 "and the transfer between strips (0.446 mm) are the longest, control and orthorectification "
+                 "0.125 mm, vectorising 0.11 mm, triangulation and scanning below 0.05 mm; the total, 0.62 mm, "
                  "passes the dashed 0.5 mm RMS tolerance line.")
 """, id="figure-budget"),
     md(r"""
 **Reading the budget.** The article concludes that either the intermediate stages must become more
 accurate or the map's tolerance must change. The budget says which stages: the two largest are the
-instruction's tolerances for the DEM and for the transfer between strips. Replace either by what a
-digital station actually achieves and the map passes; the photo scale and the scanning resolution — the
+instruction's tolerances for the transfer between strips and for the DEM. Replace the transfer by what a
+digital station actually achieves (40 µm on the photo) and the map passes; a real DEM alone brings it to
+0.40 mm, just over; both together leave a wide margin. The photo scale and the scanning resolution — the
 things one pays for — hardly matter at these scales.
 """, id="scenarios-summary"),
+    md(r"""
+### Two more readings of the article's budget
+
+Formula (10) adds the seven stages as independent errors. Two of its entries can be read another way:
+
+* **The transfer between strips is counted twice.** Carrying tie points onto the photos of the next strip
+  is part of building the block: in a block adjustment (chapter 15) the tie points' errors *are* the
+  triangulation's errors, and the instruction's 0.5 mm discrepancy is a check on the adjusted block, not an
+  extra step after it. Counted as a stage of its own it enters the total a second time. Left out (as part of
+  m_ф), the plan's total falls to 0.43 mm RMS, a mean error of 0.35 mm: the map passes. Against that, the
+  article's m_ф comes from the image-measurement error σ = 0.5·P alone, which leaves out identifying the
+  same point on two strips; so the book keeps the stage, as the article does, and shows the total without it.
+* **The orthorectification allowance is subtracted linearly.** Of the 0.7 mm misfit allowed at a seam the
+  article gives 0.6 mm to the relief (0.3 mm with opposite signs on the two sides) and keeps 0.7 − 0.6 =
+  0.1 mm (mean) for orthorectification. Added in squares, as (10) adds everything else, the allowance would be
+  $\sqrt{0.7^2 - 0.6^2} = 0.36$ mm mean, 0.45 mm RMS, and the plan's mean error 0.61 mm. The book keeps the
+  linear split: the 0.6 mm is a worst case of two relief displacements of known, opposite signs — systematic,
+  not a random error — and a worst case adds linearly; the square-root reading would allow the
+  orthorectification four times more than the article does.
+""", id="readings-theory"),
+    code("""
+import pandas as pd
+
+def _totals(B, ortho_rms_mm=None):
+    # formula (10), optionally with another orthorectification RMS on the map (mm): (m_d, v_d) on the map, mm
+    sq = sum(s.rms_m**2 for s in B.stages)
+    if ortho_rms_mm is not None:
+        sq += (ortho_rms_mm * B.M_k / 1000) ** 2 - B.stage("ortho").rms_m ** 2
+    m_d = math.sqrt(sq) / B.M_k * 1000
+    return m_d, m_d / 1.25
+
+ortho_sq = 1.25 * math.sqrt(0.7**2 - 0.6**2)   # RMS of the allowance taken in squares, mm
+cases = {"the book (transfer 0.446 mm, ortho 0.125 mm)": _totals(budget.budget(10_000, 16, 2000)),
+         "the article (transfer 0.357 mm)": _totals(budget.budget(10_000, 16, 2000,
+                                                                  transfer_mm=budget.transfer_rms_mm())),
+         "transfer counted once, in triangulation": _totals(budget.budget(10_000, 16, 2000, transfer_mm=0.0)),
+         "ortho allowance in squares (0.45 mm RMS)": _totals(budget.budget(10_000, 16, 2000), ortho_sq)}
+pd.DataFrame(cases, index=["m_d, mm", "v_d, mm"]).T.assign(**{"v_d ≤ 0.4 mm": lambda d: d["v_d, mm"] <= 0.4}).round(3)
+""", id="readings-table"),
     md(r"""
 ## Task 17.1 — your vectorising error (graded)
 
@@ -233,8 +282,8 @@ case.table()
 You update the guide's 1:10 000 map (1/M, guide §1) from your photos, and — to save the DEM — you rectify
 each photo onto its mean plane. The whole relief of your area, Z_max − Z_min, stays in the photos. Take
 the other stages as the article does: control and orthorectification 1.25·0.1 mm, vectorising 0.11 mm on
-the map, the transfer between strips 0.357 mm (formula 9 done right), scanning and triangulation from
-task 17.2. Compute
+the map, the transfer between strips 0.446 mm (rule (1), then formula 9: see "One slip, and its fix"),
+scanning and triangulation from task 17.2. Compute
 
 * `mrel_m` — the relief stage, in place of the DEM: $(r_{rms}/f)\cdot\Delta h/\sqrt{12}$ on the ground, m, with
   $r_{rms} = \sqrt{(b_x^2 + b_y^2)/12}$ the RMS distance of the working area $b_x = l(1-p_x)$ by $b_y = l(1-p_y)$
@@ -259,11 +308,16 @@ its images less: compare your relief stage with a neighbour's whose variant numb
 ## Summary
 
 * Independent errors add as squares: formula (10). Mean and RMS errors differ by 1.25 (√(π/2)).
-* Article 003's tables follow from their inputs, but for one number: formula (9) gives 0.357 mm, printed
-  0.35 mm. Its 0.45 mm total is right: the 0.4 mm tolerance is missed.
-* The budget is dominated by two tolerances of the instruction — the DEM (0.375 mm, a DEM 2 m off in
-  height at 1:2000) and the transfer between strips (0.36 mm) — not by what the digital station does; a
-  real DEM or the 40 µm digital transfer rule alone brings the map within 0.4 mm.
+* Article 003's tables follow from their inputs, but for one number: the transfer between strips. The
+  instruction's 0.5 mm is a mean discrepancy; rule (1) makes it 0.625 mm RMS and formula (9) then gives
+  0.446 mm (the article: 0.357, printed 0.35). The 1:2000 total becomes 0.62 mm RMS, 0.50 mm mean: the
+  0.4 mm tolerance is missed more clearly.
+* Two more choices of the article are open: the transfer is also part of the triangulation's error and is
+  counted twice (without it the plan passes, 0.35 mm), and the orthorectification allowance 0.7 − 0.6 is
+  subtracted linearly where formula (10) works in squares ($\sqrt{0.7^2 - 0.6^2} = 0.36$ mm: 0.61 mm).
+* The budget is dominated by two tolerances of the instruction — the transfer between strips (0.446 mm) and
+  the DEM (0.375 mm, a DEM 2 m off in height at 1:2000) — not by what the digital station does; the 40 µm
+  digital transfer rule alone brings the map within 0.4 mm.
 * Without a DEM the relief takes over: (r/f)·Δh, so long lenses and flat ground forgive rectification onto
   a plane; formula (2) says how much relief a plane can take.
 

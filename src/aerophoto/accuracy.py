@@ -33,15 +33,19 @@ Formula (10.21) as reconstructed
 The article then replaces d by the errors of a single model (its formula
 8.40, not reproduced) and prints, for n = 10, m_q = 0.01 mm, f = b = 70 mm:
 m_X = m_Z = 0.08 mm, m_D = 0.11 mm, m_Y = 0.05 mm in the photo scale.  The
-coefficients that reproduce those numbers with the n³/3 form of (10.20) are
+coefficients that reproduce m_X, m_Y, m_Z with the n³/3 form of (10.20) are
 
     m_X = 0.25·m·m_q·√n³,  m_Y = 0.16·m·m_q·√n³,  m_Z = 0.25·m·m_q·(f/b)·√n³,
-    m_D = 0.35·m·m_q·√n³                                              (10.21)
+    m_D = √(0.25² + 0.16²)·m·m_q·√n³ = 0.297·m·m_q·√n³                (10.21)
 
-(0.25 = √6/√96: a single model's X error of √6·m_q, halved over n/2 links;
-0.35 ≈ 0.25·√2).  They also reproduce the article's two design examples —
-n = 8 bases between plan control and 2–3 bases between height control
-(:func:`plan_bases`, :func:`height_bases`) — see :mod:`aerophoto.guide.ch14`.
+(0.25 = √6/√96: a single model's X error of √6·m_q, halved over n/2 links).
+m_D is read as the article's legend names it, the plan error √(m_X² + m_Y²):
+then the design examples follow as printed — n = 8.6 → 8 bases between plan
+control, 2–3 between height control (:func:`plan_bases`, :func:`height_bases`)
+— and only the example's printed m_D = 0.11 mm (= √2·m_X, 0.094 mm by the
+legend) is a slip.  The other reading, m_D = √2·m_X = 0.35·m·m_q·√n³
+(:data:`COEFF_D_SQRT2`), keeps the 0.11 but then gives 7.7 → 7 bases, not the
+printed 8 — two numbers at odds instead of one; see :mod:`aerophoto.guide.ch14`.
 
 Monte Carlo and covariance
 --------------------------
@@ -70,14 +74,17 @@ from .bundle import solve as _solve
 from .bundle.block import simulate_measurements
 
 __all__ = [
-    "COEFF_10_21", "squares_sum", "free_strip_factor", "middle_factor_article", "middle_factor_exact",
+    "COEFF_10_21", "COEFF_D_SQRT2", "squares_sum", "free_strip_factor", "middle_factor_article", "middle_factor_exact",
     "strip_errors_mm", "allowed_height_error_m", "plan_bases", "height_bases", "whole_bases",
     "StripMonteCarlo", "strip_monte_carlo", "fit_accumulation", "control_rows", "BlockPrecision",
     "block_precision", "block_vs_strip", "block_monte_carlo",
 ]
 
-#: the coefficients of the reconstructed formula (10.21), photo-scale errors per m_q·√n³ (Z also × f/b)
-COEFF_10_21 = {"X": 0.25, "Y": 0.16, "Z": 0.25, "D": 0.35}
+#: the coefficients of the reconstructed formula (10.21), photo-scale errors per m_q·√n³ (Z also × f/b);
+#: m_D is the plan error √(m_X² + m_Y²) (the article's legend): 0.297
+COEFF_10_21 = {"X": 0.25, "Y": 0.16, "Z": 0.25, "D": math.hypot(0.25, 0.16)}
+#: the other reading of m_D: √2·m_X (the article's printed 0.11 mm in its example), coefficient 0.35
+COEFF_D_SQRT2 = 0.35
 
 MAX_N = 1000
 
@@ -164,8 +171,9 @@ def allowed_height_error_m(contour_interval_m: float) -> float:
 def plan_bases(m: float, M: float, mq_mm: float, *, mD_map_mm: float = 0.3) -> float:
     """Real n at which the plan error m_D of (10.21) reaches ``mD_map_mm`` on the map of scale 1:M.
 
-    m_D(photo) = 0.35·m_q·√n³ and m_D(map) = m_D(photo)·m/M  →  n = (mD_map·M/(m·0.35·m_q))^(2/3).
-    Article 001: m = 20 000, M = 10 000, m_q = 0.02 mm, m_D ≤ 0.3 mm → n ≈ 7.7 (printed: 8).
+    m_D(photo) = 0.297·m_q·√n³ and m_D(map) = m_D(photo)·m/M  →  n = (mD_map·M/(m·0.297·m_q))^(2/3).
+    Article 001: m = 20 000, M = 10 000, m_q = 0.02 mm, m_D ≤ 0.3 mm → n ≈ 8.6 (printed: 8; with the other
+    reading m_D = √2·m_X, coefficient :data:`COEFF_D_SQRT2` = 0.35, n ≈ 7.7).
     """
     m = check_positive("m", m, hi=1e7)
     M = check_positive("M", M, hi=1e7)
@@ -327,15 +335,20 @@ class StripMonteCarlo:
         return np.sqrt(np.mean(self.mid_m**2, axis=0)) / self.scale_m
 
     def table(self) -> pd.DataFrame:
-        """One row per strip length n: free-strip end errors and both-ends middle errors, mm at the photo scale."""
+        """One row per k: the free strip's errors at the point of photo k (n = k − 1 links beyond the controlled
+        first model) and the middle errors of a strip of k bases held at both ends (where simulated), mm at the
+        photo scale.  The index is labelled with both meanings: it is a photo number for the free-strip columns
+        and a strip length for the middle ones."""
         f = self.rms_free_mm()
         rows = []
         mid = dict(zip(self.mid_n.tolist(), self.rms_mid_mm()))
         for k in range(1, self.n_bases + 1):
             mm = mid.get(k, [np.nan] * 3)
             rows.append((k, *f[k - 1], *mm))
-        cols = ["n", "free X, mm", "free Y, mm", "free Z, mm", "middle X, mm", "middle Y, mm", "middle Z, mm"]
-        return pd.DataFrame(rows, columns=cols).set_index("n")
+        cols = ["k: photo (free) / bases (both ends)", "free, at photo k: X, mm", "free, at photo k: Y, mm",
+                "free, at photo k: Z, mm", "both ends, k bases, middle: X, mm", "both ends, k bases, middle: Y, mm",
+                "both ends, k bases, middle: Z, mm"]
+        return pd.DataFrame(rows, columns=cols).set_index(cols[0])
 
 
 def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.01 / math.sqrt(2.0),

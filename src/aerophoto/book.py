@@ -306,7 +306,13 @@ CHAPTERS = (
                      (("σ, µm", "PageUp"), ("K, strips", "ArrowRight")), timed="σ, µm"),
             )),
     Chapter("15", "block_adjustment", "bundle block adjustment: locating field points in the "
-            "mountains", "блочная фототриангуляция по методу связок", article="002", views=("bundle_views",)),
+            "mountains", "блочная фототриангуляция по методу связок", article="002", views=("bundle_views",), demos=(
+                Demo("demo-block-adjustment", "aerophoto.demos.block_adjustment_live.BlockAdjustmentDemo",
+                     "Bundle block adjustment — control, σ and a blunder", "σ up, then the blunder off and on, "
+                     "then the control layout", "the same blunder stands out at a few µm and passes unseen at 30 µm; "
+                     "fewer control points swell the ellipses and the check points' errors, most in height",
+                     (("σ, µm", "PageUp"), ("blunder, mm", "PageUp")), timed="σ, µm"),
+            )),
     Chapter("16", "dem_contours", "contours from a DEM: regular grid, structural lines, Lysenko's "
             "densification accuracy", "рисовка горизонталей по точкам ЦМР", article="000", demos=(
                 Demo("demo-contours", "aerophoto.demos.dem_contours.ContourDemo", "Contours from a DEM against the truth",
@@ -319,8 +325,8 @@ CHAPTERS = (
             "при обновлении карт", article="003", demos=(
                 Demo("demo-budget", "aerophoto.demos.error_budget.BudgetDemo", "The error budget of map updating",
                      "the DEM stage, then 1:M_c and P, then the map scale",
-                     "the instruction's DEM and transfer tolerances dominate; a real DEM brings the map within "
-                     "0.4 mm; the photo scale and the scan barely matter",
+                     "the instruction's transfer and DEM tolerances dominate; a real DEM brings the map to 0.40 mm, "
+                     "the 40 µm transfer rule within 0.4 mm; the photo scale and the scan barely matter",
                      (("1:M_c (photo)", "PageUp"), ("P, µm", "PageUp")), timed="1:M_c (photo)"),
             )),
 )

@@ -47,7 +47,7 @@ __all__ = ["MEAN_TO_RMS", "TOLERANCE_MEAN_MM", "SCAN_RMS_UM", "TRIANGULATION_K",
            "CONTROL_MEAN_MM", "DTM_MAX_MM", "ORTHO_MEAN_MM", "TRANSFER_MEAN_MM", "TRANSFER_POINTS",
            "VECTORISING_MAP_MM", "STAGES", "rms_from_mean", "mean_from_rms", "mean_abs_deviation",
            "plan_error", "Vectorising", "vectorising_error", "sigma_um", "triangulation_rms_m",
-           "transfer_rms_mm", "relief_limit_m", "working_area_radii_mm", "dtm_displacement_m",
+           "transfer_rms_mm", "transfer_from_mean_mm", "relief_limit_m", "working_area_radii_mm", "dtm_displacement_m",
            "plane_rectification_m", "Stage", "Budget", "budget", "ARTICLE_CASES", "scenarios"]
 
 #: formulas (1) and (5): RMS error m = 1.25 · mean error v
@@ -179,6 +179,17 @@ def transfer_rms_mm(d_mm: float = TRANSFER_MEAN_MM, n: int = TRANSFER_POINTS) ->
     d = check_positive("d_mm", d_mm, unit="mm", hi=100.0)
     n = check_int_range("n", n, 2, 1_000_000)
     return d * math.sqrt(n / (2.0 * (n - 1)))
+
+
+def transfer_from_mean_mm(d_mean_mm: float = TRANSFER_MEAN_MM, n: int = TRANSFER_POINTS) -> float:
+    """The transfer stage's RMS, mm on the map, when d is the instruction's *mean* discrepancy (article 003).
+
+    Formula (9) takes the discrepancies themselves; the instruction gives their mean, 0.5 mm.  The
+    article's own rule (1) turns a mean into an RMS first (1.25·d = 0.625 mm), then (9):
+    1.25·d·√(n/(2(n − 1))) = 0.446 mm for n = 50 (0.442 = 1.25·0.5/√2 for many points).  Applying (9)
+    to the mean itself, as the article does, gives 0.357 mm (printed 0.35): :func:`transfer_rms_mm`.
+    """
+    return transfer_rms_mm(rms_from_mean(check_positive("d_mean_mm", d_mean_mm, unit="mm", hi=100.0)), n)
 
 
 def relief_limit_m(f_mm: float, M_k: float, r_mm: float, delta_mm: float = DTM_MAX_MM) -> float:
@@ -325,8 +336,8 @@ def budget(M_c: float = 10_000.0, P_um: float = 16.0, M_k: float = 2000.0, *, f_
     m_h_m : the DEM's height RMS, m (0 ≤ m_h ≤ 10⁴)
     relief_m : the relief within a photo, max − min height, m (0 ≤ Δh ≤ 10⁴)
     px_percent, py_percent : overlaps, % — the working area for r_rms
-    transfer_mm : the transfer stage's RMS on the map, mm; default formula (9), 0.357 mm (the article
-        prints 0.35)
+    transfer_mm : the transfer stage's RMS on the map, mm; default :func:`transfer_from_mean_mm`, 0.446 mm
+        (rule (1) then formula (9); the article applies (9) to the mean discrepancy: 0.357, printed 0.35)
     extra_stages : add the two errors the article names last but leaves out of formula (10): interior
         orientation, 0.625·P·M_c, and the larger image-measurement error σ = 0.884·P in triangulation
 
@@ -343,7 +354,7 @@ def budget(M_c: float = 10_000.0, P_um: float = 16.0, M_k: float = 2000.0, *, f_
     if dtm not in ("instruction", "dem", "plane"):
         raise ValueError(f"dtm = {dtm!r} is not one of the valid choices ['instruction', 'dem', 'plane']")
     _, r_rms = working_area_radii_mm(frame_mm, px_percent, py_percent)
-    t_mm = transfer_rms_mm() if transfer_mm is None else check_range("transfer_mm", transfer_mm, 0.0, 100.0, unit="mm")
+    t_mm = transfer_from_mean_mm() if transfer_mm is None else check_range("transfer_mm", transfer_mm, 0.0, 100.0, unit="mm")
     on_ground = Mk / 1000.0  # map mm → ground m
     _, m_phi = triangulation_rms_m(Mc, P)
     rule_phi = "√2·0.84·M_c·0.5P"
@@ -362,7 +373,7 @@ def budget(M_c: float = 10_000.0, P_um: float = 16.0, M_k: float = 2000.0, *, f_
         "triangulation": (m_phi, rule_phi),
         "dtm": (m_dtm, rule_dtm),
         "ortho": (rms_from_mean(ORTHO_MEAN_MM) * on_ground, "1.25·0.1 mm·M_k"),
-        "transfer": (t_mm * on_ground, "formula (9)·M_k"),
+        "transfer": (t_mm * on_ground, "rule (1), formula (9)·M_k"),
         "vectorising": (VECTORISING_MAP_MM * on_ground, "0.11 mm·M_k"),
     }
     stages = [Stage(k, sym, en, ru, float(values[k][0]), values[k][1]) for k, sym, en, ru in STAGES]
@@ -383,7 +394,7 @@ def scenarios(M_c: float = 10_000.0, P_um: float = 16.0, M_k: float = 2000.0, *,
               frame_mm: float = 230.0, m_h_m: float = 0.5) -> pd.DataFrame:
     """What would change the verdict: the article's budget and four variations of it, one row each.
 
-    * the article's stages (formula 9's 0.357 mm for the transfer);
+    * the article's stages (the transfer by rule (1) and formula (9), 0.446 mm);
     * the DEM's tolerance replaced by a DEM of height RMS ``m_h_m`` ((r_rms/f)·m_h);
     * the transfer between strips by the instruction's rule for digital work, 40 µm on the photo;
     * both;

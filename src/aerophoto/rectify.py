@@ -126,7 +126,7 @@ class PaperDeformation:
         df = pd.DataFrame({"l₀ on the grid, mm": self.l0_mm, "l_i on the print, mm": self.li_mm,
                            "δl = l₀ − l_i, mm": self.dl_mm}, index=pd.Index(names, name="line"))
         df.loc["Σ"] = [self.sum_l0_mm, self.sum_li_mm, self.sum_dl_mm]
-        return df
+        return df.round(4) + 0.0  # for display: 115.0 − 115.3 is −0.3, not −0.29999999999999716 (+ 0.0: no −0.0)
 
 
 def paper_deformation(l0_mm, li_mm) -> PaperDeformation:
@@ -393,6 +393,18 @@ class TransformerRun:
             if s.name == "tilt" and s.max_residual_mm <= self.tolerance_mm:
                 return k
         return None
+
+    @property
+    def within_tolerance_step(self) -> int | None:
+        """Index of the first step from which every residual stays within tolerance (this and all later steps);
+        None if the last step is not within it.  Usually earlier than :attr:`converged_step`, which waits for
+        the end of a cycle."""
+        k = None
+        for j in range(len(self.steps) - 1, -1, -1):
+            if self.steps[j].max_residual_mm > self.tolerance_mm:
+                break
+            k = j
+        return k
 
     def table(self) -> pd.DataFrame:
         """One row per step: cycle, step, ε, λ_t, θ, s, the largest residual and whether it is within 0.4 mm."""

@@ -25,12 +25,14 @@ from .densification import (ARTICLE_BLOCK, PARALLAX_READING, BlockLayout, BlockP
                             block_precision, bundle_counts, lysenko_mz_m, lysenko_ratio, lysenko_study)
 from .surface import (NOISE_FACTOR, STANDARD_INTERVALS_M, DEM, ContourAccuracy, Sheet, SheetResult,
                       StructuralLines, contour_accuracy, contour_levels, contour_lines, dem_accuracy, evaluate,
-                      grid_dem, grid_nodes, grid_with_lines, predicted_rms, spacing_study, standard_interval,
+                      correlated_noise_factor, grid_dem, grid_nodes, grid_with_lines, predicted_rms, spacing_study,
+                      standard_interval,
                       structural_dem, structural_lines, tin_dem)
 
 __all__ = ["densification", "surface", "ARTICLE_BLOCK", "PARALLAX_READING", "BlockLayout", "BlockPrecision",
            "block_layout", "block_precision", "bundle_counts", "lysenko_mz_m", "lysenko_ratio", "lysenko_study", "NOISE_FACTOR",
            "STANDARD_INTERVALS_M", "DEM", "ContourAccuracy", "Sheet", "SheetResult", "StructuralLines",
-           "contour_accuracy", "contour_levels", "contour_lines", "dem_accuracy", "evaluate", "grid_dem",
+           "contour_accuracy", "contour_levels", "contour_lines", "correlated_noise_factor", "dem_accuracy",
+           "evaluate", "grid_dem",
            "grid_nodes", "grid_with_lines", "predicted_rms", "spacing_study", "standard_interval", "structural_dem",
            "structural_lines", "tin_dem"]

@@ -39,8 +39,8 @@ from .._validate import check_finite_array, check_int_range, check_points, check
 
 __all__ = ["Sheet", "NOISE_FACTOR", "STANDARD_INTERVALS_M", "grid_nodes", "StructuralLines", "structural_lines",
            "DEM", "grid_dem", "tin_dem", "grid_with_lines", "structural_dem", "contour_levels", "contour_lines",
-           "ContourAccuracy", "contour_accuracy", "dem_accuracy", "predicted_rms", "standard_interval",
-           "SheetResult", "evaluate", "spacing_study"]
+           "ContourAccuracy", "contour_accuracy", "dem_accuracy", "predicted_rms", "correlated_noise_factor",
+           "standard_interval", "SheetResult", "evaluate", "spacing_study"]
 
 #: mean over a cell of Σ wᵢ² — the share of the nodes' error variance left between nodes by linear interpolation
 NOISE_FACTOR = {"grid": 4.0 / 9.0, "tin": 0.5}
@@ -559,6 +559,27 @@ def predicted_rms(interp_rms_m: float, mz_m: float, kind: str) -> float:
     a = check_range("interp_rms_m", interp_rms_m, 0.0, 1e4, unit="m")
     b = check_range("mz_m", mz_m, 0.0, 1e4, unit="m")
     return math.sqrt(a * a + NOISE_FACTOR[kind] * b * b)
+
+
+def correlated_noise_factor(spacing_m: float, corr_length_m: float, *, samples: int = 40) -> float:
+    """Mean over a grid square of Var(Σ wᵢ·εᵢ)/m_z² for bilinear interpolation when the node errors εᵢ are
+    correlated, ρ(r) = exp(−r/L) between nodes r apart (article 000's densification, block deformation).
+
+    ``corr_length_m`` L = 0 gives independent node errors, :data:`NOISE_FACTOR` ``["grid"]`` = 4/9; L ≫ the step
+    gives 1 — a deformation common to neighbouring nodes is carried whole into the contours, interpolation
+    averages nothing away.  ``spacing_m`` is the grid step d, m (> 0); the mean is taken over
+    ``samples`` × ``samples`` cell midpoints of the square (exact for L = 0 up to O(1/samples²)).
+    """
+    d = check_range("spacing_m", spacing_m, 1e-3, 1e5, unit="m")
+    L = check_range("corr_length_m", corr_length_m, 0.0, 1e9, unit="m")
+    k = int(check_range("samples", samples, 4, 400))
+    u = (np.arange(k) + 0.5) / k
+    U, V = np.meshgrid(u, u)
+    W = np.stack([(1 - U) * (1 - V), U * (1 - V), (1 - U) * V, U * V], axis=-1).reshape(-1, 4)  # (k², 4)
+    corners = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]) * d
+    r = np.hypot(*(corners[:, None, :] - corners[None, :, :]).transpose(2, 0, 1))
+    C = np.eye(4) if L == 0.0 else np.exp(-r / L)
+    return float(np.mean(np.einsum("pi,ij,pj->p", W, C, W)))
 
 
 def standard_interval(mean_error_m: float, ratio: float = 0.3) -> float:

@@ -26,7 +26,9 @@ from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["PlanCorrectionResult", "plan_correction_model", "PlanCorrectionView", "PlanCorrectionDemo",
-           "EXAMPLE_SEED", "plan_correction_figure", "grids_figure", "transfer_study_figure", "legend_html"]
+           "EXAMPLE_SEED", "plan_correction_figure", "grids_figure", "grid_node_misses", "similar_figures_transfer",
+           "three_methods_study", "transfer_study_figure",
+           "legend_html"]
 
 #: the scene of the chapter's example (variants use seeds 0…99)
 EXAMPLE_SEED = 2014
@@ -258,22 +260,44 @@ class PlanCorrectionDemo(LiveDemo):
         self.legend.value = legend_html()
 
 
+def _grid_pair_nodes(alpha_deg: float, n: int, lambda_deg: float):
+    """The example's quadrilateral and, per method, (photo grid nodes, exact images of the plan grid's nodes)."""
+    r = plan_correction_model(alpha_deg, lambda_deg, n, 85.0, "central")
+    P, Q = r.pair.photo_corners, r.pair.plan_corners
+    to_photo = r.pair.exact.inverse()
+    return P, {method: (pj.grid(P, n, method), to_photo.apply(pj.grid(Q, n, method)))
+               for method in ("central", "proportional")}
+
+
+def grid_node_misses(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60.0) -> dict:
+    """Largest miss, mm on the photo, between each method's grid on the new photo and the exact images of the
+    plan's grid drawn the same way (guide §10): ``{"central": ~0, "proportional": …}``.
+
+    The grid on the photo and the grid on the plan are drawn by the same method; the miss is how far the photo
+    node is from the true image of its plan node.  Central directions are projectively exact (0 up to rounding);
+    equal parts are not.  ``grids_figure``'s titles and chapter 09's text and alt text print these values.
+    """
+    _, pairs = _grid_pair_nodes(alpha_deg, n, lambda_deg)
+    return {m: float(np.max(np.hypot(*(nodes - exact).reshape(-1, 2).T))) for m, (nodes, exact) in pairs.items()}
+
+
 def grids_figure(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60.0):
-    """The two ways of drawing the grid on the new photo's quadrilateral, against the exact images of the plan's grid.
+    """The two ways of drawing the grid on the new photo's quadrilateral, each against the exact images of the
+    plan's grid drawn the same way.
 
     Left: central directions — the grid lines run to the two centres where
     opposite sides meet, and the nodes coincide with the exact images of the
-    plan grid's nodes (green).  Right: proportional division — equal parts
-    of the sides; its nodes miss the exact images.
+    plan's central grid (green).  Right: proportional division — equal parts
+    of the sides on photo and plan; its nodes miss the exact images of the plan's
+    equal-part nodes.  The titles print :func:`grid_node_misses`.
     """
-    r = plan_correction_model(alpha_deg, lambda_deg, n, 85.0, "central")
-    P, Q = r.pair.photo_corners, r.pair.plan_corners
-    exact_nodes = r.pair.exact.inverse().apply(pj.proportional_grid(Q, n))
+    P, pairs = _grid_pair_nodes(alpha_deg, n, lambda_deg)
+    misses = grid_node_misses(alpha_deg, n, lambda_deg=lambda_deg)
     fig = plots.figure(figsize=(9.6, 4.9))
     axes = fig.subplots(1, 2)
     for a, method, title in ((axes[0], "central", "central directions (exact)"),
                              (axes[1], "proportional", "proportional division (equal parts)")):
-        nodes = pj.grid(P, n, method)
+        nodes, exact_nodes = pairs[method]
         a.add_collection(LineCollection(_grid_segments(nodes), colors=_C["blue"], linewidths=1.0))
         a.plot(exact_nodes[..., 0].ravel(), exact_nodes[..., 1].ravel(), "o", mfc="none", mec=_C["truth"], ms=7,
                mew=1.6, label="images of the plan grid's nodes")
@@ -286,8 +310,7 @@ def grids_figure(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60
                     v = V[:2] / V[2]
                     for e in ends:
                         a.plot([v[0], e[0]], [v[1], e[1]], color=_C["grey"], lw=0.5, ls=":")
-        err = float(np.max(np.hypot(*(nodes - exact_nodes).reshape(-1, 2).T)))
-        a.set_title(f"{title}\nlargest node miss {err:.2f} mm")
+        a.set_title(f"{title}\nlargest node miss {misses[method]:.2f} mm")
         a.set_xlim(-95, 95)
         a.set_ylim(-95, 95)
         a.set_aspect("equal")
@@ -296,6 +319,46 @@ def grids_figure(alpha_deg: float = 10.0, n: int = 4, *, lambda_deg: float = -60
     axes[0].set_ylabel("y, mm")
     axes[1].legend(loc="lower right", fontsize=9)
     return fig
+
+
+def similar_figures_transfer(photo_corners, plan_corners, xy) -> np.ndarray:
+    """The method of similar figures (способ подобных фигур, guide §10): carry photo points to the plan
+    triangle by triangle, as if each triangle of the figure were similar (affine) to its image.
+
+    The quadrilateral of the four control points is split by its diagonal 1–3 into two triangles; a point keeps its
+    barycentric coordinates in its triangle.  ``photo_corners``, ``plan_corners`` (4, 2) mm, ``xy`` (k, 2) mm
+    inside the photo quadrilateral; returns (k, 2) plan mm (NaN for a point outside both triangles).
+    """
+    P = np.asarray(photo_corners, float)
+    Q = np.asarray(plan_corners, float)
+    pts = np.atleast_2d(np.asarray(xy, float))
+    out = np.full_like(pts, np.nan)
+    for tri in ((0, 1, 2), (0, 2, 3)):
+        A = np.column_stack([P[list(tri)], np.ones(3)])
+        lam = np.linalg.solve(A.T, np.column_stack([pts, np.ones(len(pts))]).T).T  # barycentric, (k, 3)
+        inside = np.all(lam >= -1e-9, axis=1) & np.isnan(out[:, 0])
+        out[inside] = lam[inside] @ Q[list(tri)]
+    return out
+
+
+def three_methods_study(alphas=(1.0, 3.0, 8.0), n: int = 4, *, lambda_deg: float = -60.0) -> pd.DataFrame:
+    """Largest transfer error on the plan, mm, of the guide's three ways of §10 over the example's quadrilateral
+    (625 points inside it): similar figures (two triangles), proportional division and central directions with
+    ``n`` cells per side, for each tilt α in ``alphas`` (°)."""
+    u, w = np.meshgrid(np.linspace(0.02, 0.98, 25), np.linspace(0.02, 0.98, 25))
+    rows = []
+    for alpha in alphas:
+        r = plan_correction_model(alpha, lambda_deg, n, 85.0, "central")
+        P, Q = r.pair.photo_corners, r.pair.plan_corners
+        xy = (((1 - u) * (1 - w))[..., None] * P[0] + (u * (1 - w))[..., None] * P[1] + (u * w)[..., None] * P[2]
+              + ((1 - u) * w)[..., None] * P[3]).reshape(-1, 2)
+        exact = r.pair.exact.apply(xy)
+        prop = plan_correction_model(alpha, lambda_deg, n, 85.0, "proportional").pair.transfer(xy)
+        err = lambda a: float(np.max(np.hypot(*(a - exact).T)))  # noqa: E731
+        rows.append((alpha, err(similar_figures_transfer(P, Q, xy)), err(prop), err(r.pair.transfer(xy))))
+    return pd.DataFrame(rows, columns=["α, °", "similar figures (2 triangles), mm",
+                                       f"proportional division, n = {n}, mm",
+                                       f"central directions, n = {n}, mm"]).set_index("α, °")
 
 
 def transfer_study_figure(alphas=(1.0, 3.0, 8.0), ns=(1, 2, 4, 8, 16, 32)):

@@ -153,6 +153,7 @@ class TransformerResult:
     def table(self) -> pd.DataFrame:
         s = self.current
         st = s.state
+        first = self.run.within_tolerance_step
         conv = self.run.converged_step
         rows = [("motion", "", _t("{step}: {name} (cycle {cycle})", step=self.step, name=_t(s.name), cycle=s.cycle)),
                 ("what the operator does", "", rf.STEP_NAMES[s.name]),
@@ -164,7 +165,8 @@ class TransformerResult:
         rows += [(f"residual at {n}", "mm", f"{d:.2f}") for n, d in zip(names, s.lengths_mm)]
         rows.append(("largest residual vs 0.4 mm", "", fmt(s.max_residual_mm, 2) + " — "
                      + _t("within" if s.max_residual_mm <= rf.TOLERANCE_MM else "not yet")))
-        rows.append(("converged at step", "", "—" if conv is None else f"{conv}"))
+        rows.append(("every point within 0.4 mm from step", "", "—" if first is None else f"{first}"))
+        rows.append(("first full cycle within 0.4 mm ends at step", "", "—" if conv is None else f"{conv}"))
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 

@@ -22,7 +22,7 @@ What the audit finds
 * None of the eight plane coordinates follows: every point's X lies about
   17.4 km, and its Y about 28.8 km, below the projection of its φ, λ (a
   nearly common shift: spread ±45 m and ±71 m).  Projected back, the
-  printed X, Y lie near φ ≈ 54°41′, λ ≈ 24°06′ — 10′ south and 27′ west of the
+  printed X, Y lie near φ ≈ 54°41′, λ ≈ 24°06′ — 9.9′ south and 26.2′ west of the
   printed φ, λ.  So the X, Y are not Pulkovo 1942 Gauss–Krüger coordinates
   of these φ, λ (no other zone or datum pyproj knows comes nearer); they read
   like a shifted local (conditional) system or invented numbers.
@@ -69,8 +69,8 @@ _REASON_X = ("not the Gauss–Krüger X of the printed φ, λ (Pulkovo 1942, zon
              "{c:.0f} m; the printed X is about 17.4 km less, as for every point of the table")
 _REASON_Y = ("not the Gauss–Krüger Y of the printed φ, λ (Pulkovo 1942, zone 5): their projection gives "
              "{c:.0f} m; the printed Y is about 28.8 km less, as for every point of the table")
-_REASON_PHI = ("the printed X, Y project back to φ = {lat}; the printed φ is about 10′ further north")
-_REASON_LAM = ("the printed X, Y project back to λ = {lon}; the printed λ is about 27′ further east")
+_REASON_PHI = ("the printed X, Y project back to φ = {lat}; the printed φ is {d:.1f}′ further north")
+_REASON_LAM = ("the printed X, Y project back to λ = {lon}; the printed λ is {d:.1f}′ further east")
 
 
 def parse_dms(text: str) -> float:
@@ -242,10 +242,10 @@ def coordinate_table() -> Audit:
                               computed_text=f"{lo[1]:.0f} … {hi[1]:.0f}"))
         lat_t, lon_t = c.format_dms(back[0]), c.format_dms(back[1])
         values.append(printed(name, "φ, ″", lat * 3600.0, back[0] * 3600.0, 1.0,
-                              reason=_REASON_PHI.format(lat=lat_t), printed_text=r["φ"], computed_text=lat_t,
+                              reason=_REASON_PHI.format(lat=lat_t, d=(lat - back[0]) * 60.0), printed_text=r["φ"], computed_text=lat_t,
                               note="printed 15′ for 15″ (OCR)" if name == "III" else ""))
         values.append(printed(name, "λ, ″", lon * 3600.0, back[1] * 3600.0, 1.0,
-                              reason=_REASON_LAM.format(lon=lon_t), printed_text=r["λ"], computed_text=lon_t,
+                              reason=_REASON_LAM.format(lon=lon_t, d=(lon - back[1]) * 60.0), printed_text=r["λ"], computed_text=lon_t,
                               note="printed without seconds: read 24°33′00″" if name == "I" else ""))
         rows.append((name, r["X, m"], r["Y, m"], r["H, m"], r["φ"], r["λ"], round(XY[0]), round(XY[1]),
                      round(r["X, m"] - XY[0]), round(r["Y, m"] - XY[1]), lat_t, lon_t))
@@ -275,13 +275,18 @@ def shift_summary() -> dict:
 
     Keys: ``mean_dX_m``, ``mean_dY_m``, ``sd_dX_m``, ``sd_dY_m`` (population SD),
     ``residuals_m`` (4, 2) after removing the mean shift, ``max_relative_m``
-    (the largest of their lengths).
+    (the largest of their lengths), and ``mean_dlat_min``, ``mean_dlon_min``: the printed φ, λ minus those of the
+    printed X, Y projected back, arcminutes (mean of the four; positive: the printed value is north / east).
     """
     df = _frame()
     XY = projected(df["φ, °"].to_numpy(), df["λ, °"].to_numpy())
     d = df[["X, m", "Y, m"]].to_numpy() - XY
     res = d - d.mean(axis=0)
-    return {"mean_dX_m": float(d[:, 0].mean()), "mean_dY_m": float(d[:, 1].mean()),
+    back = np.array([geographic(X, Y) for X, Y in df[["X, m", "Y, m"]].to_numpy()])
+    dlat = (df["φ, °"].to_numpy() - back[:, 0]) * 60.0
+    dlon = (df["λ, °"].to_numpy() - back[:, 1]) * 60.0
+    return {"mean_dlat_min": float(dlat.mean()), "mean_dlon_min": float(dlon.mean()),
+            "mean_dX_m": float(d[:, 0].mean()), "mean_dY_m": float(d[:, 1].mean()),
             "sd_dX_m": float(d[:, 0].std()), "sd_dY_m": float(d[:, 1].std()), "residuals_m": res,
             "max_relative_m": float(np.max(np.hypot(*res.T)))}
 

@@ -17,9 +17,12 @@ inputs with :mod:`aerophoto.budget`:
 * :func:`table5` — the total (formula 10) on the ground and on the map, RMS and mean.
 
 Every printed value is judged by the one rule of :mod:`aerophoto.guide.audit`.  One does not follow:
-formula (9) with d = 0.5 mm and n = 50 gives 0.357 mm, printed 0.35 mm (the large-n value d/√2 =
-0.354 rounded down); the tables carry 0.35 on, and the conclusion (v_d = 0.44–0.45 mm > 0.4 mm)
-stands either way (:func:`table5` notes the totals with 0.357).
+the transfer between strips.  The instruction's d = 0.5 mm is a *mean* discrepancy; the article puts it
+into formula (9) as if it were the discrepancies themselves (0.5·√(50/98) = 0.357 mm, printed 0.35).
+Its own rule (1) makes the mean an RMS first, 1.25·0.5 = 0.625 mm, and (9) then gives 0.446 mm (0.442 =
+1.25·0.5/√2 for many points) — :func:`aerophoto.budget.transfer_from_mean_mm`.  The tables carry 0.35
+on; with 0.446 mm the 1:2000 plan's m_d is 0.621 mm and v_d = 0.497 mm, further from the 0.4 mm
+(:func:`table5` notes the totals).
 """
 
 from __future__ import annotations
@@ -60,9 +63,11 @@ TEXT = dict(control_mean="0.1", control_rms="0.125", dtm_max="0.3", dtm_rms="0.3
 SYMBOL = {key: sym for key, sym, _en, _ru in b.STAGES}
 
 REASONS = {
-    ("formula (9)", "m_н/м, mm"): "formula (9) with every discrepancy d = 0.5 mm and n = 50 gives "
-                                  "0.5·√(50/98) = {c:.3f} mm, i.e. 0.36; the printed 0.35 is the large-n value "
-                                  "d/√2 = 0.354 (or 0.357 cut, not rounded). The tables carry 0.35 on",
+    ("formula (9)", "m_н/м, mm"): "d = 0.5 mm is the instruction's mean discrepancy: rule (1) makes it an RMS "
+                                  "first, 1.25·0.5 = 0.625 mm, and formula (9) with n = 50 then gives "
+                                  "0.625·√(50/98) = {c:.3f} mm (1.25·0.5/√2 = 0.442 for many points). The "
+                                  "article puts the mean itself into (9): 0.5·√(50/98) = 0.357, printed 0.35 "
+                                  "(d/√2 = 0.354). The tables carry 0.35 on",
 }
 
 NOTES = (
@@ -136,13 +141,14 @@ def text_values() -> Audit:
         _val("DEM", "m_ЦМР, mm", T["dtm_rms"], b.rms_from_mean(float(T["dtm_max"]))),
         _val("orthorectification", "mean error, mm", T["ortho_mean"], float(T["misfit"]) - 2 * float(T["dtm_max"])),
         _val("orthorectification", "m_орт, mm", T["ortho_rms"], b.rms_from_mean(float(T["ortho_mean"]))),
-        _val("formula (9)", "m_н/м, mm", T["transfer_rms"], b.transfer_rms_mm(float(T["transfer_d"]), T["transfer_n"])),
+        _val("formula (9)", "m_н/м, mm", T["transfer_rms"],
+             b.transfer_from_mean_mm(float(T["transfer_d"]), T["transfer_n"])),
     ]
     for Mk in (2000, 10000):
         v.append(_val(f"transfer, 1:{Mk}", "m_н/м on the ground, m", T["transfer_ground"][Mk],
                       float(T["transfer_rms"]) * Mk / 1000.0,
-                      note="from the printed 0.35 mm; 0.357 mm gives {:.3f} m".format(
-                          b.transfer_rms_mm() * Mk / 1000.0)))
+                      note="from the printed 0.35 mm; rule (1) and (9), 0.446 mm, give {:.3f} m".format(
+                          b.transfer_from_mean_mm() * Mk / 1000.0)))
     for Mc in (10000, 15000):
         v.append(_val(f"40 µm tolerance, 1:{Mc}", "on the ground, m", T["tol_ground"][Mc], T["tol_um"] * 1e-6 * Mc))
     for Mk, Mc in ((10000, 15000), (2000, 10000)):
@@ -193,8 +199,9 @@ def table5() -> Audit:
                            "v_d, mm (map)": round(vd, 4),
                            "v_d ≤ 0.4 mm": vd <= b.TOLERANCE_MEAN_MM}
         full = b.budget(**{k: v for k, v in b.ARTICLE_CASES[SCALES.index(Mk)].items()})
-        notes.append(f"1:{Mk} with formula (9)'s 0.357 mm instead of 0.35: m_D = {full.total_m:.2f} m, "
-                     f"m_d = {full.map_rms_mm:.3f} mm, v_d = {full.map_mean_mm:.3f} mm — the same verdict.")
+        notes.append(f"1:{Mk} with the transfer by rule (1) and formula (9), {b.transfer_from_mean_mm():.3f} mm "
+                     f"instead of 0.35: m_D = {full.total_m:.2f} m, m_d = {full.map_rms_mm:.3f} mm, "
+                     f"v_d = {full.map_mean_mm:.3f} mm — the same verdict, further from 0.4 mm.")
     df = pd.DataFrame(rows).T
     df.index.name = "map 1:M_k"
     return Audit(SOURCE, "Table 5. The total error, formula (10)", df, tuple(values), notes=tuple(notes))

@@ -391,3 +391,56 @@ _WIDGETS = {
 
 #: English → Russian
 MESSAGES = {**_LABELS, **_GROUPS, **_TITLES, **_HINTS, **_TOOLTIPS, **_OPTIONS, **_WIDGETS}
+
+
+# aerophoto.demos.block_adjustment_live (chapter 15): sliders, table, figure
+_BLOCK_ADJUSTMENT = {
+    "Bundle block adjustment: control, σ and a blunder": "Уравнивание блока по методу связок: опора, σ и грубая ошибка",
+    "Switch the blunder on and off, then raise σ: the same 0.1 mm blunder stands out at a few µm and hides in the "
+    "noise at 30 µm. Take the control down to three corners: the ellipses and the check points' errors swell, most "
+    "in height.":
+        "Включите и выключите грубую ошибку, затем увеличьте σ: та же ошибка 0,1 мм хорошо видна при нескольких мкм "
+        "и теряется в шуме при 30 мкм. Оставьте опору только в трёх углах: эллипсы и ошибки контрольных точек "
+        "растут, больше всего по высоте.",
+    "control layout": "схема опоры",
+    "control points kept; the others become check points": "оставленные опорные точки; остальные становятся контрольными",
+    "corners, sides and centre (9)": "углы, стороны и центр (9)",
+    "corners and sides (8)": "углы и стороны (8)",
+    "four corners (4)": "четыре угла (4)",
+    "three corners (3)": "три угла (3)",
+    "RMS error of a photo coordinate; the gravimetric marks 6σ, the control 0.1 m per µm":
+        "СКО координаты на снимке; гравиметрические метки 6σ, опора 0,1 м на мкм",
+    "blunder": "грубая ошибка",
+    "Blunder": "Грубая ошибка",
+    "one image measurement moved on the photo": "одно измерение на снимке смещено",
+    "blunder, mm": "грубая ошибка, мм",
+    "length of the image blunder on the photo": "величина грубой ошибки на снимке",
+    "data snooping": "поиск грубых ошибок (data snooping)",
+    "largest |w| (critical 4.0)": "наибольший |w| (критический 4,0)",
+    "|w| of the blundered observation": "|w| измерения с грубой ошибкой",
+    "check points, plan RMS (true)": "контрольные точки, СКО в плане (истинная)",
+    "… predicted by the covariances": "… предвычисленная по ковариациям",
+    "check points, height RMS (true)": "контрольные точки, СКО по высоте (истинная)",
+    "gravimetric points, largest semi-axis a": "гравиметрические пункты, наибольшая полуось a",
+    "the largest |w| is the planted blunder: rejected": "наибольший |w| — у заложенной грубой ошибки: отбракована",
+    "the largest |w| is a good observation: a false alarm": "наибольший |w| — у верного измерения: ложная тревога",
+    "no |w| above the critical value: the blunder passes unseen":
+        "нет |w| выше критического: грубая ошибка проходит незамеченной",
+    "no |w| above the critical value: no blunder found": "нет |w| выше критического: грубых ошибок не найдено",
+    "The adjusted block": "Уравненный блок",
+    "adjusting the block for the new control layout…": "уравнивание блока для новой схемы опоры…",
+    "photo centres": "центры снимков",
+    "tie points": "связующие точки",
+    "check points": "контрольные точки",
+    "gravimetric points": "гравиметрические пункты",
+    "standard ellipse × 400": "стандартный эллипс × 400",
+    "flagged": "отбраковано",
+    "true error × 400": "истинная ошибка × 400",
+    "Data snooping: standardised residuals": "Поиск грубых ошибок: нормированные поправки",
+    "observations, sorted by |w|": "измерения, по возрастанию |w|",
+    "image observations": "измерения на снимках",
+    "control coordinates": "координаты опорных точек",
+    "the blunder": "грубая ошибка",
+    "critical |w| = 4": "критический |w| = 4",
+}
+MESSAGES = {**MESSAGES, **_BLOCK_ADJUSTMENT}

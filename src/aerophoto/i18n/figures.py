@@ -297,6 +297,8 @@ _CELLS = {
     "the river between its banks: measure its width by the scale":
         "река между берегами: измерьте её ширину по масштабу",
     "rivers: length, width (Длина, ширина)": "реки: длина, ширина",
+    "every point within 0.4 mm from step": "все точки в пределах 0,4 мм с шага",
+    "first full cycle within 0.4 mm ends at step": "первый полный цикл в пределах 0,4 мм кончается на шаге",
 }
 
 #: the live demos' legends and keys (the figure's legend and the HTML key beside it)

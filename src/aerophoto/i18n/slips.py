@@ -196,7 +196,23 @@ _SLIPS = {
     "the whole frame is not the base: b = l·(1 − p_x)": "весь кадр — не базис: b = l·(1 − p_x)",
     "this is l_воск / l_осн — the coefficient is base over template":
         "это l_воск / l_осн — коэффициент равен основе, делённой на восковку",
-    "this is m_X; the plan error m_D has the coefficient 0.35": "это m_X; у ошибки в плане m_D коэффициент 0,35",
+    "the transfer stage here is formula (9) applied to the mean discrepancy 0.5 mm (0.357 mm, the article's slip); "
+    "rule (1) first turns the mean into an RMS, 1.25·0.5 mm (chapter 17)":
+        "этап переноса здесь — формула (9), применённая к средней невязке 0,5 мм (0,357 мм, ошибка статьи); "
+        "правило (1) сначала переводит среднюю ошибку в СКО, 1,25·0,5 мм (глава 17)",
+    "that uses b from the pricked principal points, which the photos' tilts shift by 1–3 %; the parallaxes of the "
+    "normalised pair go with its base b₀ = B·f/H (chapter 07)":
+        "здесь взят базис b по наколотым главным точкам, который наклоны снимков сдвигают на 1–3 %; параллаксы "
+        "нормализованной пары идут с её базисом b₀ = B·f/H (глава 07)",
+    "that is the scale of your variant's flight (the 1:m of the banner); this photo has its own scale, lab.m, "
+    "printed with the photo — use that one":
+        "это масштаб съёмки вашего варианта (1:m из заголовка); у этого снимка свой масштаб, lab.m, напечатанный "
+        "вместе со снимком, — возьмите его",
+    "this is m_X alone; the plan error m_D = √(m_X² + m_Y²)": "это одна m_X; ошибка в плане m_D = √(m_X² + m_Y²)",
+    "this is the other reading of m_D, √2·m_X (the article's printed 0.11 mm); this task takes m_D as the plan "
+    "error √(m_X² + m_Y²), as the article's legend names it (chapter 14)":
+        "это другое прочтение m_D, √2·m_X (напечатанные в статье 0,11 мм); в этой задаче m_D — ошибка в плане "
+        "√(m_X² + m_Y²), как её называет экспликация статьи (глава 14)",
     "this is m_Z at the photo scale in mm; the task asks for metres on the ground":
         "это m_Z в масштабе снимка в мм; задание требует метры на местности",
     "this is max k − min k; the guide's spread is the deviation from the mean":

@@ -37,8 +37,11 @@ from .. import stereo as st
 from ..labs.ch07 import OBJECT_LABELS, PX_PERCENT, StereoLab, stereo_lab
 from .base import Answer, Hidden, Task, submitted_number
 
-__all__ = ["EYE_BASE_MM", "VIEWING_MM", "PairBase", "ObjectHeights", "ParallaxForHeight", "TASKS"]
+__all__ = ["EYE_BASE_MM", "VIEWING_MM", "PRICKED_BASE", "PairBase", "ObjectHeights", "ParallaxForHeight", "TASKS"]
 
+#: slip hint of task 07.3: the base of the pricked principal points (task 07.1) instead of b₀ = B·f/H
+PRICKED_BASE = ("that uses b from the pricked principal points, which the photos' tilts shift by 1–3 %; the parallaxes "
+                "of the normalised pair go with its base b₀ = B·f/H (chapter 07)")
 #: the viewing the vertical exaggeration of task 07.3 refers to: eye base and viewing distance, mm
 EYE_BASE_MM, VIEWING_MM = st.EYE_BASE_MM, st.VIEWING_DISTANCE_MM
 # =========================================================================== task 07.1
@@ -171,30 +174,38 @@ class ParallaxForHeight(Task):
 
     def inputs(self, v) -> dict:
         lab = stereo_lab(v)
-        return {"h_m": v.Zmax_m - v.Zmin_m, "H_m": lab.H_m, "eye_base_mm": EYE_BASE_MM,
-                "viewing_distance_mm": VIEWING_MM}
+        return {"h_m": v.Zmax_m - v.Zmin_m, "H_m": lab.H_m, "B_m": lab.B_record_m, "f_mm": lab.f_mm,
+                "eye_base_mm": EYE_BASE_MM, "viewing_distance_mm": VIEWING_MM}
 
     def _ref(self, v):
+        # the unbiased base of the normalised pair, b₀ = B·f/H (chapter 07: the pricked principal points carry the
+        # tilts' displacements and are 1–3 % off it)
         lab = stereo_lab(v)
         h = v.Zmax_m - v.Zmin_m
-        return lab, h, float(st.parallax_difference_mm(h, lab.b_mm, lab.H_m))
+        return lab, h, float(st.parallax_difference_mm(h, lab.b_flat_mm, lab.H_m))
 
     def answers(self, v) -> dict:
         lab, h, dp = self._ref(v)
-        V = float(st.vertical_exaggeration(lab.b_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))  # B/H = b/f
+        V = float(st.vertical_exaggeration(lab.b_flat_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))  # B/H = b₀/f
         return {"dp_relief_mm": dp, "V": V}
 
     def slips(self, v) -> dict:
         lab, h, dp = self._ref(v)
-        small = float(st.parallax_difference_mm(h, lab.b_mm, lab.H_m, approx=True))
-        BH = lab.b_mm / lab.f_mm
+        b0 = lab.b_flat_mm
+        small = float(st.parallax_difference_mm(h, b0, lab.H_m, approx=True))
+        BH = b0 / lab.f_mm
+        pricked_dp = float(st.parallax_difference_mm(h, lab.b_mm, lab.H_m))
+        pricked_V = float(st.vertical_exaggeration(lab.b_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))
+        V = float(st.vertical_exaggeration(b0, lab.f_mm, EYE_BASE_MM, VIEWING_MM))
         return {
             "dp_relief_mm": {"that is the small form b·h/H; the exact one is b·h/(H − h)":
                              small if abs(small - dp) > 0.005 else None,
                              "the relief's parallax difference uses the photo base b in mm, not B in m":
-                             lab.B_record_m * h / (lab.H_m - h)},
+                             lab.B_record_m * h / (lab.H_m - h),
+                             PRICKED_BASE: pricked_dp if abs(pricked_dp - dp) > 0.005 else None},
             "V": {"V is (B/H) divided by (e/d), not the other way round": (EYE_BASE_MM / VIEWING_MM) / BH,
-                  "B/H is b/f with both in mm": (lab.b_mm / (lab.f_mm / 1000.0)) / (EYE_BASE_MM / VIEWING_MM)},
+                  "B/H is b/f with both in mm": (b0 / (lab.f_mm / 1000.0)) / (EYE_BASE_MM / VIEWING_MM),
+                  PRICKED_BASE: pricked_V if abs(pricked_V / V - 1) > 0.005 else None},
         }
 
     def hidden(self, v, got) -> list:

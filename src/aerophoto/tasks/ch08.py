@@ -74,6 +74,11 @@ class FlowAndForest(Task):
         return {"flow": t["flow"], "spruce": t["spruce"]}
 
 
+#: slip hint of task 08.3: the variant's flight scale (setup's banner) instead of this photo's own scale
+BANNER_SCALE = ("that is the scale of your variant's flight (the 1:m of the banner); this photo has its own scale, "
+                "lab.m, printed with the photo — use that one")
+
+
 @dataclass(frozen=True)
 class RiverWidth(Task):
     id = "task-08-3"
@@ -91,8 +96,10 @@ class RiverWidth(Task):
     def slips(self, v) -> dict:
         su = setup_for(int(v.i))
         w = truth(int(v.i))["width_m"]
+        vm = float(v.m)
         return {"width_m": {"the photo distance is in mm: multiply by m and divide by 1000 for metres": w * 1000.0,
-                            "use the photo's scale 1:m — the ground distance is the photo distance times m": w / su.m}}
+                            "use the photo's scale 1:m — the ground distance is the photo distance times m": w / su.m,
+                            BANNER_SCALE: (w * vm / su.m) if abs(vm / su.m - 1.0) > 2 * WIDTH_TOL_REL else None}}
 
 
 TASKS = (NameObjects(), FlowAndForest(), RiverWidth())

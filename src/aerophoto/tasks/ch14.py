@@ -29,11 +29,15 @@ from .. import simulate
 from .. import site as _site
 from .base import Answer, Hidden, Task, submitted_number
 
-__all__ = ["MD_MAP_MM", "N_EXAMPLE", "CONTOURS_M", "SurveyInputs", "survey_inputs", "MC_BASES", "MC_RUNS",
+__all__ = ["MD_MAP_MM", "OTHER_READING", "N_EXAMPLE", "CONTOURS_M", "SurveyInputs", "survey_inputs", "MC_BASES", "MC_RUNS",
            "student_monte_carlo", "ControlSpacing1021", "AccumulationLaw", "TASKS"]
 
 #: the allowed plan error of densification on the map, mm (article 001: half the 0.6 mm RMS of a contour point)
 MD_MAP_MM = 0.3
+#: the slip hint for article 001's other reading of m_D (√2·m_X, its printed 0.11 mm): the task's text adopts the
+#: legend's plan error √(m_X² + m_Y²), so the other reading is named, not marked as a wrong formula
+OTHER_READING = ("this is the other reading of m_D, √2·m_X (the article's printed 0.11 mm); this task takes m_D as "
+                 "the plan error √(m_X² + m_Y²), as the article's legend names it (chapter 14)")
 #: the n of task 14.1's first answers (the article's example uses n = 10)
 N_EXAMPLE = 10
 #: the contour intervals of the variants, m (i mod 4)
@@ -121,12 +125,14 @@ class ControlSpacing1021(Task):
         cD = acc.COEFF_10_21["D"] * s.mq_mm
         return {
             "mD_mm": {"the law grows as √n³, not as √n": cD * math.sqrt(N_EXAMPLE),
-                      "this is m_X; the plan error m_D has the coefficient 0.35": acc.COEFF_10_21["X"] * s.mq_mm
-                      * math.sqrt(N_EXAMPLE**3)},
+                      "this is m_X alone; the plan error m_D = √(m_X² + m_Y²)": acc.COEFF_10_21["X"] * s.mq_mm
+                      * math.sqrt(N_EXAMPLE**3),
+                      OTHER_READING: acc.COEFF_D_SQRT2 * s.mq_mm * math.sqrt(N_EXAMPLE**3)},
             "mZ_m": {"this is m_Z at the photo scale in mm; the task asks for metres on the ground": e["Z"],
                      "m_Z carries the factor f/b": e["Z"] * s.b_mm / s.f_mm * s.m / 1000.0},
             "n_plan": {"the allowed 0.3 mm is on the map: at the photo scale it is 0.3·M/m":
-                       _n_from_coeff(cD, MD_MAP_MM)},
+                       _n_from_coeff(cD, MD_MAP_MM),
+                       OTHER_READING: _n_from_coeff(acc.COEFF_D_SQRT2 * s.mq_mm, MD_MAP_MM * s.M / s.m)},
             "n_height": {"the allowed height error is the RMS: 1.25 × the mean error h/3, halved":
                          _n_from_coeff(cz, 0.5 * s.contour_m / 3.0 / s.m * 1000.0),
                          "densification gets half of the map's RMS height error": _n_from_coeff(cz, 2 * mz_allowed_photo)},

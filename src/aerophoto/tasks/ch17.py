@@ -18,7 +18,9 @@ scanning resolution is not in the guide; the book gives variant i the pixel P = 
 20 times on the 1:10 000 orthophoto with an error of about 0.05–0.09 mm on the map per axis (seed
 i), coordinates to the centimetre, :func:`corner_measurements`.  The other stages take the article's
 values: control 0.125 mm, orthorectification 0.125 mm, vectorising 0.11 mm on the map, the scanner's
-3 µm, and formula (9)'s 0.357 mm for the transfer between strips (the article prints 0.35).
+3 µm, and 0.446 mm for the transfer between strips: the instruction's mean discrepancy 0.5 mm made an RMS
+by rule (1), then formula (9) (:func:`aerophoto.budget.transfer_from_mean_mm`; the article puts the mean
+itself into (9), 0.357 mm, printed 0.35 — a slip hint names that reading).
 """
 
 from __future__ import annotations
@@ -36,6 +38,9 @@ __all__ = ["N_MEASUREMENTS", "scan_um", "corner_measurements", "Case", "case_of"
            "VectorisingError", "TriangulationError", "UpdateBudget", "TASKS"]
 
 N_MEASUREMENTS = 20
+#: slip hint for article 003's own reading of the transfer (formula 9 applied to the mean discrepancy)
+TRANSFER_AS_PRINTED = ("the transfer stage here is formula (9) applied to the mean discrepancy 0.5 mm (0.357 mm, the "
+                       "article's slip); rule (1) first turns the mean into an RMS, 1.25·0.5 mm (chapter 17)")
 #: the stage names a student may give as the dominant one (task 17.3)
 STAGE_NAMES = tuple(en for _k, _s, en, _ru in bu.STAGES)
 
@@ -71,10 +76,11 @@ class Case:
     px_percent: float
     py_percent: float
 
-    def budget(self) -> bu.Budget:
-        """Formula (10) with the mean plane instead of a DEM (task 17.3)."""
+    def budget(self, transfer_mm: float | None = None) -> bu.Budget:
+        """Formula (10) with the mean plane instead of a DEM (task 17.3); ``transfer_mm`` as in :func:`budget`."""
         return bu.budget(self.M_c, self.P_um, self.M_k, f_mm=self.f_mm, frame_mm=self.frame_mm, dtm="plane",
-                         relief_m=self.relief_m, px_percent=self.px_percent, py_percent=self.py_percent)
+                         relief_m=self.relief_m, px_percent=self.px_percent, py_percent=self.py_percent,
+                         transfer_mm=transfer_mm)
 
     def table(self) -> pd.DataFrame:
         rows = [("photo scale 1:M_c", "", f"1:{self.M_c:.0f}"), ("map scale 1:M_k", "", f"1:{self.M_k:.0f}"),
@@ -209,6 +215,7 @@ class UpdateBudget(Task):
         B = c.budget()
         r_max, r_rms = bu.working_area_radii_mm(c.frame_mm, c.px_percent, c.py_percent)
         sq = {s.key: s.rms_m**2 for s in B.stages}
+        art = c.budget(transfer_mm=bu.transfer_rms_mm())  # the article's reading of (9): the mean d put in
         linear = sum(s.rms_m for s in B.stages)
         return {
             "mrel_m": {"use the RMS radius r_rms of the working area, not its half-diagonal":
@@ -216,8 +223,10 @@ class UpdateBudget(Task):
                        "heights spread uniformly over Δh have an RMS of Δh/√12 about the mean plane":
                        bu.dtm_displacement_m(c.relief_m, c.f_mm, r_rms)},
             "mD_m": {"independent errors add as squares (formula 10), not linearly": linear,
-                     "formula (10) takes all seven stages": math.sqrt(sum(sq.values()) - sq["dtm"])},
-            "vd_mm": {"that is the RMS error m_d; the mean error is m_d/1.25": B.map_rms_mm},
+                     "formula (10) takes all seven stages": math.sqrt(sum(sq.values()) - sq["dtm"]),
+                     TRANSFER_AS_PRINTED: art.total_m},
+            "vd_mm": {"that is the RMS error m_d; the mean error is m_d/1.25": B.map_rms_mm,
+                      TRANSFER_AS_PRINTED: art.map_mean_mm},
         }
 
     def hidden(self, v, got) -> list:

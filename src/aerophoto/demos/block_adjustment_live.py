@@ -1,7 +1,7 @@
 """Live bundle block adjustment: the control layout, the measuring error and a blunder (chapter 15, article 002).
 
 A small block of the mountain site (3 strips × 4 photos at 1:15 000, f = 200 mm, the article's camera and scale;
-:func:`aerophoto.tasks.ch15.survey_block`) is adjusted by the bundle method, linearised at the truth
+:func:`aerophoto.labs.ch15.survey_block`) is adjusted by the bundle method, linearised at the truth
 (:func:`block_model`): with the design matrix A of the collinearity equations and of the control points'
 coordinate observations, weights 1/σ², the corrections are dx = Q·AᵀP·ℓ with Q = (AᵀPA)⁻¹, the residuals
 v = A·dx − ℓ, the redundancy numbers r = 1 − diag(A·Q·AᵀP) and Baarda's standardised residuals w = v/(σ√r)
@@ -55,7 +55,7 @@ _C = plots.COLORS
 @functools.lru_cache(maxsize=1)
 def _block():
     """The demo's block (geometry and truth; its own measurements are simulated here)."""
-    from ..tasks import ch15
+    from ..labs import ch15
 
     return ch15.survey_block(15_000.0, 3, 4, seed=BLOCK_SEED, blunder_size_mm=0.0, control_dz_m=0.0, n_field=5)
 

@@ -522,6 +522,9 @@ def legend_html(ax, *, remove: bool = True) -> str:
                     glyph = _MARKER_GLYPH.get(marker, "●")
                     if h.get_markerfacecolor() in ("none", "None"):
                         glyph = {"●": "○", "■": "□", "▲": "△", "▼": "▽", "◆": "◇"}.get(glyph, glyph)
+                        colour = to_hex(h.get_markeredgecolor())  # an open marker shows its edge's colour
+                    else:
+                        colour = to_hex(h.get_markerfacecolor())
                 elif h.get_linestyle() in ("--", "dashed", ":", "dotted", "-.", "dashdot"):
                     glyph = "┅" if h.get_linestyle() in (":", "dotted") else "╍"
             elif getattr(h, "get_array", lambda: None)() is not None and getattr(h, "cmap", None) is not None:

@@ -1,4 +1,10 @@
-"""Shared test set-up: a private AEROPHOTO_HOME so tests never read a student's remembered number."""
+"""Shared test set-up: a private AEROPHOTO_HOME so tests never read a student's remembered number.
+
+The tests are laid out as the package's layers (foundation/, physics/, world/, content/, presentation/, course/,
+notebooks/, browser/).  Each folder is a package (an ``__init__.py``), so pytest puts this folder on ``sys.path``
+and ``from conftest import NOTEBOOKS`` reads this file from any of them; an area's own helpers live in its
+``conftest.py`` (``from .conftest import …``).  Basenames stay unique over the tree: SPREAD names files by them.
+"""
 
 import os
 import tempfile
@@ -73,7 +79,7 @@ def pytest_xdist_make_scheduler(config, log):
 @pytest.fixture(params=["book style", "matplotlib defaults"])
 def plot_style(request):
     """Run a figure test under the book's style (as in every notebook: a grid over the data) and under matplotlib's
-    defaults (the blitting tests: tests/test_blit.py, tests/test_blit_mosaic.py)."""
+    defaults (the blitting tests: tests/presentation/test_blit.py, tests/presentation/test_blit_mosaic.py)."""
     from aerophoto import plots
 
     if request.param == "book style":

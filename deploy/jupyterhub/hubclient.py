@@ -1,6 +1,6 @@
 """A small client of the course hub, as one user: log in, start the server, files, nbgrader's Assignments, kernels.
 
-Used by tests/test_hub.py and benchmarks/bench_hub.py (and usable from a script): everything goes through
+Used by tests/course/test_hub.py and benchmarks/bench_hub.py (and usable from a script): everything goes through
 the hub's proxy as a browser would — the login form, the hub's REST API with the user's own token, the
 user's Jupyter server (contents API, nbgrader's ``/assignments`` handlers, kernels over the websocket).
 """

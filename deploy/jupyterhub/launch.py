@@ -9,7 +9,7 @@ JupyterHub with ``jupyterhub_config.py`` on http://127.0.0.1:8000 and prints the
 hub, every user's server and kernel; the homes, the exchange and the course folder stay in ``--state``
 (``--fresh`` starts from an empty one).
 
-:class:`Hub` is the same start-up for code (tests/test_hub.py, benchmarks/bench_hub.py): private state, free
+:class:`Hub` is the same start-up for code (tests/course/test_hub.py, benchmarks/bench_hub.py): private state, free
 ports, random passwords, an API token for the hub's REST API, and a stop that leaves no process behind.
 This file depends on the standard library (and ``psutil``, ``requests``: both come with the book's
 environment and JupyterHub) — no pytest.

@@ -7,10 +7,10 @@ Cells are identified by id; the notebook is written without outputs.
 
 from pathlib import Path
 
-from aerophoto import tasks
+from aerophoto import labs
 from aerophoto.nbtools import code, md, notebook, write
 
-from build_09_plan_correction import answer_cell, check_cell  # noqa: E402  (same folder)
+from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "07_stereoscope.ipynb"
@@ -24,7 +24,7 @@ def _bias_table() -> str:
 
     rows = []
     for i in range(100):
-        lab = tasks.ch07.stereo_lab(variant_for_index(i))
+        lab = labs.ch07.stereo_lab(variant_for_index(i))
         rows.append((lab.f_mm, 100.0 * abs(lab.b_mm / lab.b_flat_mm - 1.0)))
     df = pd.DataFrame(rows, columns=["f", "bias"])
     out = ["| f, mm | variants | mean \\|b − b₀\\|, % | largest \\|b − b₀\\|, % |", "|---|---|---|---|"]

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from aerophoto.nbtools import code, md, notebook, write
 
-from build_09_plan_correction import answer_cell, check_cell  # noqa: E402  (same folder)
+from lab_cells import answer_cell, check_cell  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[2]
 PATH = ROOT / "notebooks" / "08_interpretation.ipynb"

@@ -58,7 +58,7 @@ keeps them current. The whole chapter, with theory, worked example and tasks, is
   than dragging in front of a class.
 * Every demo can also be set from code in JupyterLab, e.g. `demo.set(alpha_deg=10)`.
 * Colours are the Okabe–Ito palette; every key's entries stay apart under simulated deuteranopia and
-  protanopia, or differ in shape as well (`tests/test_colours.py`).
+  protanopia, or differ in shape as well (`tests/presentation/test_colours.py`).
 * Numbers are written one way throughout: `12 043` (a narrow space groups the digits), `−3.5` (a true minus),
   `0,25` in Russian.
 """,

@@ -3,7 +3,7 @@
 The package does the computing, plotting and widget wiring for the notebooks in
 ``notebooks/``; the notebooks tell the story.  One module per topic of the
 course-design guide (Presnyakov & Tyuklenkova, Penza 2014), in six layers
-(imports point downwards only; ``tests/test_layers.py`` checks it):
+(imports point downwards only; ``tests/course/test_layers.py`` checks it):
 
 ===  ====================  =====================================================
 1    foundation            ``geometry`` (camera, central projection, terrain),
@@ -70,7 +70,7 @@ _SUBMODULES = (
     "report",
     "lite",
 )
-"""Every public module and subpackage, once (tests/test_chapter_key.py checks it against the files on disk)."""
+"""Every public module and subpackage, once (tests/course/test_chapter_key.py checks it against the files on disk)."""
 
 __all__ = ["__version__", "setup", "chapters", *_SUBMODULES]
 

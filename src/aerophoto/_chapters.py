@@ -2,7 +2,7 @@
 
 ``aerophoto.guide`` and ``aerophoto.tasks`` (and ``aerophoto.labs``) hold one module per chapter, named by the
 notebook's number; their lists of chapter modules are read from the files by this rule, never kept by hand.
-The chapters themselves are :data:`aerophoto.book.CHAPTERS` (tests/test_chapter_key.py checks the two agree).
+The chapters themselves are :data:`aerophoto.book.CHAPTERS` (tests/course/test_chapter_key.py checks the two agree).
 """
 
 from __future__ import annotations

@@ -66,6 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_int_range, check_positive, check_range
 from .bundle import collinearity as _col
@@ -204,7 +205,7 @@ def whole_bases(n_real: float) -> int:
 
 # =========================================================================== Monte Carlo of strips
 def _rot_b(opk):  # (R, 3) → (R, 3, 3)
-    return _col.rotation_opk(opk[:, 0], opk[:, 1], opk[:, 2])
+    return _col._rotation_opk(opk[:, 0], opk[:, 1], opk[:, 2])
 
 
 def _rays_b(R, xy, f):
@@ -351,6 +352,7 @@ class StripMonteCarlo:
         return pd.DataFrame(rows, columns=cols).set_index(cols[0])
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), terrain=V.terrain(none=True))
 def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.01 / math.sqrt(2.0),
                       n_runs: int = 100, seed: int = 0, d_mm: float | None = None, halfway: bool = False,
                       margin_mm: float = 3.0) -> StripMonteCarlo:
@@ -394,13 +396,13 @@ def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.0
     half = camera.half_mm - margin_mm
     obs = {}
     for j in range(len(poses)):
-        xy = _col.project(np.repeat(eo[j:j + 1], len(pts), axis=0), pts, f)
+        xy = _col._project(np.repeat(eo[j:j + 1], len(pts), axis=0), pts, f)
         inside = np.flatnonzero(np.all(np.abs(xy) <= half, axis=1))
         obs[j] = (inside, xy[inside])
     rng = np.random.default_rng(seed)
     noisy = {j: xy[None] + sig * rng.standard_normal((runs,) + xy.shape) for j, (k, xy) in obs.items()}
     # the strip's own frame: photo 0 fixed as in truth (a similarity to the control fixes the datum anyway)
-    R0 = np.repeat(_col.rotation_opk(*eo[0, 3:])[None], runs, axis=0)
+    R0 = np.repeat(_col._rotation_opk(*eo[0, 3:])[None], runs, axis=0)
     S0 = np.repeat(eo[0:1, :3], runs, axis=0)
     Rs, Ss = [R0], [S0]
     models = []  # per model j = 1 … n: (point indices, coordinates (runs, k, 3))
@@ -460,6 +462,7 @@ def strip_monte_carlo(camera: g.Camera, poses, terrain, *, sigma_mm: float = 0.0
     return StripMonteCarlo(n, sig, scale_m, free, mid, mid_n, b_mm, f)
 
 
+@V.checked(n=V.array(ndim=1, min_len=2), rms=V.array(ndim=1, min_len=2), law=V.function('a function n → factor'))
 def fit_accumulation(n, rms, law) -> tuple:
     """Least-squares coefficient d of ``rms ≈ d·law(n)`` through the origin, and the log-log slope of rms.
 
@@ -531,6 +534,8 @@ class BlockPrecision:
                 "height max, m": float(self.sigma_Z_m[t].max())}
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), photo_strip=V.indices(),
+           photo_order=V.indices(), terrain=V.terrain(none=True))
 def block_precision(camera: g.Camera, poses, photo_strip, photo_order, terrain, *, every: int = 4,
                     layout: str = "rows", sigma_mm: float = 0.01, control_factor: float = 1.0,
                     d_mm: float | None = None, halfway_mm: float | None = None, points_m=None) -> BlockPrecision:
@@ -588,6 +593,7 @@ def block_precision(camera: g.Camera, poses, photo_strip, photo_order, terrain, 
                           eo[:, :3], rows)
 
 
+@V.checked(strip_precision=BlockPrecision, block_precision_=BlockPrecision)
 def block_vs_strip(strip_precision: BlockPrecision, block_precision_: BlockPrecision) -> dict:
     """How much better the block is: ratios strip/block of the RMS plan and height errors of tie points."""
     a, b = strip_precision.summary(), block_precision_.summary()
@@ -595,6 +601,8 @@ def block_vs_strip(strip_precision: BlockPrecision, block_precision_: BlockPreci
 
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), photo_strip=V.indices(),
+           photo_order=V.indices(), terrain=V.terrain(none=True), seed=V.whole(0, 2**32 - 1))
 def block_monte_carlo(camera: g.Camera, poses, photo_strip, photo_order, terrain, *, every: int = 4,
                       layout: str = "rows", sigma_mm: float = 0.01, control_factor: float = 1.0, n_runs: int = 20,
                       seed: int = 0, points_m=None) -> dict:

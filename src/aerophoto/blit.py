@@ -3,7 +3,7 @@
 :class:`Blitter` replaces the figure's ``draw`` while it is active, so that a full draw keeps a background
 without the animated artists; a slider move then restores that background, draws the animated set and blits.
 :class:`aerophoto.widgets.LiveDemo` uses it for the artists a demo names in ``animated``.  The figure
-builders and the book's style are :mod:`aerophoto.plots`; tests/test_blit.py and tests/test_blit_mosaic.py
+builders and the book's style are :mod:`aerophoto.plots`; tests/presentation/test_blit.py and tests/presentation/test_blit_mosaic.py
 compare blitted moves with full draws pixel by pixel.
 """
 
@@ -141,7 +141,7 @@ class Blitter:
     Axes whose labels reach over animated artists is animated too, so it is
     drawn over them as before.  The set is recomputed before every full draw
     (artists added meanwhile join it).  ``savefig`` (and so the inline
-    backend) draws the figure as if nothing were animated.  tests/test_blit.py
+    backend) draws the figure as if nothing were animated.  tests/presentation/test_blit.py
     compares blitted moves with full draws pixel by pixel.
     """
 

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from ._validate import check_finite_array, check_int_range, check_positive, check_range
 
 __all__ = ["MEAN_TO_RMS", "TOLERANCE_MEAN_MM", "SCAN_RMS_UM", "TRIANGULATION_K", "SIGMA_PER_PIXEL",
@@ -85,11 +86,13 @@ STAGES = (
 )
 
 
+@V.checked(v=V.values(0.0))
 def rms_from_mean(v):
     """RMS error from a mean error, m = 1.25·v (article 003, formulas 1 and 5); any unit, arrays too."""
     return MEAN_TO_RMS * np.asarray(v, dtype=float) if np.ndim(v) else MEAN_TO_RMS * float(v)
 
 
+@V.checked(m=V.values(0.0))
 def mean_from_rms(m):
     """Mean error from an RMS error, v = m/1.25 (article 003, before table 5)."""
     return np.asarray(m, dtype=float) / MEAN_TO_RMS if np.ndim(m) else float(m) / MEAN_TO_RMS
@@ -101,6 +104,7 @@ def mean_abs_deviation(values) -> float:
     return float(np.mean(np.abs(a - a.mean())))
 
 
+@V.checked(v_x=V.values(), v_y=V.values())
 def plan_error(v_x, v_y):
     """Formula (4) (and (8) for RMS errors): the planimetric error √(V_X² + V_Y²) from the axes' errors."""
     return np.hypot(v_x, v_y) if np.ndim(v_x) or np.ndim(v_y) else math.hypot(float(v_x), float(v_y))
@@ -390,6 +394,7 @@ ARTICLE_CASES = (
 )
 
 
+@V.checked(m_h_m=V.number(0.0, 1e3))
 def scenarios(M_c: float = 10_000.0, P_um: float = 16.0, M_k: float = 2000.0, *, f_mm: float = 153.0,
               frame_mm: float = 230.0, m_h_m: float = 0.5) -> pd.DataFrame:
     """What would change the verdict: the article's budget and four variations of it, one row each.

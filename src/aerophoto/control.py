@@ -53,6 +53,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from ._validate import check_int_range, check_points, check_positive, check_range
 from .triangulation import zhukov as _zhukov
 
@@ -106,6 +107,7 @@ def marking_circles_ground_m(m: float) -> tuple:
 
 
 # --------------------------------------------------------------------------- frames and angles
+@V.checked(xy_m=V.array(last=2))
 def geodetic_from_site(xy_m) -> np.ndarray:
     """Site coordinates (X east, Y north) → geodetic (X north, Y east): the two columns swapped, (…, 2)."""
     p = np.asarray(xy_m, dtype=float)
@@ -148,12 +150,14 @@ def format_dms(angle_deg: float, decimals: int = 0) -> str:
     return f"{sign}{d}°{m:02d}′{sec}″"
 
 
+@V.checked(from_xy=V.array(last=2), to_xy=V.array(last=2))
 def direction_angle_deg(from_xy, to_xy) -> np.ndarray:
     """Direction angle α (дирекционный угол) from ``from_xy`` to ``to_xy``, degrees, 0 ≤ α < 360.
 
     Geodetic coordinates (X north, Y east): α = atan2(ΔY, ΔX), clockwise from
     +X.  Shapes broadcast over (…, 2); a scalar for single points.
     """
+    V.check_broadcast(from_xy=from_xy, to_xy=to_xy)
     a = np.asarray(from_xy, dtype=float)
     b = np.asarray(to_xy, dtype=float)
     d = b - a
@@ -163,12 +167,15 @@ def direction_angle_deg(from_xy, to_xy) -> np.ndarray:
     return float(out) if np.ndim(out) == 0 else out
 
 
+@V.checked(station_xy=V.array(last=2), from_xy=V.array(last=2), to_xy=V.array(last=2))
 def horizontal_angle_deg(station_xy, from_xy, to_xy):
     """The angle measured at the station from one point to another, clockwise, degrees, 0 ≤ β < 360."""
+    V.check_broadcast(station_xy=station_xy, from_xy=from_xy, to_xy=to_xy)
     out = (np.asarray(direction_angle_deg(station_xy, to_xy)) - direction_angle_deg(station_xy, from_xy)) % 360.0
     return float(out) if np.ndim(out) == 0 else out
 
 
+@V.checked(A=V.point(2), B=V.point(2), C=V.point(2))
 def danger_circle(A, B, C) -> tuple:
     """The circle through A, B, C (опасный круг): centre (2,) and radius, m; ValueError if they are collinear."""
     P = check_points("A, B, C", np.vstack([np.asarray(A, float).reshape(1, 2), np.asarray(B, float).reshape(1, 2),
@@ -265,6 +272,7 @@ def _point(Bp, a, c, b1, b2):
     return Bp + np.array([u / r2, -v / r2]), strength  # 1/w = conj(w)/|w|²
 
 
+@V.checked(A=V.point(2), B=V.point(2), C=V.point(2))
 def resect(A, B, C, beta1_deg: float, beta2_deg: float) -> Resection:
     """Resection (Snellius–Pothenot): the station P from three known points and the two angles measured at P.
 
@@ -327,6 +335,7 @@ def resect(A, B, C, beta1_deg: float, beta2_deg: float) -> Resection:
     return Resection(P, K, b1, b2, float(strength), centre, radius, float(math.hypot(*shifts)))
 
 
+@V.checked(A=V.point(2), B=V.point(2), C=V.point(2), beta1_deg=V.values(), beta2_deg=V.values())
 def resect_many(A, B, C, beta1_deg, beta2_deg) -> np.ndarray:
     """Many resections at once (e.g. a Monte Carlo of angle errors): stations (k, 2), NaN where undetermined.
 
@@ -414,6 +423,7 @@ def check_tolerance_arcsec(distance_m: float, M: float = 10000.0, tol_mm: float 
     return RHO_ARCSEC * identification_tolerance_m(M, tol_mm) / S
 
 
+@V.checked(res=Resection, D=V.point(2))
 def check_resection(res: Resection, D, measured_deg: float, *, M: float = 10000.0,
                     tol_mm: float = IDENTIFICATION_MM, from_index: int = 2) -> ResectionCheck:
     """Compare the measured check angle (from known point ``from_index`` — C by default — to D) with the computed one.
@@ -498,6 +508,7 @@ class ControlDesign:
                              "X_m": self.points_m[..., 0].ravel(), "Y_m": self.points_m[..., 1].ravel()})
 
 
+@V.checked(centres_m=V.array(last=2, min_len=1))
 def design_control(centres_m, spacing_bases: int, *, strip_spacing_m: float | None = None) -> ControlDesign:
     """Rows of control across the strips of a block, every ``spacing_bases`` bases (guide §11).
 

@@ -60,6 +60,7 @@ from typing import Sequence
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_positive, check_range
 
@@ -103,6 +104,7 @@ GUIDE_M_PLAN = 10000.0
 
 
 # =========================================================================== scales of bases
+@V.checked(l_plan_mm=V.values(0.0, lo_open=True), l_photo_mm=V.values(0.0, lo_open=True))
 def base_scale(l_plan_mm, l_photo_mm, M: float = GUIDE_M_PLAN):
     """Scale denominator of a photo along one base (guide formula 5.1).
 
@@ -135,7 +137,8 @@ def base_scale(l_plan_mm, l_photo_mm, M: float = GUIDE_M_PLAN):
 
 def ratio_text(N: float) -> str:
     """Format a relative deviation 1/N the way the guide prints it ("1/71"); ∞ for Δm = 0."""
-    if not np.isfinite(N):
+    N = V.check_range("N", N, 0.0, math.inf, lo_open=True) if N != math.inf else N
+    if N == math.inf:
         return "0"
     if N >= 1000:
         return f"1/{round(N, -2):.0f}"
@@ -163,6 +166,8 @@ class Base:
     zone: str = ""
 
     def __post_init__(self):
+        V.check_type("name", self.name, str)
+        V.check_type("zone", self.zone, str)
         check_positive("l_plan_mm", self.l_plan_mm, unit="mm")
         check_positive("l_photo_mm", self.l_photo_mm, unit="mm")
         if not self.zone:
@@ -249,6 +254,7 @@ class ScaleTable:
         return df
 
 
+@V.checked(bases=V.sequence(min_len=1))
 def partial_scales(bases: Sequence, M: float = GUIDE_M_PLAN, zone_heights_m=None) -> ScaleTable:
     """Scales of bases, partial scales of zones and the mean scale (guide tables 2, 4, 5, 7).
 
@@ -282,6 +288,7 @@ def partial_scales(bases: Sequence, M: float = GUIDE_M_PLAN, zone_heights_m=None
 
 
 # =========================================================================== relief (guide §4)
+@V.checked(base_end_heights_m=V.array(last=2, min_len=1))
 def zone_height(base_end_heights_m) -> float:
     """Mean height of a zone, m: the mean of its bases' mean heights (guide §4 step 3).
 
@@ -298,6 +305,7 @@ def zone_height(base_end_heights_m) -> float:
     return float(arr.mean())
 
 
+@V.checked(zone_heights_m=V.array(ndim=1, min_len=1))
 def mean_object_plane(zone_heights_m) -> float:
     """Height of the mean object plane Z_cp, m: the mean of the zones' heights (guide §4).
 
@@ -370,6 +378,7 @@ class ReliefCorrections:
         )
 
 
+@V.checked(names=V.names(), Z_m=V.array(ndim=1), r_mm=V.array(ndim=1))
 def relief_corrections(names, Z_m, r_mm, H_m: float, Z_mean_m: float | None = None,
                        *, threshold_mm: float = THRESHOLD_MM) -> ReliefCorrections:
     """Relief displacements δh = r·h/H of pricked points (guide §4, formula 4.1, table 3).
@@ -407,6 +416,7 @@ def relief_corrections(names, Z_m, r_mm, H_m: float, Z_mean_m: float | None = No
     return ReliefCorrections(names, Z, r, Zc, float(H_m), h, np.asarray(d, dtype=float), thr)
 
 
+@V.checked(camera=g.Camera, pose=g.Pose, XYZ_m=V.array(last=3))
 def relief_displacement_vectors(camera: g.Camera, pose: g.Pose, XYZ_m, Z_mean_m: float = 0.0):
     """Exact relief displacement of ground points on a (possibly tilted) photo.
 
@@ -441,6 +451,7 @@ def nadir_offset(f_mm: float, alpha_deg: float) -> float:
     return float(g.nadir_point(cam, pose)[0])
 
 
+@V.checked(camera=g.Camera, pose=g.Pose, r_c_mm=V.values(0.0), phi_deg=V.values())
 def point_from_polar(camera: g.Camera, pose: g.Pose, r_c_mm, phi_deg) -> np.ndarray:
     """Photo coordinates, shape (..., 2) mm, of points given by r_c and φ about the isocentre.
 
@@ -453,6 +464,7 @@ def point_from_polar(camera: g.Camera, pose: g.Pose, r_c_mm, phi_deg) -> np.ndar
     return np.stack([c[0] + r * np.cos(a), c[1] + r * np.sin(a)], axis=-1)
 
 
+@V.checked(camera=g.Camera, pose=g.Pose, xy_mm=V.array(last=2))
 def polar_about_isocentre(camera: g.Camera, pose: g.Pose, xy_mm):
     """r_c (mm) and φ (degrees, 0 ≤ φ < 360) of photo points about the isocentre c.
 
@@ -528,6 +540,7 @@ class TiltCorrections:
         )
 
 
+@V.checked(names=V.names(), r_c_mm=V.array(ndim=1), phi_deg=V.array(ndim=1))
 def tilt_corrections(names, r_c_mm, phi_deg, *, f_mm: float = GUIDE_F_MM, alpha_deg: float = GUIDE_ALPHA_DEG,
                      threshold_mm: float = THRESHOLD_MM) -> TiltCorrections:
     """Tilt displacements of points given by r_c and φ (guide §5 step 9, table 6).
@@ -569,6 +582,7 @@ def tilt_corrections(names, r_c_mm, phi_deg, *, f_mm: float = GUIDE_F_MM, alpha_
     return TiltCorrections(names, r, phi, cam.f_mm, pose.alpha_deg, np.asarray(approx), np.asarray(exact), thr)
 
 
+@V.checked(xy_mm=V.points(2, min_points=1), centre_mm=V.point(2), delta_mm=V.array(ndim=1))
 def apply_radial_corrections(xy_mm, centre_mm, delta_mm, threshold_mm: float = THRESHOLD_MM) -> np.ndarray:
     """Move photo points radially to undo a displacement (guide §4 step 5, §5 step 10).
 
@@ -590,6 +604,8 @@ def apply_radial_corrections(xy_mm, centre_mm, delta_mm, threshold_mm: float = T
     xy = np.asarray(xy_mm, dtype=float)
     c = np.asarray(centre_mm, dtype=float)
     d = np.asarray(delta_mm, dtype=float)
+    if d.shape != xy.shape[:-1]:
+        raise ValueError(f"delta_mm has shape {d.shape}; expected one correction per point of xy_mm, {xy.shape[:-1]}")
     thr = check_range("threshold_mm", threshold_mm, 0.0, unit="mm")
     v = xy - c
     r = np.hypot(v[..., 0], v[..., 1])
@@ -600,6 +616,7 @@ def apply_radial_corrections(xy_mm, centre_mm, delta_mm, threshold_mm: float = T
 
 
 # =========================================================================== the whole procedure on measurements
+@V.checked(names=V.names(min_len=2), xy_mm=V.points(2, min_points=2), bases=V.pairs())
 def base_lengths_mm(names, xy_mm, bases) -> np.ndarray:
     """Lengths, mm, of the bases ``(a, b)`` between named points with coordinates ``xy_mm`` (shape (n, 2)).
 
@@ -677,6 +694,8 @@ class ReliefWork:
     table4: ScaleTable
 
 
+@V.checked(names=V.names(min_len=2), photo_xy_mm=V.points(2, min_points=2), l_plan_mm=V.array(ndim=1),
+           Z_m=V.array(ndim=1), bases=V.pairs(), n_mm=V.point(2))
 def relief_work(names, photo_xy_mm, l_plan_mm, Z_m, bases, *, f_mm: float, n_mm, M: float = GUIDE_M_PLAN,
                 threshold_mm: float = THRESHOLD_MM) -> ReliefWork:
     """Run the guide's §4 (tables 2 → 3 → 4) on measured photo coordinates and plan lengths.
@@ -760,6 +779,7 @@ class TiltWork:
     table7: ScaleTable
 
 
+@V.checked(names=V.names(min_len=2), photo_xy_mm=V.points(2, min_points=2), l_plan_mm=V.array(ndim=1), bases=V.pairs())
 def tilt_work(names, photo_xy_mm, l_plan_mm, bases, *, f_mm: float, alpha_deg: float, lambda_deg: float,
               M: float = GUIDE_M_PLAN, threshold_mm: float = THRESHOLD_MM) -> TiltWork:
     """Run the guide's §5 (tables 5 → 6 → 7) on measured photo coordinates and plan lengths.

@@ -60,7 +60,8 @@ import numpy as np
 import pandas as pd
 
 from . import geometry as g
-from ._validate import check_percent, check_positive, check_range
+from ._validate import check_percent, check_positive, check_range, check_type
+from .variants import as_variant
 
 __all__ = [
     "FlightPlan",
@@ -290,6 +291,7 @@ def plan(variant=None, *, f_mm=None, m=None, px_percent=None, py_percent=None, L
     """
     given = dict(f_mm=f_mm, m=m, px_percent=px_percent, py_percent=py_percent, Lx_km=Lx_km, Ly_km=Ly_km,
                  Zmax_m=Zmax_m, Zmin_m=Zmin_m, W_kmh=W_kmh, M=M, frame_mm=frame_mm, blur_mm=blur_mm)
+    variant = as_variant(variant, "variant")
     values = {}
     for name in _INPUTS:
         if given[name] is not None:
@@ -381,6 +383,7 @@ def side_spacing(p: FlightPlan, *, exact: bool = False) -> dict:
     photo), ``By_km`` (km), ``K_ratio`` (L_y/B_y) and ``K`` (strips, rounded up
     with :func:`count_up`).
     """
+    check_type("p", p, FlightPlan)
     if exact:
         allowance = exact_allowance_percent(p.py_percent, p.h_m, p.H_m)
     else:
@@ -493,6 +496,7 @@ class FlightLayout:
 
 def layout(p: FlightPlan) -> FlightLayout:
     """Place the strips and photos of plan ``p`` over its area (see :class:`FlightLayout`)."""
+    check_type("p", p, FlightPlan)
     span_y = (p.K - 1) * p.By_km
     span_x = (p.n - 1) * p.Bx_km
     strip_y = (p.Ly_km - span_y) / 2.0 + np.arange(p.K) * p.By_km
@@ -519,6 +523,7 @@ def overlaps_at(p: FlightPlan, Z_m: float) -> tuple[float, float]:
 
     Returns ``(forward_percent, side_percent)``.
     """
+    check_type("p", p, FlightPlan)
     Z = check_range("Z_m", Z_m, -math.inf, p.Zmin_m + p.H_m, hi_open=True, unit="m")
     cam = g.Camera(p.f_mm, p.frame_mm)
     a = g.footprint(cam, g.Pose.vertical(0.0, 0.0, p.H_m, ground_Z_m=p.Zmin_m), Z)

@@ -50,7 +50,7 @@ from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
 
-from ._validate import check_int_range, check_positive, check_range
+from ._validate import check_finite_array, check_int_range, check_positive, check_range, check_type, check_values
 
 __all__ = [
     "Camera",
@@ -154,7 +154,7 @@ class Pose:
     kappa_deg: float = 0.0
 
     def __post_init__(self):
-        for name in ("X_m", "Y_m", "Z_m", "lambda_deg", "kappa_deg"):
+        for name in ("X_m", "Y_m", "Z_m", "lambda_deg", "kappa_deg"):  # noqa: B007
             v = check_range(name, getattr(self, name), -1e9, 1e9)
             object.__setattr__(self, name, v)
         a = check_range("alpha_deg", self.alpha_deg, -90.0, 90.0, lo_open=True, hi_open=True, unit="degrees")
@@ -217,6 +217,9 @@ class FlatTerrain:
 
     z_m: float = 0.0
 
+    def __post_init__(self):
+        object.__setattr__(self, "z_m", check_range("z_m", self.z_m, -1e5, 1e5, unit="m"))
+
     @property
     def z_min_m(self) -> float:
         return self.z_m
@@ -260,6 +263,16 @@ def flying_height_m(f_mm: float, m: float) -> float:
     return check_positive("f_mm", f_mm, unit="mm", hi=MAX_F_MM) / 1000.0 * check_positive("m", m, hi=1e7)
 
 
+_NO_CAMERA = object()
+
+
+def _cp(camera, pose, pose_name: str = "pose"):
+    """Check the camera and pose arguments by type (TypeError naming the parameter)."""
+    if camera is not _NO_CAMERA:
+        check_type("camera", camera, Camera)
+    check_type(pose_name, pose, Pose)
+
+
 # --------------------------------------------------------------------------- rotation
 def _dir(az_rad: float) -> np.ndarray:
     return np.array([math.cos(az_rad), math.sin(az_rad), 0.0])
@@ -273,6 +286,7 @@ def rotation_matrix(pose: Pose) -> np.ndarray:
     photo at the nadir n = −f·tan α along the positive principal vertical, and
     that for α = 0 the photo's +x axis points at azimuth κ on the ground.
     """
+    _cp(_NO_CAMERA, pose)
     a = math.radians(pose.alpha_deg)
     lam = math.radians(pose.lambda_deg)
     kap = math.radians(pose.kappa_deg)
@@ -288,22 +302,26 @@ def rotation_matrix(pose: Pose) -> np.ndarray:
 
 def principal_vertical(pose: Pose) -> np.ndarray:
     """Unit vector, shape (2,), of the positive principal vertical on the photo (away from n)."""
+    _cp(_NO_CAMERA, pose)
     lam = math.radians(pose.lambda_deg)
     return np.array([math.cos(lam), math.sin(lam)])
 
 
 def principal_point(camera: Camera, pose: Pose) -> np.ndarray:
     """Principal point o, shape (2,), mm: the origin of photo coordinates."""
+    _cp(camera, pose)
     return np.zeros(2)
 
 
 def nadir_point(camera: Camera, pose: Pose) -> np.ndarray:
     """Nadir point n (точка надира), shape (2,), mm: at −f·tan α on the principal vertical."""
+    _cp(camera, pose)
     return -camera.f_mm * math.tan(math.radians(pose.alpha_deg)) * principal_vertical(pose)
 
 
 def isocentre(camera: Camera, pose: Pose) -> np.ndarray:
     """Isocentre c (точка нулевых искажений), shape (2,), mm: at oc = −f·tg(α/2) (guide §5)."""
+    _cp(camera, pose)
     return -camera.f_mm * math.tan(math.radians(pose.alpha_deg) / 2.0) * principal_vertical(pose)
 
 
@@ -327,9 +345,8 @@ def ground_to_photo(camera: Camera, pose: Pose, XYZ_m) -> np.ndarray:
         If a point lies at or above the plane through S parallel to the photo
         (it has no image on the positive photo).
     """
-    P = np.asarray(XYZ_m, dtype=float)
-    if P.shape[-1] != 3:
-        raise ValueError(f"XYZ_m has shape {P.shape}; the last axis must hold X, Y, Z (length 3)")
+    _cp(camera, pose)
+    P = check_finite_array("XYZ_m", XYZ_m, last=3)
     R = rotation_matrix(pose)
     d = P - pose.centre
     c = d @ R  # = (R.T @ d.T).T, camera-frame components
@@ -345,9 +362,7 @@ def ground_to_photo(camera: Camera, pose: Pose, XYZ_m) -> np.ndarray:
 
 
 def _rays(camera: Camera, pose: Pose, xy_mm) -> np.ndarray:
-    xy = np.asarray(xy_mm, dtype=float)
-    if xy.shape[-1] != 2:
-        raise ValueError(f"xy_mm has shape {xy.shape}; the last axis must hold x, y (length 2)")
+    xy = check_finite_array("xy_mm", xy_mm, last=2)
     cam = np.concatenate([xy, np.full(xy.shape[:-1] + (1,), -camera.f_mm)], axis=-1)
     return cam @ rotation_matrix(pose).T  # ground directions, shape (..., 3)
 
@@ -367,6 +382,7 @@ def photo_to_plane(camera: Camera, pose: Pose, xy_mm, Z_m: float = 0.0) -> np.nd
     ndarray, shape (..., 3)
         Ground points X, Y, Z in metres.
     """
+    _cp(camera, pose)
     Zp = check_range("Z_m", Z_m, unit="m")
     pose.flying_height(Zp)  # raises if S is not above the plane
     g = _rays(camera, pose, xy_mm)
@@ -412,6 +428,10 @@ def photo_to_dem(
         (modified regula falsi) method, so it converges for any terrain whose
         heights stay within those bounds.
     """
+    _cp(camera, pose)
+    if not callable(getattr(dem, "height", dem)):
+        raise TypeError(f"dem = {dem!r:.60} is a {type(dem).__name__}; expected a Terrain (an object with "
+                        "height(X, Y), z_min_m and z_max_m)")
     height: Callable = getattr(dem, "height", dem)
     zmin = float(getattr(dem, "z_min_m", np.nan))
     zmax = float(getattr(dem, "z_max_m", np.nan))
@@ -484,6 +504,8 @@ def transfer_points(camera: Camera, pose_from: Pose, pose_to: Pose, xy_mm, terra
     -------
     ndarray, shape (..., 2) : the same ground details on the photo taken from ``pose_to``, mm.
     """
+    _cp(camera, pose_from, "pose_from")
+    _cp(_NO_CAMERA, pose_to, "pose_to")
     G = photo_to_dem(camera, pose_from, xy_mm, as_terrain(terrain))
     return ground_to_photo(camera, pose_to, G)
 
@@ -495,7 +517,9 @@ def photo_axis_towards(xy_mm) -> tuple[int, float]:
     (71.8, −2.1) mm lies along +x: ``(0, 1.0)``.  Used to tell "towards the
     next photo" from "across the strip" whatever the photos' numbering.
     """
-    xy = np.asarray(xy_mm, dtype=float)
+    xy = check_finite_array("xy_mm", xy_mm, ndim=1)
+    if xy.shape != (2,) or not xy.any():
+        raise ValueError(f"xy_mm = {xy.tolist()} must be one non-zero vector (x, y) in mm")
     k = int(np.argmax(np.abs(xy)))
     return k, (1.0 if xy[k] >= 0 else -1.0)
 
@@ -508,6 +532,7 @@ def footprint(camera: Camera, pose: Pose, Z_m: float = 0.0, *, samples_per_side:
     ``samples_per_side`` > 1 the edges are sampled too (they stay straight on
     a plane, but not on a DEM).
     """
+    _cp(camera, pose)
     c = camera.corners_mm()
     k = check_int_range("samples_per_side", samples_per_side, 1, 10_000)
     pts = []
@@ -520,13 +545,15 @@ def footprint(camera: Camera, pose: Pose, Z_m: float = 0.0, *, samples_per_side:
 
 def photo_scale_denominator(camera: Camera, H_m: float) -> float:
     """The scale denominator m of a vertical photo, 1/m = f/H (guide §2: H = f·m)."""
+    check_type("camera", camera, Camera)
     H = check_positive("H_m", H_m, unit="m")
     return H / (camera.f_mm / 1000.0)
 
 
 # --------------------------------------------------------------------------- displacements
 def _polar_about_c(camera: Camera, pose: Pose, xy_mm):
-    xy = np.asarray(xy_mm, dtype=float)
+    _cp(camera, pose)
+    xy = check_finite_array("xy_mm", xy_mm, last=2)
     c = isocentre(camera, pose)
     u = principal_vertical(pose)
     v = np.array([-u[1], u[0]])
@@ -593,6 +620,7 @@ def tilt_displacement_vectors(camera: Camera, pose: Pose, XYZ_m):
     The displacement vector is ``xy_tilted − xy_vertical``; it points along
     the line from c (the isocentre keeps angles).
     """
+    _cp(camera, pose)
     xy_t = ground_to_photo(camera, pose, XYZ_m)
     xy_v = ground_to_photo(camera, pose.levelled(), XYZ_m)
     shift = -2.0 * camera.f_mm * math.tan(math.radians(pose.alpha_deg) / 2.0) * principal_vertical(pose)
@@ -621,7 +649,8 @@ def relief_displacement(r_mm, h_m, H_m):
         the point's actual image.
     """
     H = check_positive("H_m", H_m, unit="m")
-    h = np.asarray(h_m, dtype=float)
+    h = check_values("h_m", h_m, unit="m")
+    r = check_values("r_mm", r_mm, 0.0, unit="mm")
     if np.any(h >= H):
         raise ValueError(f"h_m = {float(np.max(h)):g} is at or above the camera; the valid range is h_m < H_m = {H:g} m")
-    return np.asarray(r_mm, dtype=float) * h / H
+    return r * h / H

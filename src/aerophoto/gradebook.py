@@ -4,7 +4,7 @@
 checks.  What lies above it and only *shows* the tasks — the student's course
 report (:mod:`aerophoto.report`) — reads them through this module, so that no
 presentation or report module reaches into the rubrics themselves
-(``tests/test_layers.py`` holds that rule).  Grading a submission stays with
+(``tests/course/test_layers.py`` holds that rule).  Grading a submission stays with
 :func:`aerophoto.course.score.grade_task`.
 
 Layer 6 (course), beside :mod:`aerophoto.checks`.

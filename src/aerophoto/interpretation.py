@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import spectral as sp
 from ._validate import check_range
 
@@ -106,6 +107,7 @@ CONDITIONS = (
 )
 
 
+@V.checked(h_m=V.values(0.0))
 def shadow_length_m(h_m, sun_elevation_deg):
     """Length of the shadow of a height h on level ground: L = h / tan e, metres (h ≥ 0, 1° ≤ e ≤ 90°)."""
     e = check_range("sun_elevation_deg", sun_elevation_deg, 1.0, 90.0, unit="°")
@@ -121,6 +123,7 @@ def shadow_azimuth_deg(sun_azimuth_deg) -> float:
     return (A + 180.0) % 360.0
 
 
+@V.checked(slope_deg=V.values(0.0, 90.0), aspect_deg=V.values(), ambient=V.number(0.0, 1.0))
 def slope_illumination(slope_deg, aspect_deg, sun_elevation_deg, sun_azimuth_deg, ambient: float = AMBIENT):
     """Brightness of a slope relative to level ground in full sun (Lambert): a + (1 − a)·max(cos i, 0)/sin e.
 
@@ -149,6 +152,7 @@ def image_motion_mm(speed_kmh, exposure_ms, m):
     return W * t / mm * 1000.0
 
 
+@V.checked(image=V.image(2, 3), axis=V.whole(0, 1))
 def motion_blur(image, length_px: float, axis: int = 1) -> np.ndarray:
     """Blur along ``axis`` by a uniform smear of ``length_px`` pixels (fractional; ≤ 1 px leaves it as it is).
 
@@ -173,6 +177,7 @@ def motion_blur(image, length_px: float, axis: int = 1) -> np.ndarray:
     return correlate1d(img, w.astype(img.dtype if img.dtype.kind == "f" else float), axis=axis, mode="nearest")
 
 
+@V.checked(rho=V.image(0, 1, 2, 3))
 def haze(rho, band: str, visibility_km, H_m: float):
     """What the camera sees of ground reflectance ρ in a band through the air below it (guide §9, condition 5).
 
@@ -189,6 +194,7 @@ def haze(rho, band: str, visibility_km, H_m: float):
     return sp.apparent_reflectance(rho, np.float32(R), np.float32(T))
 
 
+@V.checked(image=V.image(1, 2, 3))
 def contrast(image, mask=None) -> float:
     """The photo's contrast: standard deviation over mean of the brightness (RMS contrast), where ``mask``."""
     a = np.asarray(image, float)

@@ -72,7 +72,7 @@ NOT_IN_BROWSER = {
     "scikit-image": "not among the verified Pyodide 0.27.7 files: the stereo chapter's image matching "
                     "(stereo.match_points) and the image warp of the projective module (projective.images) use "
                     "the package's numpy/scipy fallbacks, equal to scikit-image's results "
-                    "(tests/test_browser_fallbacks.py)",
+                    "(tests/physics/test_browser_fallbacks.py)",
     "pyproj": "not among the verified Pyodide 0.27.7 files: the guide's geodetic conversions (guide §11, "
               "Pulkovo-1942 zone 5) use the package's Krüger-series Gauss–Krüger, within 1e-8 m of PROJ",
     "nbformat": "notebook maintenance (aerophoto.nbtools) and aerophoto-course are not for the browser",

@@ -42,7 +42,7 @@ This is physics (layer 2): the strip (:class:`aerophoto.simulate.Strip` or
 anything with ``shots``), the terrain (:class:`aerophoto.geometry.Terrain`,
 e.g. the virtual site or :class:`aerophoto.terrain.RescaledRelief`) and the
 rendered prints are taken as arguments, never imported.  The student's
-fotoschema for a variant is built in :mod:`aerophoto.tasks.ch05`; the live
+fotoschema for a variant is built in :mod:`aerophoto.labs.ch05`; the live
 demo and the finished sheet are in :mod:`aerophoto.demos.fotoschema`.
 """
 
@@ -54,37 +54,16 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_int_range, check_positive, check_range
 from .displacement import base_scale
 from .plane import Similarity2D, fit_similarity
 
-__all__ = [
-    "ALLOWED_CUTOUT_MM",
-    "CHECK_SPACING_MM",
-    "CUT_SHAPES",
-    "Similarity2D",
-    "fit_similarity",
-    "cut_line",
-    "seam_rms",
-    "partial_scales",
-    "classify_mismatch",
-    "TiePoints",
-    "choose_tie_points",
-    "Seam",
-    "ScaleCheck",
-    "Fotoschema",
-    "assemble",
-    "seam_mismatches",
-    "mean_scale",
-    "assign_working_areas",
-    "catalogue_points",
-    "sheet_raster",
-    "sheet_raster_bands",
-    "SIDE_OVERLAP_PERCENT",
-    "SeamDetails",
-    "seam_details",
-]
+__all__ = ["ALLOWED_CUTOUT_MM", "CHECK_SPACING_MM", "CUT_SHAPES", "Similarity2D", "fit_similarity", "cut_line",
+           "seam_rms", "partial_scales", "classify_mismatch", "TiePoints", "choose_tie_points", "Seam", "ScaleCheck",
+           "Fotoschema", "assemble", "seam_mismatches", "mean_scale", "assign_working_areas", "catalogue_points",
+           "sheet_raster", "sheet_raster_bands", "SIDE_OVERLAP_PERCENT", "SeamDetails", "seam_details"]
 
 #: guide §6, step 8: the largest cut-out (вырез) allowed on a seam, mm
 ALLOWED_CUTOUT_MM = 0.5
@@ -102,6 +81,8 @@ SIDE_OVERLAP_PERCENT = 30.0
 # they are re-exported here, where the fotoschema uses them.
 
 
+@V.checked(p_top=V.point(2), p_bottom=V.point(2), y_range=V.point(2), amplitude_mm=V.number(0.0, 50.0),
+           period_mm=V.number(0.0, 1e3, lo_open=True), step_mm=V.number(0.0, 1e3, lo_open=True))
 def cut_line(p_top, p_bottom, y_range, *, shape: str = "straight", amplitude_mm: float = 3.0,
              period_mm: float = 30.0, step_mm: float = 1.0) -> np.ndarray:
     """The line of a cut (порез) on the sheet, as a polyline monotone in y (guide §6, step 4, figure 12).
@@ -147,6 +128,7 @@ def cut_line(p_top, p_bottom, y_range, *, shape: str = "straight", amplitude_mm:
         y = np.unique(np.clip(np.concatenate([[y0, y1], corners]), y0, y1))
         wave = amp * _tri((y - a[1]) / per)
     else:
+        V.check_work_size("step_mm", st, (y1 - y0) / st, limit=1e6, what="vertices")
         n = max(2, int(math.ceil((y1 - y0) / st)) + 1)
         y = np.linspace(y0, y1, n)
         wave = amp * np.sin(2.0 * math.pi * (y - a[1]) / per)
@@ -160,6 +142,7 @@ def _tri(u):
     return np.where(f < 0.25, 4 * f, np.where(f < 0.75, 2 - 4 * f, 4 * f - 4))
 
 
+@V.checked(dI_mm=V.array())
 def seam_rms(dI_mm) -> float:
     """Quality of a fotoschema, guide §6 formula (6.2): m = √(ΣΔI²/n), mm.
 
@@ -176,6 +159,7 @@ def seam_rms(dI_mm) -> float:
     return float(np.sqrt(np.mean(d * d)))
 
 
+@V.checked(l_mm=V.values(0.0, lo_open=True), L_mm=V.values(0.0, lo_open=True))
 def partial_scales(l_mm, L_mm, M: float = 10000.0) -> np.ndarray:
     """Partial scale denominators of a fotoschema, guide §6 formula (6.1).
 
@@ -211,6 +195,7 @@ def partial_scales(l_mm, L_mm, M: float = 10000.0) -> np.ndarray:
     return np.asarray(base_scale(L, l, M), dtype=float)
 
 
+@V.checked(dI_mm=V.values())
 def classify_mismatch(dI_mm):
     """'cut-out' (вырез) for ΔI < 0, 'duplicate' (дублет) for ΔI > 0, 'match' for 0; array of str."""
     d = np.asarray(dI_mm, dtype=float)
@@ -234,6 +219,7 @@ class TiePoints:
     ground_m: np.ndarray
 
 
+@V.checked(camera=g.Camera, pose_a=g.Pose, pose_b=g.Pose, dem=V.terrain(none=True))
 def choose_tie_points(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *,
                       margin_mm=(15.0, 25.0), half_width_mm: float = 8.0, samples: int = 7) -> TiePoints:
     """Choose the conjugate points a, b of a pair as the guide does (§6, step 2).
@@ -449,7 +435,7 @@ class Fotoschema:
 
     def photo_index(self, xy_mm) -> np.ndarray:
         """Which photo's working area each sheet point lies in, shape (...,), int."""
-        return assign_working_areas(xy_mm, [s.cut_mm for s in self.seams])
+        return assign_working_areas.__wrapped__(xy_mm, [s.cut_mm for s in self.seams])  # unchecked: per band
 
     def table(self) -> pd.DataFrame:
         """The correction sheet (корректурный лист) as a table: every check point of every cut."""
@@ -497,6 +483,7 @@ def _photo_across(T: Similarity2D, along_sheet) -> np.ndarray:
     return v / np.hypot(*v)
 
 
+@V.checked(xy_mm=V.array(last=2), cuts=V.sequence(V.points(2)))
 def assign_working_areas(xy_mm, cuts) -> np.ndarray:
     """Index of the working area each sheet point belongs to: the number of cuts to its left.
 
@@ -526,6 +513,8 @@ def _resample_polyline(poly, spacing):
     return np.column_stack([np.interp(t, s, poly[:, 0]), np.interp(t, s, poly[:, 1])])
 
 
+@V.checked(camera=g.Camera, pose_left=g.Pose, pose_right=g.Pose, T_left=Similarity2D, T_right=Similarity2D,
+           points_mm=V.points(2), dem=V.terrain(none=True), direction_m=V.point(2), m=V.number(0.0, lo_open=True))
 def seam_mismatches(camera: g.Camera, pose_left: g.Pose, pose_right: g.Pose, T_left: Similarity2D,
                     T_right: Similarity2D, points_mm, dem, direction_m, m: float):
     """Mismatches ΔI at sheet points on a cut, from truth (guide §6, step 8).
@@ -589,6 +578,7 @@ class SeamDetails:
         return self.contour_from_cut_mm - self.prick_from_cut_mm
 
 
+@V.checked(fs=Fotoschema, dem=V.terrain(none=True), inset_mm=V.values(0.0, 50.0))
 def seam_details(fs: Fotoschema, dem=None, *, inset_mm=3.0) -> SeamDetails:
     """The details pricked through the cut-off strips at every check point of every cut (see :class:`SeamDetails`).
 
@@ -635,6 +625,10 @@ def seam_details(fs: Fotoschema, dem=None, *, inset_mm=3.0) -> SeamDetails:
                        np.concatenate(dA), np.concatenate(dB), np.vstack(G_all))
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2),
+           to_sheet=V.sequence(V.of_type(Similarity2D), min_len=2), cuts=V.sequence(V.points(2)),
+           dem=V.terrain(none=True), points_m=V.optional(V.points(3)), edge_mm=V.number(0.0, 90.0),
+           across_mm=V.number(0.0, 90.0))
 def mean_scale(camera: g.Camera, poses, to_sheet, cuts, dem, *, M: float = 10000.0, points_m=None,
                edge_mm: float = 15.0, across_mm: float = 20.0, numbers=None) -> ScaleCheck:
     """The fotoschema's mean scale from four points and four bases (guide §6, step 7, formula 6.1).
@@ -675,7 +669,7 @@ def mean_scale(camera: g.Camera, poses, to_sheet, cuts, dem, *, M: float = 10000
                 if not camera.inside(p) or np.any(np.abs(p) > h - 3.0):
                     continue
                 q = to_sheet[i].apply(p)
-                if assign_working_areas(q, cuts) == i:
+                if assign_working_areas.__wrapped__(q, cuts) == i:
                     G = P
                     break
         ground.append(G)
@@ -690,6 +684,9 @@ def mean_scale(camera: g.Camera, poses, to_sheet, cuts, dem, *, M: float = 10000
     return ScaleCheck(names, ground, sheet, plan, bases, l, L, partial_scales(l, L, M), M)
 
 
+@V.checked(strip=V.has_attrs("shots", "camera", what="a simulated strip (simulate.Strip)"), dem=V.terrain(none=True),
+           amplitude_mm=V.number(0.0, 50.0), period_mm=V.number(0.0, 1e3, lo_open=True),
+           points_m=V.optional(V.points(3)))
 def assemble(strip, dem=None, *, cut_shape: str = "straight", amplitude_mm: float = 3.0, period_mm: float = 30.0,
              spacing_mm: float = CHECK_SPACING_MM, M: float = 10000.0, points_m=None,
              tie_margin_mm=(15.0, 25.0)) -> Fotoschema:
@@ -772,6 +769,7 @@ def assemble(strip, dem=None, *, cut_shape: str = "straight", amplitude_mm: floa
 
 
 # =========================================================================== catalogue
+@V.checked(ground=V.terrain(none=True, number_ok=False))
 def catalogue_points(ground) -> np.ndarray | None:
     """The ground points of a site's catalogue as an (k, 3) array in metres, or None if it has none."""
     if hasattr(ground, "points_m") and callable(ground.points_m):
@@ -792,6 +790,7 @@ def _pattern(X, Y):
     return np.where(grid, 0.15, 0.55 + 0.3 * chk).astype(np.float32)
 
 
+@V.checked(fs=Fotoschema, ground=V.terrain(none=True), background=V.number(), max_pixels=V.whole(1, 10**9))
 def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=None, extent_mm=None,
                  background: float = 1.0, max_pixels: int = 20_000_000):
     """Glue the working areas onto the sheet: a greyscale raster of the fotoschema.
@@ -834,6 +833,8 @@ def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=
     return image, extent
 
 
+@V.checked(fs=Fotoschema, ground=V.terrain(none=True), px_per_mm=V.number(0.0, 20.0, lo_open=True),
+           background=V.number(), max_pixels=V.whole(1, 10**9), band_px=V.optional(V.whole(1, 10**9)))
 def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=None, extent_mm=None,
                        background: float = 1.0, max_pixels: int = 20_000_000, band_px: int | None = 60_000):
     """:func:`sheet_raster` a band of rows at a time: a generator of ``(image, extent, rows_done)``.

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import check_int_range, check_points
+from ._validate import check_finite_array, check_int_range, check_points, check_range
 
 __all__ = [
     "Similarity2D",
@@ -54,6 +54,13 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- transformations
+def _matrix3(name: str, value) -> np.ndarray:
+    M = check_finite_array(name, value)
+    if M.shape != (3, 3):
+        raise ValueError(f"{name} has shape {M.shape}; expected the 3×3 homogeneous matrix")
+    return M
+
+
 @dataclass(frozen=True)
 class Similarity2D:
     """A 2-D similarity x' = s·R(θ)·x + t, stored as a = s·cos θ, b = s·sin θ, t = (tx, ty).
@@ -66,6 +73,10 @@ class Similarity2D:
     b: float = 0.0
     tx: float = 0.0
     ty: float = 0.0
+
+    def __post_init__(self):
+        for name in ("a", "b", "tx", "ty"):
+            object.__setattr__(self, name, check_range(name, getattr(self, name)))
 
     @classmethod
     def from_angle(cls, theta_deg: float = 0.0, t=(0.0, 0.0), scale: float = 1.0) -> "Similarity2D":
@@ -113,6 +124,9 @@ class Affine2D:
 
     M: np.ndarray = field(default_factory=lambda: np.eye(3))
 
+    def __post_init__(self):
+        object.__setattr__(self, "M", _matrix3("M", self.M))
+
     def apply(self, xy) -> np.ndarray:
         """Transform points, shape (..., 2) → (..., 2)."""
         p = np.asarray(xy, dtype=float)
@@ -137,6 +151,9 @@ class Projective2D:
     """
 
     H: np.ndarray = field(default_factory=lambda: np.eye(3))
+
+    def __post_init__(self):
+        object.__setattr__(self, "H", _matrix3("H", self.H))
 
     def apply(self, xy) -> np.ndarray:
         """Transform points, shape (..., 2) → (..., 2).  Points on the vanishing line give ±inf."""
@@ -347,14 +364,12 @@ def intersect_rays(origins, angles_rad) -> np.ndarray:
         is their intersection.  ValueError if the lines are (nearly) parallel.
     """
     C = check_points("origins", origins)
-    a = np.asarray(angles_rad, dtype=float).reshape(-1)
-    if not np.all(np.isfinite(a)):
-        raise ValueError("angles_rad contains a value that is not finite; every angle must be a finite number")
+    a = check_finite_array("angles_rad", angles_rad).reshape(-1)
     u = _u(a).reshape(-1, 2)
     if len(C) < 2:
-        raise ValueError(f"{len(C)} ray(s) given; an intersection needs at least 2")
+        raise ValueError(f"origins has {len(C)} ray(s); an intersection needs at least 2")
     if len(u) != len(C):
-        raise ValueError(f"{len(C)} origins but {len(u)} angles; give one angle per origin")
+        raise ValueError(f"origins has {len(C)} points but angles_rad {len(u)} angles; give one angle per origin")
     Nmat = np.eye(2)[None] - u[:, :, None] * u[:, None, :]
     A = Nmat.sum(axis=0)
     b = np.einsum("kij,kj->i", Nmat, C)
@@ -364,9 +379,26 @@ def intersect_rays(origins, angles_rad) -> np.ndarray:
 
 
 def line_intersection(Ca, ua, Cb, ub) -> np.ndarray:
-    """Intersection of the lines Ca + s·ua and Cb + t·ub; (nan, nan) for parallel lines."""
+    """Intersection, shape (2,), of the lines Ca + s·ua and Cb + t·ub (each argument a 2-vector).
+
+    ValueError for parallel lines (no intersection) or a zero direction.
+    """
+    Ca, ua, Cb, ub = (check_points(n, v).reshape(-1) for n, v in (("Ca", Ca), ("ua", ua), ("Cb", Cb), ("ub", ub)))
+    for n, v in (("Ca", Ca), ("ua", ua), ("Cb", Cb), ("ub", ub)):
+        if v.shape != (2,):
+            raise ValueError(f"{n} has {len(v) // 2} points; expected one 2-vector (x, y)")
+    for n, v in (("ua", ua), ("ub", ub)):
+        if not v.any():
+            raise ValueError(f"{n} = (0, 0) is not a direction; expected a non-zero vector")
+    p = _line_intersection(Ca, ua, Cb, ub)
+    if not np.isfinite(p).all():
+        raise ValueError("the lines are parallel (ua ∥ ub): they have no intersection")
+    return p
+
+
+def _line_intersection(Ca, ua, Cb, ub) -> np.ndarray:
     den = _cross(ua, ub)
-    if abs(den) < 1e-15:
+    if abs(den) < 1e-15 * max(1.0, float(np.abs(ua).max() * np.abs(ub).max())):
         return np.array([np.nan, np.nan])
     s = _cross(Cb - Ca, ub) / den
     return Ca + s * ua
@@ -386,11 +418,16 @@ def error_triangle(origins, angles_rad):
     C = check_points("origins", origins)
     if len(C) != 3:
         raise ValueError(f"{len(C)} origins given; an error triangle needs exactly 3 rays")
-    u = _u(angles_rad).reshape(3, 2)
-    v01 = line_intersection(C[0], u[0], C[1], u[1])
-    v12 = line_intersection(C[1], u[1], C[2], u[2])
-    v02 = line_intersection(C[0], u[0], C[2], u[2])
+    a = check_finite_array("angles_rad", angles_rad).reshape(-1)
+    if a.shape != (3,):
+        raise ValueError(f"angles_rad has {a.size} value(s); an error triangle needs exactly 3 directions")
+    u = _u(a).reshape(3, 2)
+    v01 = _line_intersection(C[0], u[0], C[1], u[1])
+    v12 = _line_intersection(C[1], u[1], C[2], u[2])
+    v02 = _line_intersection(C[0], u[0], C[2], u[2])
     V = np.array([v01, v12, v02])
+    if not np.isfinite(V).all():
+        raise ValueError("two of the rays are parallel (angles_rad): they do not form a triangle")
     sides = np.array([np.hypot(*(v01 - v12)), np.hypot(*(v12 - v02)), np.hypot(*(v02 - v01))])
     return V, sides
 
@@ -424,14 +461,13 @@ def resect_directions(angles_rad, known_xy, *, line=None, x0=None, iterations: i
     perpendicular distances of the known points from their rays; the line's
     residual is appended last when ``line`` is given).
     """
-    phi = np.asarray(angles_rad, dtype=float).ravel()
-    if not np.all(np.isfinite(phi)):
-        raise ValueError("angles_rad contains a value that is not finite; every direction must be a finite number")
+    phi = check_finite_array("angles_rad", angles_rad).ravel()
     K = check_points("known_xy", known_xy)
     iterations = check_int_range("iterations", iterations, 1, 200)
     k = len(phi)
     if len(K) != k:
-        raise ValueError(f"{k} directions but {len(K)} known points; give one known point per direction")
+        raise ValueError(f"angles_rad has {k} directions but known_xy {len(K)} points; "
+                         "give one known point per direction")
     n_obs = k + (1 if line is not None else 0)
     if n_obs < 3:
         raise ValueError(f"{n_obs} observations; a resection needs at least 3 (centre and rotation are 3 unknowns)")

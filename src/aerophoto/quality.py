@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_int_range, check_positive
 
@@ -104,6 +105,7 @@ HEIGHT_DEV_MAX_PERCENT = 3.0
 
 
 # =========================================================================== the formulas
+@V.checked(a_mm=V.values(), b_mm=V.values(0.0, lo_open=True))
 def overlap_percent(a_mm, b_mm=180.0):
     """Overlap in percent of the frame side, guide §3 formulas (3.1) and (3.2).
 
@@ -130,6 +132,7 @@ def overlap_percent(a_mm, b_mm=180.0):
     return float(out) if out.ndim == 0 else out
 
 
+@V.checked(l_mm=V.values(), L_mm=V.values(0.0, lo_open=True))
 def straightness_percent(l_mm, L_mm):
     """Relative deviation of a strip from a straight line, guide §3 formula (3.3).
 
@@ -182,6 +185,7 @@ def crab_limit_deg(f_mm: float) -> float:
     return float(np.interp(f, fs, lim))
 
 
+@V.checked(alpha_deg=V.values())
 def level_reading_deg(alpha_deg, division_arcmin: float = LEVEL_DIVISION_ARCMIN):
     """The tilt as read from the circular level imaged on the photo (guide §3, item 3.4).
 
@@ -209,6 +213,7 @@ def level_reading_deg(alpha_deg, division_arcmin: float = LEVEL_DIVISION_ARCMIN)
     return float(out) if out.ndim == 0 else out
 
 
+@V.checked(b1_mm=V.values(0.0, lo_open=True), b2_mm=V.values(0.0, lo_open=True))
 def scale_difference_percent(b1_mm, b2_mm):
     """Scale difference of two neighbouring photos, guide §3 formula (3.4).
 
@@ -235,6 +240,7 @@ def scale_difference_percent(b1_mm, b2_mm):
     return float(out) if out.ndim == 0 else out
 
 
+@V.checked(H_m=V.values(0.0, lo_open=True))
 def height_deviation_percent(H_m, H_design_m: float):
     """Deviation of the flying height from the design height, in % of the design height (guide §3, item 4).
 
@@ -269,6 +275,7 @@ def _o_in(camera: g.Camera, pose_from: g.Pose, pose_to: g.Pose, dem, cache: dict
     return g.ground_to_photo(camera, pose_to, _o_ground(camera, pose_from, dem, cache))
 
 
+@V.checked(camera=g.Camera, pose_a=g.Pose, pose_b=g.Pose, dem=V.terrain(none=True))
 def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, samples: int = 41,
                     nadirs: dict | None = None) -> float:
     """Width of the overlap of photo A with its neighbour B, measured on A as on a rough mosaic, mm.
@@ -309,6 +316,7 @@ def measure_overlap(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, sa
     return h - s * pos
 
 
+@V.checked(camera=g.Camera, pose_a=g.Pose, pose_b=g.Pose, dem=V.terrain(none=True))
 def measure_base(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *,
                  nadirs: dict | None = None) -> tuple[float, float]:
     """The photo bases b1 (on A) and b2 (on B) of a pair, mm (guide §3, item 4, figure 5).
@@ -327,6 +335,7 @@ def _wrap180(a):
     return (np.asarray(a, dtype=float) + 180.0) % 360.0 - 180.0
 
 
+@V.checked(camera=g.Camera, pose_a=g.Pose, pose_b=g.Pose, dem=V.terrain(none=True))
 def measure_crab_deg(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, nadirs: dict | None = None) -> float:
     """Crab angle φ of photo A: the angle between A's long side and the base to B, degrees (guide §3, item 3.3).
 
@@ -343,6 +352,7 @@ def measure_crab_deg(camera: g.Camera, pose_a: g.Pose, pose_b: g.Pose, dem, *, n
     return float(_wrap180(side_angle - base_angle))
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=3), dem=V.terrain(none=True))
 def measure_straightness(camera: g.Camera, poses, dem, m: float) -> dict:
     """Straightness of a strip from its principal points (guide §3, item 3.2, formula 3.3).
 
@@ -377,6 +387,7 @@ def _straightness_of_points(P_m, m):
     return {"L_mm": L_mm, "l_mm": l_mm, "n_percent": n, "n_max_percent": n_max}
 
 
+@V.checked(camera=g.Camera, pose=g.Pose, dem=V.terrain(), points_m=V.optional(V.points(3)))
 def measure_flying_height(camera: g.Camera, pose: g.Pose, dem, *, points_m=None, n_points: int = 3) -> dict:
     """Flying height of one photo from the radio altimeter and 2–3 identified points (guide §3, item 4).
 
@@ -757,6 +768,8 @@ def _nearest_neighbour_pairs(strip_a, strip_b):
     return [(strip_a.shots[i], strip_b.shots[int(j)]) for i, j in enumerate(np.argmin(d, axis=1))]
 
 
+@V.checked(flight=V.has_attrs("shots", what="a simulated flight (simulate.Strip or Block)"), dem=V.terrain(none=True),
+           points_m=V.optional(V.points(3)))
 def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None = None) -> QualityReport:
     """Measure a simulated flight as the guide measures a rough mosaic (§3) and judge it.
 

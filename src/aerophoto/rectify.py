@@ -50,6 +50,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from . import plane
 from ._validate import check_finite_array, check_int_range, check_points, check_positive, check_range
@@ -238,6 +239,8 @@ class Rectification:
                             index=pd.Index(names, name="point"))
 
 
+@V.checked(photo_control_mm=V.points(2, min_points=3), plan_control_mm=V.points(2, min_points=3),
+           photo_check_mm=V.optional(V.points(2)), plan_check_mm=V.optional(V.points(2)))
 def rectify_points(photo_control_mm, plan_control_mm, photo_check_mm=None, plan_check_mm=None, *,
                    tolerance_mm: float = TOLERANCE_MM) -> Rectification:
     """Fit the projective transformation photo → plan on control points and check it (guide §12).
@@ -294,6 +297,13 @@ class TransformerState:
     tx_mm: float = 0.0
     ty_mm: float = 0.0
 
+    def __post_init__(self):
+        for name, lo, hi in (("eps_deg", -90.0, 90.0), ("tilt_dir_deg", -1e4, 1e4), ("theta_deg", -1e4, 1e4),
+                             ("scale", 0.0, 1e3), ("tx_mm", -1e6, 1e6), ("ty_mm", -1e6, 1e6)):
+            opened = name in ("eps_deg", "scale")
+            object.__setattr__(self, name, check_range(name, getattr(self, name), lo, hi, lo_open=opened,
+                                                       hi_open=name == "eps_deg", unit="mm" if "mm" in name else ""))
+
 
 def _level(xy, f_mm, eps_deg, dir_deg):
     """Photo points (k, 2) → the photo levelled by ε along the direction λ_t (photo mm)."""
@@ -303,6 +313,7 @@ def _level(xy, f_mm, eps_deg, dir_deg):
     return -f_mm * G[:, :2] / G[:, 2:3]
 
 
+@V.checked(state=TransformerState, xy_photo_mm=V.array(last=2))
 def screen_image(state: TransformerState, xy_photo_mm, f_mm: float) -> np.ndarray:
     """Where photo points fall on the screen (plan mm) for a transformer ``state``: (k, 2)."""
     P = check_points("xy_photo_mm", xy_photo_mm)
@@ -312,6 +323,7 @@ def screen_image(state: TransformerState, xy_photo_mm, f_mm: float) -> np.ndarra
     return state.scale * (lev @ np.array([[c, s], [-s, c]])) + np.array([state.tx_mm, state.ty_mm])
 
 
+@V.checked(camera=g.Camera, pose=g.Pose)
 def true_state(camera: g.Camera, pose: g.Pose, M: float, plan_origin_m=(0.0, 0.0), ground_Z_m: float = 0.0
                ) -> TransformerState:
     """The transformer's settings that map a photo of flat ground at ``ground_Z_m`` exactly onto the plan 1:M.
@@ -422,6 +434,8 @@ def _line_cross(p1, d1, p2, d2):
     return p1 + s * d1
 
 
+@V.checked(images_mm=V.points(2, min_points=2), plan_mm=V.points(2, min_points=2),
+           min_angle_deg=V.number(0.0, 90.0, lo_open=True))
 def principal_horizontal(images_mm, plan_mm, *, min_angle_deg: float = 0.05):
     """The guide's approximation of hh: the line through the crossings of corresponding lines (guide §12, fig. 20a).
 

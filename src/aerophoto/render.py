@@ -90,6 +90,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_int_range, check_range
 from .site.raycast import AMBIENT, box_pixel_pairs, box_point_pairs, first_hits, in_shadow, light_factor
@@ -404,6 +405,8 @@ def _ground_pixel_m(site, camera: g.Camera, pose: g.Pose, n_px: int) -> float:
     return camera.frame_mm / n_px * H / camera.f_mm
 
 
+@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"), camera=g.Camera,
+           pose=g.Pose)
 def render(
     site,
     camera: g.Camera,
@@ -650,6 +653,7 @@ def _finish_image(img, valid, camera: g.Camera, n: int, v: float, bg: float, fid
     return img
 
 
+@V.checked(site=V.has_attrs("height", what="a Site or a terrain"), camera=g.Camera, pose=g.Pose, xy_mm=V.points(2))
 def trace(site, camera: g.Camera, pose: g.Pose, xy_mm, *, objects: bool = True) -> Hits:
     """What the rays of photo points hit first: the terrain or, with ``objects``, a house, a crown, the canopy, ….
 
@@ -689,12 +693,16 @@ def trace(site, camera: g.Camera, pose: g.Pose, xy_mm, *, objects: bool = True) 
                 nrm.reshape(shape + (3,)))
 
 
+@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"),
+           shot=V.has_attrs("camera", "pose", "number", what="a Shot (simulate.Strip.shots[i])"))
 def render_shot(site, shot, n_px: int = 512, **kwargs) -> Photo:
     """Render a simulated :class:`aerophoto.simulate.Shot` (its true pose; its number is carried along)."""
     kwargs.setdefault("number", shot.number)
     return render(site, shot.camera, shot.pose, n_px, **kwargs)
 
 
+@V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"),
+           strip=V.has_attrs("shots", what="a simulated Strip or Block"))
 def render_strip(site, strip, n_px: int = 512, **kwargs) -> list:
     """Render every shot of a strip (or a block's ``shots``), in order; a list of :class:`Photo`."""
     shots = strip.shots if hasattr(strip, "shots") else list(strip)

@@ -84,8 +84,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from ._validate import check_int_range, check_percent, check_positive, check_range
 from .geometry import Camera, Pose, flying_height_m, footprint
+from .variants import as_variant
 
 __all__ = [
     "Imperfections",
@@ -387,6 +389,7 @@ class Block:
 
 
 # --------------------------------------------------------------------------- flying
+@V.checked(camera=Camera)
 def photo_base_m(camera: Camera, m: float, px_percent: float) -> float:
     """Photo base B_x = l·m·(1 − p_x/100) in metres (guide §2, steps 4–5; l = frame)."""
     m = check_positive("m", m, hi=MAX_M)
@@ -394,6 +397,7 @@ def photo_base_m(camera: Camera, m: float, px_percent: float) -> float:
     return camera.frame_mm / 1000.0 * m * (1.0 - px / 100.0)
 
 
+@V.checked(camera=Camera)
 def strip_spacing_m(camera: Camera, m: float, py_percent: float) -> float:
     """Distance between strips B_y = l·m·(1 − p_y/100) in metres (guide §2, steps 4–5)."""
     m = check_positive("m", m, hi=MAX_M)
@@ -411,6 +415,7 @@ def _check_xy(name, xy):
     return (check_range(f"{name}[0]", a[0], -1e8, 1e8, unit="m"), check_range(f"{name}[1]", a[1], -1e8, 1e8, unit="m"))
 
 
+@V.checked(camera=Camera)
 def fly_strip(
     camera: Camera,
     m: float,
@@ -515,6 +520,7 @@ def fly_strip(
                  azimuth_deg=az, start_m=(sx, sy), ground_Z_m=z0, imperfections=imp)
 
 
+@V.checked(camera=Camera)
 def fly_block(
     camera: Camera,
     m: float,
@@ -573,6 +579,7 @@ def fly_block(
 
 
 # --------------------------------------------------------------------------- over the virtual site
+@V.checked(camera=Camera)
 def required_site_size(
     camera: Camera,
     m: float,
@@ -639,10 +646,13 @@ def _check_fits(site, flight):
         raise ValueError(
             f"the flight's footprints (X {fx0:.0f}…{fx1:.0f} m, Y {fy0:.0f}…{fy1:.0f} m) do not fit the site "
             f"(X {x0:.0f}…{x1:.0f} m, Y {y0:.0f}…{y1:.0f} m); the valid range is inside the site: build a larger "
-            "site (aerophoto.site.get_site(width_m=..., height_m=...), see required_site_size) or fly fewer photos"
+            "site (aerophoto.site.get_site(width_m=..., height_m=...), see required_site_size) or fly fewer photos "
+            "(n_photos, n_strips), at a smaller scale denominator m or with more overlap (px_percent, py_percent)"
         )
 
 
+@V.checked(site=V.has_attrs("height", "centre_m", what="a Site (aerophoto.site.get_site())"), camera=Camera,
+           azimuth_deg=V.number(-1e4, 1e4))
 def strip_over_site(
     site,
     camera: Camera,
@@ -669,6 +679,8 @@ def strip_over_site(
     return st
 
 
+@V.checked(site=V.has_attrs("height", "centre_m", what="a Site (aerophoto.site.get_site())"), camera=Camera,
+           azimuth_deg=V.number(-1e4, 1e4))
 def block_over_site(
     site,
     camera: Camera,
@@ -725,6 +737,7 @@ def variant_strip(variant, n_photos: int = 4, *, site=None, imperfections: Imper
     (:func:`strip_over_site`).  ``px_percent`` overrides the variant's p_x
     (e.g. with the relief-corrected P_x of guide §2, step 3).
     """
+    variant = as_variant(variant, "variant", none=False)
     px = variant.px_percent if px_percent is None else px_percent
     if site is not None:
         return strip_over_site(site, variant.camera, variant.m, px, n_photos, azimuth_deg=azimuth_deg,
@@ -739,6 +752,7 @@ def variant_block(variant, n_photos: int = 4, n_strips: int = 3, *, site=None,
                   py_percent: float | None = None, azimuth_deg: float = 0.0, side: str = "left",
                   alternate: bool = False, first_number: int = 1) -> Block:
     """A block flown with a student's variant (f, 1/m, p_x, p_y); see :func:`variant_strip`."""
+    variant = as_variant(variant, "variant", none=False)
     px = variant.px_percent if px_percent is None else px_percent
     py = variant.py_percent if py_percent is None else py_percent
     if site is not None:

@@ -20,11 +20,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import _validate as V
 from ._validate import check_int_range
 
 __all__ = ["segment_tones", "contingency"]
 
 
+@V.checked(image=V.image(2, 3))
 def segment_tones(image, k: int, *, seed: int = 0, iterations: int = 30) -> np.ndarray:
     """Divide an image into ``k`` tone-homogeneous areas by k-means on its band values.
 

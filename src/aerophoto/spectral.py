@@ -78,6 +78,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _validate as V
 from ._validate import check_range
 
 __all__ = ["WAVELENGTHS_UM", "Band", "BANDS", "BAND_NAMES", "CAMERAS", "band_mean", "bands_of",
@@ -146,6 +147,7 @@ def _band_mask(band: str) -> np.ndarray:
     return m
 
 
+@V.checked(curve=V.array(min_len=1))
 def band_mean(curve, band: str) -> np.ndarray:
     """The mean of a curve on :data:`WAVELENGTHS_UM` (last axis) over a band's interval."""
     _band_index(band)
@@ -155,6 +157,7 @@ def band_mean(curve, band: str) -> np.ndarray:
     return c[..., _band_mask(band)].mean(axis=-1)
 
 
+@V.checked(curve=V.array(min_len=1))
 def bands_of(curve) -> np.ndarray:
     """A curve's six band means, in :data:`BAND_NAMES` order (last axis)."""
     return np.stack([band_mean(curve, b) for b in BAND_NAMES], axis=-1)
@@ -175,6 +178,7 @@ _WATER_KNOTS = np.array([
 ])
 
 
+@V.checked(wl_um=V.values(0.0, 100.0, lo_open=True))
 def water_absorption_per_cm(wl_um) -> np.ndarray:
     """Absorption coefficient α_w of pure liquid water at λ (µm, 0.4 ≤ λ ≤ 2.5), cm⁻¹ (log-linear between knots).
 
@@ -203,6 +207,7 @@ _FILM_DRY_UM = 2.0  # hygroscopic water of air-dry soil, µm
 _SHADOW_SHARE = 0.35  # light in a clod's shadow, as a share of full sun (the renderer's ambient light)
 
 
+@V.checked(wl_um=V.values(0.0, 100.0, lo_open=True))
 def dry_shape(wl_um) -> np.ndarray:
     """S(λ): the shape of a dry, humus-free mineral soil's curve (peak ≈ 1 near 1.9 µm), with the 2.2 µm clay dip."""
     wl = np.asarray(wl_um, float)
@@ -212,6 +217,7 @@ def dry_shape(wl_um) -> np.ndarray:
     return rise * fall * clay
 
 
+@V.checked(humus_pct=V.values(0.0, 100.0))
 def humus_g(humus_pct) -> np.ndarray:
     """g(H): the humus term, linear up to 5 % (guide §14), then a parabola flattening at 15 % (constant beyond)."""
     H = np.asarray(humus_pct, float)
@@ -222,12 +228,14 @@ def humus_g(humus_pct) -> np.ndarray:
     return np.where(H <= a, H, a + x - x * x / (2.0 * (b - a)))
 
 
+@V.checked(wl_um=V.values(0.0, 100.0, lo_open=True))
 def humus_sensitivity(wl_um) -> np.ndarray:
     """s(λ): the fractional darkening per unit of g, largest in the red band (guide §14)."""
     wl = np.asarray(wl_um, float)
     return 0.02 + 0.055 * np.exp(-(((wl - 0.66) / 0.8) ** 2))
 
 
+@V.checked(particle_mm=V.values(0.0, 1e3, lo_open=True))
 def particle_factor(particle_mm) -> np.ndarray:
     """F(d) = 1 + 0.6·exp(−d/0.13 mm): brighter as the particles get finer, most below 0.4 mm (guide §14)."""
     d = np.asarray(particle_mm, float)
@@ -236,6 +244,7 @@ def particle_factor(particle_mm) -> np.ndarray:
     return 1.0 + _PARTICLE_GAIN * np.exp(-d / PARTICLE_SCALE_MM)
 
 
+@V.checked(roughness=V.values(0.0, 1.0))
 def clod_factor(roughness, sun_elevation_deg) -> np.ndarray:
     """Darkening by the clods' shadows: 1 − 0.65·min(0.5, r·cot e) (r clod roughness 0…0.3, e sun elevation, °)."""
     r = np.asarray(roughness, float)
@@ -246,6 +255,7 @@ def clod_factor(roughness, sun_elevation_deg) -> np.ndarray:
     return 1.0 - (1.0 - _SHADOW_SHARE) * share
 
 
+@V.checked(wl_um=V.values(0.0, 100.0, lo_open=True), moisture_pct=V.values(0.0, 100.0))
 def moisture_factor(wl_um, moisture_pct) -> np.ndarray:
     """The factor wet/dry at λ for a volumetric moisture θ (%): broadband darkening × water-film absorption.
 
@@ -260,6 +270,7 @@ def moisture_factor(wl_um, moisture_pct) -> np.ndarray:
     return broad * np.exp(-2.0 * water_absorption_per_cm(wl_um) * d_cm)
 
 
+@V.checked(wl_um=V.optional(V.values(0.0, 100.0, lo_open=True)), roughness=V.number(0.0, 1.0))
 def soil_reflectance(wl_um=None, *, moisture_pct: float = 10.0, humus_pct: float = 3.0, particle_mm: float = 0.1,
                      parent: str = "loam", roughness: float = 0.0, sun_elevation_deg: float = 45.0) -> np.ndarray:
     """The soil's reflectance curve ρ(λ) (guide §14; see the module notes).
@@ -484,12 +495,14 @@ ANGSTROM_EXPONENT = 1.3
 AEROSOL_ASYMMETRY = 0.7
 
 
+@V.checked(wl_um=V.values(0.0, 100.0, lo_open=True))
 def rayleigh_optical_depth(wl_um) -> np.ndarray:
     """τ_R(λ) of the whole atmosphere (Hansen & Travis, 1974): 0.008569·λ⁻⁴·(1 + 0.0113·λ⁻² + 0.00013·λ⁻⁴), λ µm."""
     wl = np.asarray(wl_um, float)
     return 0.008569 * wl**-4 * (1.0 + 0.0113 * wl**-2 + 0.00013 * wl**-4)
 
 
+@V.checked(wl_um=V.values(0.0, 100.0, lo_open=True))
 def aerosol_optical_depth(wl_um, visibility_km: float) -> np.ndarray:
     """τ_a(λ) of the whole aerosol layer for a meteorological visibility V (km, 1…100).
 
@@ -501,6 +514,7 @@ def aerosol_optical_depth(wl_um, visibility_km: float) -> np.ndarray:
     return sigma * AEROSOL_SCALE_HEIGHT_KM * (np.asarray(wl_um, float) / 0.55) ** -ANGSTROM_EXPONENT
 
 
+@V.checked(wl_um=V.values(0.0, 100.0, lo_open=True))
 def path_optical_depth(wl_um, visibility_km: float, H_m: float) -> tuple:
     """(τ_aerosol, τ_Rayleigh) of the air below an aircraft H metres above the ground (0 < H ≤ 20 000 m)."""
     H = check_range("H_m", H_m, 0.0, 20000.0, lo_open=True, unit="m") / 1000.0
@@ -509,18 +523,22 @@ def path_optical_depth(wl_um, visibility_km: float, H_m: float) -> tuple:
     return ta, tr
 
 
+@V.checked(tau_aerosol=V.values(0.0), tau_rayleigh=V.values(0.0))
 def haze_layer(tau_aerosol, tau_rayleigh) -> tuple:
     """(R, T): reflectance and transmittance of the non-absorbing haze layer, two-stream (Bohren, 1987).
 
     ``τ' = (1 − g)·τ_a + τ_R`` (g = 0.7 for the aerosol, 0 for the air), ``R = τ'/(2 + τ')``, ``T = 1 − R``.
     """
+    V.check_broadcast(tau_aerosol=tau_aerosol, tau_rayleigh=tau_rayleigh)
     ts = (1.0 - AEROSOL_ASYMMETRY) * np.asarray(tau_aerosol, float) + np.asarray(tau_rayleigh, float)
     R = ts / (2.0 + ts)
     return R, 1.0 - R
 
 
+@V.checked(rho=V.image(0, 1, 2, 3), R=V.values(0.0, 1.0, hi_open=True), T=V.values(0.0, 1.0))
 def apparent_reflectance(rho, R, T) -> np.ndarray:
     """What the camera sees of a ground of reflectance ρ under a layer (R, T): ρ* = R + T²ρ/(1 − Rρ)."""
+    V.check_broadcast(rho=rho, R=R, T=T)
     rho = np.asarray(rho)
     return R + T * T * rho / (1.0 - R * rho)
 

@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from . import _validate as V
 from . import geometry as g
 from ._validate import check_finite_array, check_int_range, check_positive, check_range
 
@@ -92,12 +93,22 @@ def base_height_ratio(B_m, H_m):
 
 def x_parallax_mm(x_left_mm, x_right_mm):
     """x-parallax p = x_left − x_right, mm (array_like, broadcast)."""
-    return _out(check_finite_array("x_left_mm", x_left_mm) - check_finite_array("x_right_mm", x_right_mm))
+    return _out(_diff("x_left_mm", x_left_mm, "x_right_mm", x_right_mm))
 
 
 def y_parallax_mm(y_left_mm, y_right_mm):
     """y-parallax q = y_left − y_right, mm: zero for every point of a correctly oriented (normalised) pair."""
-    return _out(check_finite_array("y_left_mm", y_left_mm) - check_finite_array("y_right_mm", y_right_mm))
+    return _out(_diff("y_left_mm", y_left_mm, "y_right_mm", y_right_mm))
+
+
+def _diff(na, a, nb, b):
+    a, b = check_finite_array(na, a), check_finite_array(nb, b)
+    try:
+        np.broadcast_shapes(a.shape, b.shape)
+    except ValueError:
+        raise ValueError(f"{na} has shape {a.shape} and {nb} {b.shape}; "
+                         "they must match (one value per point)") from None
+    return a - b
 
 
 def parallax_mm(B_m, f_mm, H_m, h_m=0.0):
@@ -173,12 +184,20 @@ def height_difference_m(dp_mm, b_mm, H_m, *, approx: bool = False):
     b = _positive_array("b_mm", b_mm, "mm")
     H = _positive_array("H_m", H_m, "m")
     if approx:
+        if np.any(np.abs(H * dp / b) >= H):
+            raise ValueError(f"dp_mm = {float(np.max(np.abs(dp))):g} gives |Δh| ≥ H: "
+                             "the valid range is |dp_mm| < b_mm")
         return _out(H * dp / b)
     if np.any(b + dp <= 0):
         raise ValueError(f"b_mm + dp_mm = {float(np.min(b + dp)):g}: the point's parallax b + Δp must be positive "
                          "(a point below the reference by the whole flying height has none); the valid range is "
                          "dp_mm > −b_mm")
-    return _out(H * dp / (b + dp))
+    dh = H * dp / (b + dp)
+    if np.any(dh >= H * (1.0 - 1e-6)):
+        raise ValueError(f"dp_mm = {float(np.max(dp)):g} puts the point at the camera "
+                         f"(Δh → H = {float(np.max(H)):g} m); "
+                         "the valid range keeps Δh below the flying height (dp_mm ≪ 10⁶·b_mm)")
+    return _out(dh)
 
 
 def parallax_difference_mm(dh_m, b_mm, H_m, *, approx: bool = False):
@@ -321,6 +340,7 @@ class StereoPair:
 
 
 # =========================================================================== normalised (epipolar) photos
+@V.checked(pose_left=g.Pose, pose_right=g.Pose)
 def normal_rotation(pose_left: g.Pose, pose_right: g.Pose) -> np.ndarray:
     """The common orientation R_n of the normalised pair: x along S₁S₂, z as near the vertical as that allows.
 
@@ -341,6 +361,7 @@ def normal_rotation(pose_left: g.Pose, pose_right: g.Pose) -> np.ndarray:
     return np.column_stack([x, y, z])
 
 
+@V.checked(camera=g.Camera, pose=g.Pose, R_n=V.shape(3, 3), xy_mm=V.array(last=2))
 def to_normal(camera: g.Camera, pose: g.Pose, R_n, xy_mm) -> np.ndarray:
     """Photo points (…, 2) of a photo taken at ``pose`` → the same rays on the normalised photo (R_n, same f), mm."""
     xy = check_finite_array("xy_mm", xy_mm)
@@ -350,6 +371,7 @@ def to_normal(camera: g.Camera, pose: g.Pose, R_n, xy_mm) -> np.ndarray:
     return np.stack([-f * c[..., 0] / c[..., 2], -f * c[..., 1] / c[..., 2]], axis=-1)
 
 
+@V.checked(camera=g.Camera, pose=g.Pose, R_n=V.shape(3, 3), xy_mm=V.array(last=2))
 def from_normal(camera: g.Camera, pose: g.Pose, R_n, xy_mm) -> np.ndarray:
     """Points (…, 2) of the normalised photo (R_n) → the same rays on the photo taken at ``pose``, mm."""
     xy = check_finite_array("xy_mm", xy_mm)
@@ -394,6 +416,7 @@ class NormalImage:
         return np.stack([self.x0_mm + (rc[..., 1] + 0.5) * p, self.y_top_mm - (rc[..., 0] + 0.5) * p], axis=-1)
 
 
+@V.checked(image=V.image(), camera=g.Camera, pose=g.Pose, R_n=V.shape(3, 3), window_mm=V.shape(4))
 def normalise_image(image, camera: g.Camera, pose: g.Pose, R_n, window_mm, pixel_mm: float) -> NormalImage:
     """Resample a photo onto its normalised (epipolar) photo, over a window (bilinear).
 
@@ -433,6 +456,7 @@ def normalise_image(image, camera: g.Camera, pose: g.Pose, R_n, window_mm, pixel
 
 
 # =========================================================================== seeing it
+@V.checked(left=V.image(2, 3), right=V.image(2, 3))
 def anaglyph(left, right, *, background: float = 0.5) -> np.ndarray:
     """A red–cyan anaglyph (rows, cols, 3) float32: red = left photo, green and blue = right photo.
 
@@ -454,6 +478,7 @@ def anaglyph(left, right, *, background: float = 0.5) -> np.ndarray:
     return out
 
 
+@V.checked(left=V.image(2, 3), right=V.image(2, 3), background=V.number())
 def side_by_side(left, right, separation_px: int, *, background: float = 1.0) -> np.ndarray:
     """The two photos side by side, the right one ``separation_px`` to the right of the left (one array).
 
@@ -552,6 +577,8 @@ def _ncc(image, template, *, prefer_library: bool = True) -> np.ndarray:
     return out[th - 1:img.shape[0], tw - 1:img.shape[1]]
 
 
+@V.checked(left=V.image(), right=V.image(), rc=V.points(2), half_window=V.whole(1, 500),
+           d_min=V.whole(-100_000, 100_000), d_max=V.whole(-100_000, 100_000))
 def match_points(left, right, rc, *, half_window: int = 7, d_min: int = 0, d_max: int = 40):
     """Disparities of single points by normalised cross-correlation along their rows (epipolar lines).
 
@@ -565,6 +592,8 @@ def match_points(left, right, rc, *, half_window: int = 7, d_min: int = 0, d_max
     Returns ``(d, peak)``: the disparity (pixels, fractional; NaN where the
     window leaves an image) and the correlation at the peak (−1…1).
     """
+    if np.shape(left) != np.shape(right):
+        raise ValueError(f"left {np.shape(left)} and right {np.shape(right)} must be images of the same shape")
     L = np.nan_to_num(np.asarray(left, dtype=np.float32), nan=0.5)
     R = np.nan_to_num(np.asarray(right, dtype=np.float32), nan=0.5)
     w = check_int_range("half_window", half_window, 1, 64)
@@ -627,6 +656,8 @@ class DenseParallax:
                     & (self.contrast >= min_contrast) & self.consistent)
 
 
+@V.checked(left=V.image(), right=V.image(), half_window=V.whole(1, 500),
+           d_min=V.whole(-100_000, 100_000), d_max=V.whole(-100_000, 100_000))
 def dense_parallax(left, right, *, half_window: int = 5, d_min: int = 0, d_max: int = 40,
                    check: bool = True) -> DenseParallax:
     """Normalised cross-correlation of every pixel along its row, for every whole disparity, with box filters.

@@ -84,6 +84,8 @@ class AnalyticHills:
     def __post_init__(self):
         object.__setattr__(self, "relief_m", check_range("relief_m", self.relief_m, 0.0, 1e5, unit="m"))
         object.__setattr__(self, "half_side_m", check_positive("half_side_m", self.half_side_m, unit="m"))
+        for name in ("X0_m", "Y0_m", "Z0_m"):
+            object.__setattr__(self, name, check_range(name, getattr(self, name), -1e7, 1e7, unit="m"))
 
     def shape(self, u, v) -> np.ndarray:
         """The normalised shape s(u, v) (zero mean and extreme ±1 over [−1, 1]²), any matching shapes."""
@@ -131,6 +133,9 @@ class RescaledRelief:
     """
 
     def __init__(self, site, relief_m: float):
+        if not all(hasattr(site, a) for a in ("height", "z_min_m", "z_max_m")):
+            raise TypeError(f"site = {site!r:.60} is a {type(site).__name__}; "
+                            "expected a Site (aerophoto.site.get_site())")
         self.site = site
         self.relief_m = check_range("relief_m", relief_m, 0.0, 3000.0, unit="m")
         r0 = float(site.z_max_m - site.z_min_m)

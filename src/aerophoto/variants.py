@@ -34,10 +34,10 @@ from dataclasses import asdict, dataclass
 
 import pandas as pd
 
-from ._validate import check_int_range
+from ._validate import check_int_range, check_type
 from .geometry import Camera, flying_height_m
 
-__all__ = ["Variant", "variant", "variant_for_index", "index_from_record_book"]
+__all__ = ["Variant", "variant", "variant_for_index", "index_from_record_book", "as_variant"]
 
 
 @dataclass(frozen=True)
@@ -142,3 +142,33 @@ def variant_for_index(i: int, record_book: str | None = None) -> Variant:
 def variant(record_book) -> Variant:
     """The variant of a student, from the record-book number (guide §1)."""
     return variant_for_index(index_from_record_book(record_book), str(record_book))
+
+
+#: what a variant argument may be, for the messages
+VARIANT_FORMS = ("a Variant (variants.variant('19-0457')), a record-book number with at least two digits "
+                 "('19-0457', 190457) or None for the guide's worked example (variant 00)")
+#: the same without None, where a variant must be given
+VARIANT_FORMS_GIVEN = ("a Variant (variants.variant('19-0457')) or a record-book number with at least two digits "
+                       "('19-0457', 190457)")
+
+
+def as_variant(variant, name: str = "variant", *, none: bool = True) -> Variant | None:
+    """The one resolution of a variant argument: a :class:`Variant`, or None (the guide's example) when ``none``.
+
+    A record-book number (a string or an integer with at least two digits) is turned into its variant; anything
+    else — ``'abc'``, an object without the variant's fields — is a ValueError/TypeError naming ``name`` and the
+    valid forms, never a silent fall-back to the guide's example.
+    """
+    if isinstance(variant, Variant) or (none and variant is None):
+        return variant
+    forms = VARIANT_FORMS if none else VARIANT_FORMS_GIVEN
+    if isinstance(variant, str) or (isinstance(variant, int) and not isinstance(variant, bool)):
+        try:
+            return _variant_of(variant)
+        except ValueError:
+            raise ValueError(f"{name} = {variant!r:.40} is not a variant; expected {forms}") from None
+    check_type(name, variant, Variant, what=forms, none=none)
+    return variant
+
+
+_variant_of = variant

@@ -509,7 +509,7 @@ def error_outputs(page, scope=None) -> list[str]:
     """Error outputs, and stderr outputs carrying a traceback, an error or a warning, on the page.
 
     JupyterLab and Voilà render an error (traceback) with the stderr mime type too.  The rule for
-    stderr text is that of tests/test_notebooks.py.
+    stderr text is that of tests/notebooks/test_notebooks.py.
     """
     root = scope or page
     sel = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'

@@ -14,7 +14,7 @@ their marks on the photos.
 :func:`simulate_measurements` images known ground points on photos of known
 orientation (the collinearity equations of :mod:`.collinearity`) and adds
 seeded Gaussian errors — the virtual site and a simulated flight provide the
-truth (:mod:`aerophoto.tasks.ch15` builds the chapter's blocks that way).
+truth (:mod:`aerophoto.labs.ch15` builds the chapter's blocks that way).
 
 Validation (a :class:`ValueError` naming the problem and the valid range):
 every array finite and of matching shapes; at least three control points with
@@ -31,8 +31,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .._validate import check_finite_array, check_positive, check_range
-from .collinearity import project, rotation_opk
+from .collinearity import _project as project
+from .collinearity import _rotation_opk as rotation_opk
 
 __all__ = ["KINDS", "MIN_CONTROL", "MIN_TIES_PER_PHOTO", "Measurements", "simulate_measurements"]
 
@@ -289,6 +291,10 @@ class Measurements:
             control_XYZ_m=self.control_XYZ_m[keep_points], control_sigma_m=self.control_sigma_m[keep_points])
 
 
+@V.checked(f_mm=V.number(0.0, 2000.0, lo_open=True), frame_mm=V.number(0.0, 500.0, lo_open=True),
+           eo_true=V.array(ndim=2, last=6, min_len=1), photo_ids=V.indices(), photo_strip=V.indices(),
+           photo_order=V.indices(), XYZ_true_m=V.points(3, min_points=1), point_ids=V.indices(),
+           point_kind=V.sequence(min_len=1), seed=V.whole(0, 2**32 - 1))
 def simulate_measurements(f_mm: float, frame_mm: float, eo_true, photo_ids, photo_strip, photo_order,
                           XYZ_true_m, point_ids, point_kind, *, sigma_mm: float = 0.005,
                           sigma_kind_mm: dict | None = None, control_sigma_m=(0.1, 0.1, 0.1),

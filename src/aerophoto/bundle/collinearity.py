@@ -18,7 +18,7 @@ undefined).  So the exterior orientation of a photo (элементы внешн
 (продольный угол наклона), κ the swing/heading (угол поворота).  For a vertical photo
 R = R_z(κ) and κ is :attr:`aerophoto.geometry.Pose.kappa_deg` in radians.
 :func:`eo_from_pose` converts a Pose through :func:`aerophoto.geometry.rotation_matrix`
-(so the two models are one; ``tests/test_bundle.py`` checks (1) against
+(so the two models are one; ``tests/physics/test_bundle.py`` checks (1) against
 ``ground_to_photo``).
 """
 
@@ -28,6 +28,7 @@ import math
 
 import numpy as np
 
+from .. import _validate as V
 from ..geometry import Pose, rotation_matrix
 
 __all__ = ["rotation_opk", "opk_from_matrix", "eo_from_pose", "eo_from_poses", "project", "project_jacobian"]
@@ -69,12 +70,26 @@ def _drz(a):
     return np.stack([np.stack([-s, -c, z], -1), np.stack([c, -s, z], -1), np.stack([z, z, z], -1)], -2)
 
 
+@V.checked(omega=V.values(), phi=V.values(), kappa=V.values())
 def rotation_opk(omega, phi, kappa) -> np.ndarray:
     """R = R_x(ω)·R_y(φ)·R_z(κ), shape (..., 3, 3), camera → ground; angles in radians (broadcast)."""
+    V.check_broadcast(omega=omega, phi=phi, kappa=kappa)
+    return _rotation_opk(omega, phi, kappa)
+
+
+def _rotation_opk(omega, phi, kappa) -> np.ndarray:
+    """:func:`rotation_opk` without the entry checks (the adjustment's inner loops)."""
     o, p, k = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (omega, phi, kappa)))
     return _rx(o) @ _ry(p) @ _rz(k)
 
 
+def _check_R(name, R):
+    R = V.check_finite_array(name, R)
+    if R.ndim < 2 or R.shape[-2:] != (3, 3):
+        raise ValueError(f"{name} has shape {R.shape}; expected rotation matrices (..., 3, 3)")
+
+
+@V.checked(R=V.Spec(_check_R))
 def opk_from_matrix(R) -> np.ndarray:
     """The angles (ω, φ, κ) in radians, shape (..., 3), of rotation matrices R (..., 3, 3); |φ| < 90°."""
     R = np.asarray(R, dtype=float)
@@ -84,28 +99,42 @@ def opk_from_matrix(R) -> np.ndarray:
     return np.stack([omega, phi, kappa], axis=-1)
 
 
+@V.checked(pose=Pose)
 def eo_from_pose(pose: Pose) -> np.ndarray:
     """The six exterior-orientation numbers (X, Y, Z m; ω, φ, κ rad), shape (6,), of a geometry Pose."""
     return np.concatenate([pose.centre, opk_from_matrix(rotation_matrix(pose))])
 
 
+@V.checked(poses=V.sequence(V.of_type(Pose), min_len=1))
 def eo_from_poses(poses) -> np.ndarray:
     """:func:`eo_from_pose` for a sequence of Poses, shape (n, 6)."""
     return np.array([eo_from_pose(p) for p in poses], dtype=float).reshape(-1, 6)
 
 
+def _check_rows(eo, XYZ_m):
+    if np.shape(eo)[0] != np.shape(XYZ_m)[0]:
+        raise ValueError(f"eo has {np.shape(eo)[0]} rows and XYZ_m {np.shape(XYZ_m)[0]}; one photo row per point")
+
+
+@V.checked(eo=V.array(ndim=2, last=6), XYZ_m=V.array(ndim=2, last=3), f_mm=V.number(0.0, 2000.0, lo_open=True))
 def project(eo, XYZ_m, f_mm: float) -> np.ndarray:
     """Collinearity (1): photo coordinates (N, 2) in mm of ground points ``XYZ_m`` (N, 3) on photos ``eo`` (N, 6).
 
     Row i of ``eo`` is the photo that sees row i of ``XYZ_m`` (gather them with the
     observation indices first).  No check that the point is in front of the camera.
     """
+    _check_rows(eo, XYZ_m)
+    return _project(eo, XYZ_m, f_mm)
+
+
+def _project(eo, XYZ_m, f_mm: float) -> np.ndarray:
     eo = np.asarray(eo, dtype=float)
-    R = rotation_opk(eo[:, 3], eo[:, 4], eo[:, 5])
+    R = _rotation_opk(eo[:, 3], eo[:, 4], eo[:, 5])
     c = np.einsum("nji,nj->ni", R, np.asarray(XYZ_m, dtype=float) - eo[:, :3])
     return -f_mm * c[:, :2] / c[:, 2:3]
 
 
+@V.checked(eo=V.array(ndim=2, last=6), XYZ_m=V.array(ndim=2, last=3), f_mm=V.number(0.0, 2000.0, lo_open=True))
 def project_jacobian(eo, XYZ_m, f_mm: float):
     """Photo coordinates and their derivatives.
 
@@ -115,6 +144,11 @@ def project_jacobian(eo, XYZ_m, f_mm: float):
     d_eo : (N, 2, 6) ∂(x, y)/∂(X_S, Y_S, Z_S, ω, φ, κ), mm per m and mm per radian
     d_pt : (N, 2, 3) ∂(x, y)/∂(X, Y, Z) of the ground point, mm per m
     """
+    _check_rows(eo, XYZ_m)
+    return _project_jacobian(eo, XYZ_m, f_mm)
+
+
+def _project_jacobian(eo, XYZ_m, f_mm: float):
     eo = np.asarray(eo, dtype=float)
     o, p, k = eo[:, 3], eo[:, 4], eo[:, 5]
     Rx, Ry, Rz = _rx(o), _ry(p), _rz(k)

@@ -17,12 +17,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import _validate as V
 from .. import geometry as g
 from .._validate import check_range
 
 __all__ = ["standard_points"]
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), terrain=V.terrain(none=True))
 def standard_points(camera: g.Camera, poses, terrain, *, d_mm: float | None = None, halfway_mm: float | None = None,
                     ) -> np.ndarray:
     """Ground points (k, 3), m, under the standard tie-point positions of every photo.

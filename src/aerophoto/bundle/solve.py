@@ -53,9 +53,11 @@ import pandas as pd
 import scipy.sparse as sp
 from scipy.optimize import least_squares
 
+from .. import _validate as V
 from .._validate import check_finite_array, check_int_range, check_positive, check_range
 from .block import Measurements
-from .collinearity import project, project_jacobian
+from .collinearity import _project as project
+from .collinearity import _project_jacobian as project_jacobian
 
 __all__ = ["LOSSES", "METHODS", "Adjustment", "Precision", "adjust", "precision", "Snooping", "data_snooping",
            "CRITICAL_W", "image_critical", "error_ellipse",
@@ -302,6 +304,7 @@ def _x0(meas, eo0, xyz0):
     return np.concatenate([eo.ravel(), xyz.ravel()])
 
 
+@V.checked(meas=Measurements)
 def adjust(meas: Measurements, eo0, xyz0_m, *, method: str = "schur", loss: str = "linear",
            f_scale: float = 3.0, max_iter: int = 50, tol: float = 1e-10) -> Adjustment:
     """Adjust the block by least squares from approximate values.
@@ -433,11 +436,19 @@ def _result(meas, prob, x, nfev, t, loss):
     return Adjustment(meas, eo.copy(), xyz.copy(), v_img, v_ctrl, s0, dof, int(nfev), t, loss)
 
 
+def _shaped(name, value, shape):
+    a = np.asarray(value, dtype=float)
+    if a.size != shape[0] * shape[1]:
+        raise ValueError(f"{name} has shape {a.shape}; expected {shape} (one row per "
+                         + ("photo" if shape[1] == 6 else "point") + " of meas)")
+    return a.reshape(shape)
+
+
+@V.checked(meas=Measurements, eo=V.array(ndim=2, last=6), xyz_m=V.array(ndim=2, last=3))
 def precision(meas: Measurements, eo, xyz_m, *, _problem=None) -> Precision:
     """Covariances (a priori, σ₀ = 1) and redundancy numbers at the given solution (see the module notes)."""
     prob = _problem or _Problem(meas)
-    eo = np.asarray(eo, dtype=float).reshape(prob.n, 6)
-    xyz = np.asarray(xyz_m, dtype=float).reshape(prob.P, 3)
+    eo, xyz = _shaped("eo", eo, (prob.n, 6)), _shaped("xyz_m", xyz_m, (prob.P, 3))
     n, P, N = prob.n, prob.P, prob.N
     A, B, _, _, U, V, Wo, _, _ = prob.normal(eo, xyz)
     S, Vinv, Y = prob.reduced(U, V, Wo)
@@ -460,6 +471,8 @@ def precision(meas: Measurements, eo, xyz_m, *, _problem=None) -> Precision:
     return Precision(cov_points, cov_photos, 1.0 - h, red_ctrl)
 
 
+@V.checked(meas=Measurements, eo=V.array(ndim=2, last=6), xyz_m=V.array(ndim=2, last=3),
+           point_index=V.indices(ndim=None))
 def point_covariance(meas: Measurements, eo, xyz_m, point_index) -> np.ndarray:
     """Full a priori covariance (3k × 3k, m²) of the points ``point_index`` (k row indices), cross terms included.
 
@@ -468,8 +481,7 @@ def point_covariance(meas: Measurements, eo, xyz_m, point_index) -> np.ndarray:
     block's datum from its control, its bending — and decide how far an RMS over many points may stray.
     """
     prob = _Problem(meas)
-    eo = np.asarray(eo, dtype=float).reshape(prob.n, 6)
-    xyz = np.asarray(xyz_m, dtype=float).reshape(prob.P, 3)
+    eo, xyz = _shaped("eo", eo, (prob.n, 6)), _shaped("xyz_m", xyz_m, (prob.P, 3))
     idx = np.asarray(point_index, dtype=int).ravel()
     _, _, _, _, U, V, Wo, _, _ = prob.normal(eo, xyz)
     S, Vinv, Y = prob.reduced(U, V, Wo)
@@ -486,6 +498,7 @@ def point_covariance(meas: Measurements, eo, xyz_m, point_index) -> np.ndarray:
     return C
 
 
+@V.checked(cov=V.array(ndim=2, min_len=1), components=V.indices())
 def rms_expectation(cov, components) -> tuple:
     """Expected RMS of errors with covariance ``cov`` over the selected ``components``, and its standard deviation.
 
@@ -500,6 +513,8 @@ def rms_expectation(cov, components) -> tuple:
     Gaussian errors, so rms = √(tr C / k) and sd ≈ √(2 tr C²) / (2 k rms) (to first order).
     """
     cov = np.asarray(cov, dtype=float)
+    if cov.shape[0] != cov.shape[1] or cov.shape[0] % 3:
+        raise ValueError(f"cov has shape {cov.shape}; expected a square (3k, 3k) covariance of k points")
     k = cov.shape[0] // 3
     sel = np.array([3 * i + c for i in range(k) for c in components])
     Cs = cov[np.ix_(sel, sel)]
@@ -509,6 +524,7 @@ def rms_expectation(cov, components) -> tuple:
     return rms, sd
 
 
+@V.checked(cov_xy=V.shape(2, 2, stacked=True))
 def error_ellipse(cov_xy, p: float | None = None) -> tuple:
     """Semi-axes and orientation of the standard error ellipse (эллипс ошибок) of a 2×2 covariance.
 
@@ -567,6 +583,7 @@ def image_critical(critical: float = CRITICAL_W) -> float:
     return math.sqrt(-2.0 * math.log(alpha))
 
 
+@V.checked(meas=Measurements)
 def data_snooping(meas: Measurements, eo0, xyz0_m, *, critical: float = CRITICAL_W, max_rejections: int = 10,
                   max_iter: int = 50) -> Snooping:
     """Baarda's data snooping: adjust, reject the observation with the largest |w| above ``critical``, repeat.

@@ -41,9 +41,11 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .._validate import check_range
 from .block import Measurements
-from .collinearity import opk_from_matrix, rotation_opk
+from .collinearity import _rotation_opk as rotation_opk
+from .collinearity import opk_from_matrix
 
 __all__ = ["similarity_fit", "Similarity", "relative_orientation", "RelativeOrientation", "intersect",
            "StripModel", "form_strip", "join_strips", "ThreeStage", "three_stage"]
@@ -67,6 +69,7 @@ class Similarity:
         return self.R @ np.asarray(R_model, dtype=float)
 
 
+@V.checked(A=V.points(3, min_points=2), B=V.points(3, min_points=2), weights=V.optional(V.array(ndim=1)))
 def similarity_fit(A, B, weights=None) -> Similarity:
     """Least-squares 3-D similarity (Helmert, 7 parameters) taking points ``A`` (k, 3) onto ``B`` (k, 3).
 
@@ -117,8 +120,10 @@ def _rays(R, xy, f):
     return v @ R.T
 
 
+@V.checked(S1=V.array(last=3), r1=V.array(ndim=2, last=3), S2=V.array(last=3), r2=V.array(ndim=2, last=3))
 def intersect(S1, r1, S2, r2) -> np.ndarray:
     """Forward intersection (прямая засечка) of ray pairs: the midpoints of the shortest segments, (k, 3)."""
+    V.check_broadcast(S1=S1, r1=r1, S2=S2, r2=r2)
     S1, S2 = np.broadcast_to(S1, r1.shape), np.broadcast_to(S2, r2.shape)
     d = S2 - S1
     a = np.sum(r1 * r1, 1)
@@ -178,6 +183,9 @@ class RelativeOrientation:
         return float(np.sqrt(np.mean(q * q))) if len(q) else float("nan")
 
 
+@V.checked(xy_left=V.points(2, min_points=5), xy_right=V.points(2, min_points=5),
+           f_mm=V.number(0.0, 2000.0, lo_open=True),
+           R_left=V.optional(V.shape(3, 3)), reject_k=V.number(0.0), max_iter=V.whole(1, 1000))
 def relative_orientation(xy_left, xy_right, f_mm: float, R_left=None, *, reject_k: float = 4.0,
                          max_iter: int = 12) -> RelativeOrientation:
     """Dependent relative orientation (зависимое взаимное ориентирование) from conjugate points.
@@ -253,6 +261,7 @@ def _obs_of(meas: Measurements, j: int) -> dict:
     return {int(meas.obs_point[i]): int(i) for i in sel}
 
 
+@V.checked(meas=Measurements, photos=V.indices(min_len=2))
 def form_strip(meas: Measurements, photos, *, reject_k: float = 4.0) -> StripModel:
     """Build one strip by dependent relative orientations and scale transfer (stage 1, see the module notes).
 
@@ -314,6 +323,7 @@ def _transform_strip(st: StripModel, sim: Similarity) -> StripModel:
                       sim.apply(st.xyz), st.rms_q_mm, st.rejected_obs)
 
 
+@V.checked(strips=V.sequence(V.of_type(StripModel), min_len=1), reject_k=V.number(0.0))
 def join_strips(strips, *, reject_k: float = 4.0):
     """Stage 2: bring every strip into the frame of the first by 3-D similarities on the shared points.
 
@@ -366,6 +376,7 @@ class ThreeStage:
     to_ground: Similarity
 
 
+@V.checked(meas=Measurements)
 def three_stage(meas: Measurements, *, reject_k: float = 4.0) -> ThreeStage:
     """Article 002's procedure before the bundle: strip models, joined strips, the block on its control.
 
@@ -410,7 +421,7 @@ def three_stage(meas: Measurements, *, reject_k: float = 4.0) -> ThreeStage:
         obs = np.flatnonzero(meas.obs_point == k)
         j1, j2 = meas.obs_photo[obs[0]], meas.obs_photo[obs[-1]]
         R1, R2 = rotation_opk(*eo0[j1, 3:]), rotation_opk(*eo0[j2, 3:])
-        xyz0[k] = intersect(eo0[j1, :3], _rays(R1, meas.xy_mm[obs[:1]], meas.f_mm), eo0[j2, :3],
+        xyz0[k] = intersect.__wrapped__(eo0[j1, :3], _rays(R1, meas.xy_mm[obs[:1]], meas.f_mm), eo0[j2, :3],
                             _rays(R2, meas.xy_mm[obs[-1:]], meas.f_mm))[0]
     rej = np.concatenate([st.rejected_obs for st in strips]) if strips else np.zeros(0, int)
     return ThreeStage(eo0, xyz0, joined, np.concatenate([st.rms_q_mm for st in strips]), rej, joins, control, sim)

@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import geometry as g
 from .._validate import check_int_range, check_positive, check_range
 
@@ -338,6 +339,7 @@ class BlockPrecision:
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 
+@V.checked(layout=BlockLayout, seed=V.whole(0, 2**32 - 1))
 def block_precision(layout: BlockLayout, sigma_mm: float = 0.005, *, trials: int = 20,
                     seed: int = 0) -> BlockPrecision:
     """Adjust the block's heights: exact covariance and a seeded Monte Carlo (article 000's densification).
@@ -405,6 +407,7 @@ STUDY_CASES = (
 )
 
 
+@V.checked(cases=V.sequence(V.sequence(min_len=2, max_len=2), min_len=1))
 def lysenko_study(terrain, *, mp_mm: float = ARTICLE_BLOCK["mp_mm"], f_mm: float = 100.0, scale: float = 4500.0,
                   b_mm: float = ARTICLE_BLOCK["b_mm"], cases=STUDY_CASES, trials: int = 20,
                   seed: int = 0) -> pd.DataFrame:

@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import geometry as g
 from .._validate import check_finite_array, check_int_range, check_points, check_positive, check_range
 
@@ -96,6 +97,7 @@ def _edge_axis(start: float, size: float, spacing: float) -> np.ndarray:
     return ax
 
 
+@V.checked(sheet=Sheet)
 def grid_nodes(sheet: Sheet, spacing_m: float) -> tuple:
     """(xs, ys): the node coordinates of a square grid of step d over the sheet, its far edges included, m."""
     d = check_range("spacing_m", spacing_m, sheet.size_m / 400.0, sheet.size_m / 2.0, unit="m")
@@ -196,6 +198,7 @@ def _interleave(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.array(out).reshape(-1, 2)
 
 
+@V.checked(sheet=Sheet)
 def structural_lines(terrain, sheet: Sheet, *, cell_m: float = 10.0, smooth_cells: float = 1.5,
                      min_curvature_per_m: float = 2e-5, margin_m: float = 200.0) -> StructuralLines:
     """Trace the thalwegs and watersheds of ``terrain`` on ``sheet`` (the operator's structural lines).
@@ -353,6 +356,7 @@ def _measured(Z: np.ndarray, mz_m: float, seed: int, stream: int) -> np.ndarray:
     return Z + mz_m * rng.standard_normal(Z.shape)
 
 
+@V.checked(sheet=Sheet)
 def grid_dem(terrain, sheet: Sheet, spacing_m: float, *, mz_m: float = 0.0, seed: int = 0) -> DEM:
     """The regular model: nodes on a square grid of step d over the sheet, bilinear between them.
 
@@ -400,6 +404,7 @@ def tin_dem(terrain, points_xy, *, kinds=None, mz_m: float = 0.0, seed: int = 0,
     return DEM("tin", np.column_stack([P, _measured(Zt, mz, seed, stream)]), Zt, mz, labels, _tri=tri)
 
 
+@V.checked(sheet=Sheet, lines=StructuralLines)
 def grid_with_lines(terrain, sheet: Sheet, spacing_m: float, lines: StructuralLines, *,
                     line_spacing_m: float | None = None, mz_m: float = 0.0, seed: int = 0,
                     line_points=None) -> DEM:
@@ -431,6 +436,7 @@ def grid_with_lines(terrain, sheet: Sheet, spacing_m: float, lines: StructuralLi
     return DEM("tin", np.column_stack([P, Zm]), Zt, grid.mz_m, kinds, _tri=Delaunay(P))
 
 
+@V.checked(sheet=Sheet, lines=StructuralLines)
 def structural_dem(terrain, sheet: Sheet, spacing_m: float, lines: StructuralLines, *, mz_m: float = 0.0,
                    seed: int = 0, n_nodes: int | None = None) -> DEM:
     """The structural model at the density of a grid of step d (the article's 164 vs 152 points per pair).
@@ -483,6 +489,7 @@ def contour_levels(z_min: float, z_max: float, interval_m: float) -> np.ndarray:
     return h * np.arange(k0, k1 + 1)
 
 
+@V.checked(x=V.array(ndim=1, min_len=2), y=V.array(ndim=1, min_len=2), Z=V.image(), levels=V.array(ndim=1))
 def contour_lines(x, y, Z, levels) -> list:
     """Contours of a raster Z[j, i] at (x[i], y[j]): a list of (level, (k, 2) vertices) in metres.
 
@@ -491,6 +498,8 @@ def contour_lines(x, y, Z, levels) -> list:
     import contourpy
 
     Z = check_finite_array("Z", Z, ndim=2, max_size=MAX_RASTER)
+    if np.shape(Z) != (len(y), len(x)):
+        raise ValueError(f"Z has shape {np.shape(Z)}; expected (len(y), len(x)) = ({len(y)}, {len(x)})")
     gen = contourpy.contour_generator(np.asarray(x, float), np.asarray(y, float), Z, line_type="Separate")
     out = []
     for z in np.asarray(levels, dtype=float).ravel():
@@ -521,6 +530,7 @@ class ContourAccuracy:
     n_lines: int
 
 
+@V.checked(lines=V.sequence())
 def contour_accuracy(terrain, lines: list) -> ContourAccuracy:
     """The height errors of contours ``lines`` (from :func:`contour_lines`) against ``terrain``."""
     terrain = g.as_terrain(terrain)
@@ -542,6 +552,7 @@ def contour_accuracy(terrain, lines: list) -> ContourAccuracy:
                            float(np.max(np.abs(e))), float(W), len(lines))
 
 
+@V.checked(dem=DEM)
 def dem_accuracy(terrain, dem: DEM, points_xy) -> np.ndarray:
     """Errors DEM − truth at check points (k, 2), m (k,)."""
     P = check_points("points_xy", points_xy, min_points=1)
@@ -648,6 +659,7 @@ class SheetResult:
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 
+@V.checked(sheet=Sheet, dem=DEM)
 def evaluate(terrain, sheet: Sheet, dem: DEM, interval_m: float, *, cell_m: float = 5.0, Z_true=None) -> SheetResult:
     """Draw the DEM's contours at interval h on a raster of ``cell_m`` and measure them against ``terrain``.
 
@@ -668,6 +680,7 @@ def evaluate(terrain, sheet: Sheet, dem: DEM, interval_m: float, *, cell_m: floa
     return SheetResult(dem, x, y, Zd, Z_true, float(interval_m), lines, contour_accuracy(terrain, lines), Z0)
 
 
+@V.checked(terrain=V.terrain(), sheet=Sheet, spacings_m=V.sequence(V.number(1.0, 200.0), min_len=1))
 def spacing_study(terrain, sheet: Sheet, spacings_m=(20.0, 30.0, 50.0, 100.0, 150.0), *, mz_m: float = 0.12,
                   interval_m: float = 0.5, cell_m: float = 5.0, seed: int = 0, lines: StructuralLines | None = None,
                   progress=None) -> pd.DataFrame:

@@ -34,7 +34,7 @@ _SUBMODULES = (
     "own",  # the student's own results, shown once the task asking for them has passed
     "lecture",  # a demo laid out on one projector screen for the lecture pages (every chapter with demos)
 )
-"""Every demo module, once: the one list (tests/test_chapter_key.py checks it against the files on disk; which
+"""Every demo module, once: the one list (tests/course/test_chapter_key.py checks it against the files on disk; which
 chapter uses which is :attr:`aerophoto.book.Chapter.demo_modules`)."""
 
 __all__ = list(_SUBMODULES)

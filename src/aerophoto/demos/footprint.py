@@ -154,7 +154,7 @@ class FootprintView:
         a.set_aspect("equal")
         a.set_xlabel("X (east), km")
         a.set_ylabel("Y (north), km")
-        # black dashed: apart from the green ground grid with deuteranopia too (tests/test_colours.py)
+        # black dashed: apart from the green ground grid with deuteranopia too (tests/presentation/test_colours.py)
         (self.vpoly,) = a.plot([], [], ls="--", color=C["black"], lw=1.5, label="vertical photo")
         (self.poly,) = a.plot([], [], color=C["footprint"], lw=2.5, label="tilted photo")
         (self.N,) = a.plot([], [], "^", color=C["nadir"], ms=9, label="N (plumb point)")

@@ -49,7 +49,7 @@ __all__ = ["QualityResult", "quality_model", "rough_mosaic_raster", "board_exten
 
 #: tints of ground covered by 1, 2, 3, 4+ prints (RGB 0…1) and their weight
 # the number of prints over a point as a lightness ramp (light blue, blue, navy): apart by CIEDE2000 ≥ 14 from
-# each other and from the grey photo under deuteranopia and protanopia too (tests/test_colours.py)
+# each other and from the grey photo under deuteranopia and protanopia too (tests/presentation/test_colours.py)
 _TINTS = {1: ((1.0, 1.0, 1.0), 0.0), 2: ((0.80, 0.92, 1.0), 0.55), 3: ((0.0, 0.45, 0.70), 0.50),
           4: ((0.0, 0.12, 0.30), 0.60)}
 _FAIL = plots.COLORS["vermillion"]

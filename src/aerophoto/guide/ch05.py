@@ -124,7 +124,7 @@ RULES = (
          "опознают по две точки на фотосхеме и топографическом плане (всего по 4 точки)",
          "aerophoto.mosaic.mean_scale"),
     Rule("step 7", "bases l_i, L_i measured to", 0.1, "mm", "с точностью 0,1 мм",
-         "aerophoto.tasks.ch05 (the student's readings, rounded to 0.1 mm)",
+         "aerophoto.labs.ch05 (the student's readings, rounded to 0.1 mm)",
          "the guide numbers the bases I = 1, 2, 3, 4 (OCR: 'I=1, 2, 3, 4' for i)"),
     Rule("step 8", "spacing of the pricks along a cut", (20.0, 30.0), "mm", "через 2-3см",
          "aerophoto.mosaic.CHECK_SPACING_MM (25 mm)", "OCR: 'четные точки' for чёткие (sharp) points"),

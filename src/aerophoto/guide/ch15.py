@@ -49,7 +49,7 @@ TECHNOLOGY = (
     ("prepare instruments", "equipment ready", "SP, GP", "—"),
     ("design the gravimetric survey", "survey design", "GP", "—"),
     ("design the block triangulation and the control", "field and office design", "SP",
-     "aerophoto.tasks.ch15.survey_block (control layout)"),
+     "aerophoto.labs.ch15.survey_block (control layout)"),
     ("control the photos (geodetically or by photo-theodolite)", "control coordinates, marked photos", "SP",
      "control points with a priori σ (Measurements.control_XYZ_m, control_sigma_m)"),
     ("gravimetric survey: mark the point (paper or gauze sign)", "sign on the ground", "GP", "—"),

@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import plane
 from .._validate import check_int_range, check_points
 
@@ -87,6 +88,7 @@ def check_quadrilateral(name: str, corners) -> np.ndarray:
     Rejects repeated corners, three corners on one line, a self-crossing
     (bow-tie) order and a non-convex shape, naming what is wrong.
     """
+    V.check_type("name", name, str)
     Q = check_points(name, corners)
     if len(Q) != 4:
         raise ValueError(f"{name} has {len(Q)} point(s); a quadrilateral needs exactly 4 corners in order 1, 2, 3, 4")
@@ -163,12 +165,14 @@ def vanishing_points(corners) -> tuple:
 
 
 # --------------------------------------------------------------------------- the grids
+@V.checked(corners=V.shape(4, 2), u=V.values(), v=V.values())
 def bilinear(corners, u, v) -> np.ndarray:
     """Points at (u, v) of the bilinear map of the unit square onto ``corners`` (4, 2): shape (..., 2).
 
     B(u, v) = (1−u)(1−v)·P1 + u(1−v)·P2 + u·v·P3 + (1−u)·v·P4; lines u = const
     and v = const are straight — the grid of proportional division.
     """
+    V.check_broadcast(u=u, v=v)
     Q = np.asarray(corners, dtype=float)
     u = np.asarray(u, dtype=float)[..., None]
     v = np.asarray(v, dtype=float)[..., None]
@@ -286,6 +290,7 @@ def _inverse_bilinear(C, xy, iterations: int = 12):
     return s, t
 
 
+@V.checked(xy=V.points(2, min_points=1))
 def locate(nodes, xy) -> pd.DataFrame:
     """Which cell of a grid each point lies in, and where inside it.
 
@@ -321,29 +326,31 @@ def locate(nodes, xy) -> pd.DataFrame:
                          "inside": out_of[idx, k] <= 1e-9})
 
 
-def check_finite_array_nodes(nodes) -> np.ndarray:
-    """A grid's nodes as a float array (n+1, n+1, 2) with n ≥ 1; else ValueError."""
+def check_finite_array_nodes(nodes, name: str = "nodes") -> np.ndarray:
+    """A grid's nodes as a float array (n+1, n+1, 2) with n ≥ 1; else ValueError naming ``name``."""
     from .._validate import check_finite_array
 
-    N = check_finite_array("nodes", nodes, ndim=3, last=2)
+    N = check_finite_array(name, nodes, ndim=3, last=2)
     if N.shape[0] != N.shape[1] or N.shape[0] < 2:
-        raise ValueError(f"nodes has shape {N.shape}; a grid has shape (n+1, n+1, 2) with n ≥ 1")
+        raise ValueError(f"{name} has shape {N.shape}; a grid has shape (n+1, n+1, 2) with n ≥ 1")
     return N
 
 
+@V.checked(xy=V.points(2, min_points=1))
 def transfer(nodes_from, nodes_to, xy) -> np.ndarray:
     """Carry points cell by cell from one grid to the other (guide §10 step 4): shape (k, 2).
 
     Each point goes into the cell with the same (row, col), at the same
     proportional place (s, t) inside it — what a proportional compass does.
     """
-    A = check_finite_array_nodes(nodes_from)
-    B = check_finite_array_nodes(nodes_to)
+    A = check_finite_array_nodes(nodes_from, "nodes_from")
+    B = check_finite_array_nodes(nodes_to, "nodes_to")
     if A.shape != B.shape:
         raise ValueError(f"the grids have shapes {A.shape} and {B.shape}; cells correspond only on grids of one size")
     return place(B, locate(A, xy))
 
 
+@V.checked(loc=pd.DataFrame)
 def place(nodes, loc: pd.DataFrame) -> np.ndarray:
     """Points at the cells and in-cell places ``loc`` (from :func:`locate` on another grid) of a grid: (k, 2)."""
     B = check_finite_array_nodes(nodes)
@@ -412,6 +419,7 @@ def grid_pair(photo_corners, plan_corners, n: int, method: str = "central") -> G
                     plane.fit_projective(P, Q))
 
 
+@V.checked(ns=V.sequence(V.whole(1, 64), min_len=1))
 def transfer_study(photo_corners, plan_corners, ns=(1, 2, 4, 8, 16, 32), *, n_points: int = 400,
                    seed: int = 0) -> pd.DataFrame:
     """The error of cell-by-cell transfer against the exact projective map, as the grid is refined.

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _validate as V
 from .._validate import check_finite_array, check_int_range, check_positive, check_range
 
 __all__ = ["MAX_OUTPUT_PIXELS", "Raster", "photo_pixel_matrix", "raster_pixel_matrix", "as_matrix", "warp_photo",
@@ -89,6 +90,7 @@ def photo_pixel_matrix(frame_mm: float, n_px: int) -> np.ndarray:
     return np.array([[p, 0.0, -h + 0.5 * p], [0.0, -p, h - 0.5 * p], [0.0, 0.0, 1.0]])
 
 
+@V.checked(extent=V.shape(4), pixel=V.number(0.0, lo_open=True))
 def raster_pixel_matrix(extent, pixel: float) -> np.ndarray:
     """3×3 matrix taking an output raster's (col, row, 1) to the plane's (X, Y, 1)."""
     x0, _, _, y1 = (float(e) for e in extent)
@@ -216,6 +218,7 @@ def _convolve(img: np.ndarray, row: np.ndarray, col: np.ndarray, order: int, cva
     return out
 
 
+@V.checked(image=V.image(2, 3), to_plane_of_pixels=V.shape(3, 3), extent=V.shape(4), cval=V.fill())
 def warp_raster(image, to_plane_of_pixels: np.ndarray, transform, extent, pixel: float, *, order: int = 1,
                 cval: float = np.nan) -> Raster:
     """Resample ``image`` whose (col, row, 1) map to its own plane by ``to_plane_of_pixels`` (3×3).
@@ -244,6 +247,7 @@ def warp_raster(image, to_plane_of_pixels: np.ndarray, transform, extent, pixel:
     return Raster(out, ext, q)
 
 
+@V.checked(image=V.image(2, 3), extent=V.shape(4), cval=V.fill())
 def warp_photo(image, transform, extent, pixel: float, *, frame_mm: float = 180.0, order: int = 1,
                cval: float = np.nan) -> Raster:
     """Resample a photo (render's pixel convention) onto another plane.

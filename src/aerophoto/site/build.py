@@ -6,7 +6,7 @@ part of the result: the steps draw from four seeded random streams
 the same :class:`~aerophoto.site.model.SiteParams` give the same arrays, bit
 for bit, only if every step draws the same numbers in the same order.  A step
 may be changed only together with the test that pins the default site
-(``tests/test_site.py``).
+(``tests/world/test_site.py``).
 
 =====================  =====================================================  ============
 step                   what it makes                                          streams
@@ -34,7 +34,7 @@ objects                :func:`aerophoto.site.objects.build_objects`: houses,  ob
 
 The objects step comes last and draws only from a fifth stream (``objects``,
 spawned after the other four), so adding it left the DEM, the texture, the land
-cover and the catalogue bit for bit as they were (``tests/test_site.py`` pins them).
+cover and the catalogue bit for bit as they were (``tests/world/test_site.py`` pins them).
 """
 
 from __future__ import annotations

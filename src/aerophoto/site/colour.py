@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _validate as V
 from .. import geometry as g
 from .. import interpretation as ip
 from .. import spectral as sp
@@ -100,6 +101,7 @@ class ColourPhoto:
         return self.bands[..., i].mean(axis=-1)
 
 
+@V.checked(rho=V.image(2, 3))
 def to_display(rho) -> np.ndarray:
     """Reflectance → display value: (GAIN·ρ)^(1/GAMMA), clipped to 0…1 (float32)."""
     a = np.clip(np.asarray(rho, np.float32) * np.float32(GAIN), 0.0, 1.0)

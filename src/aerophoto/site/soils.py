@@ -57,6 +57,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import spectral
 from .._validate import check_int_range, check_range
 
@@ -359,6 +360,7 @@ def _cached(site, extent_m: tuple, spacing_m: float, seed: int) -> SoilLayer:
     return _build(site, extent_m, spacing_m, seed)
 
 
+@V.checked(site=V.optional(V.has_attrs("params", "dem", what="a Site (site.get_site())")))
 def soil_layer(site=None, *, extent_m=None, spacing_m: float | None = None, seed: int = 0) -> SoilLayer:
     """The soil cover of ``site`` (default: :func:`aerophoto.site.get_site`) over ``extent_m`` (cached).
 

@@ -30,6 +30,7 @@ from collections.abc import Mapping
 from types import MappingProxyType
 
 from .. import _chapters
+from ..variants import as_variant
 from .base import KINDS, Answer, Hidden, Task
 
 __all__ = ["Answer", "Hidden", "Task", "KINDS", "get", "all_tasks", "chapter_tasks", "inputs", "answers",
@@ -40,7 +41,7 @@ __all__ = ["Answer", "Hidden", "Task", "KINDS", "get", "all_tasks", "chapter_tas
 def chapter_modules() -> Mapping[str, str]:
     """The chapter modules by notebook number, ``{"00": "ch00", …}`` (read-only): the modules ``chNN`` on disk.
 
-    The naming rule (:mod:`aerophoto._chapters`) replaces a list kept by hand (tests/test_chapter_key.py checks
+    The naming rule (:mod:`aerophoto._chapters`) replaces a list kept by hand (tests/course/test_chapter_key.py checks
     one module per chapter of :data:`aerophoto.book.CHAPTERS`); read on first use, importing the package reads
     nothing.  ``CHAPTER_MODULES`` is the same mapping.
     """
@@ -77,13 +78,16 @@ def all_tasks() -> tuple:
 
 
 def inputs(task_id: str, v):
-    """What the student works from in task ``task_id`` for variant ``v`` (shown in the task's data cell)."""
-    return get(task_id).inputs(v)
+    """What the student works from in task ``task_id`` for variant ``v`` (shown in the task's data cell).
+
+    ``v`` is a :class:`~aerophoto.variants.Variant` or a record-book number; anything else is an error naming ``v``
+    (never the guide's example by default)."""
+    return get(task_id).inputs(as_variant(v, "v", none=False))
 
 
 def answers(task_id: str, v) -> dict:
-    """The reference answers of task ``task_id`` for variant ``v`` (the instructor's side)."""
-    return get(task_id).answers(v)
+    """The reference answers of task ``task_id`` for variant ``v`` (the instructor's side; ``v`` as in :func:`inputs`)."""
+    return get(task_id).answers(as_variant(v, "v", none=False))
 
 
 def __getattr__(name: str):

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import plane
 from .._validate import check_range
 from .reduction import _plan_mm
@@ -121,6 +122,7 @@ def _circmean(a, b):
     return math.atan2(math.sin(a) + math.sin(b), math.cos(a) + math.cos(b))
 
 
+@V.checked(templates=Templates, origin_m=V.optional(V.point(2)))
 def build_from_ends(templates: Templates, *, M: float = 10000.0, origin_m=None) -> EndsStrip:
     """Build the strip on the plan from both ends to the middle (guide §7, figures 15–16).
 

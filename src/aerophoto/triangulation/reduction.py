@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import plane
 from .._validate import check_int_range, check_range
 from .strip import FreeStrip
@@ -126,6 +127,8 @@ class ReductionCoefficients:
         )
 
 
+@V.checked(names=V.names(min_len=2), base_mm=V.points(2, min_points=2), template_mm=V.points(2, min_points=2),
+           short_base_mm=V.number(0.0, lo_open=True), tol=V.number(0.0, 1.0), tol_short=V.number(0.0, 1.0))
 def reduction_coefficients(names, base_mm, template_mm, *, pairs="all", short_base_mm: float = SHORT_BASE_MM,
                            tol: float = K_SPREAD_TOL, tol_short: float = K_SPREAD_TOL_SHORT) -> ReductionCoefficients:
     """Reduction coefficients k = l_base / l_template over pairs of control points (guide §7, §13 step 8).
@@ -200,6 +203,7 @@ class ReductionCorrections:
         return df.T if wide else df
 
 
+@V.checked(names=V.names(), r_mm=V.array(ndim=1))
 def reduction_corrections(names, r_mm, k: float, centre: str = "") -> ReductionCorrections:
     """v = r·(k − 1) for given distances r (mm) and coefficient k (guide formula 12.3)."""
     kk = check_range("k", k, 0.0, 100.0, lo_open=True)
@@ -303,6 +307,8 @@ class Reduction:
         )
 
 
+@V.checked(strip=FreeStrip, short_base_mm=V.number(0.0, lo_open=True), control=V.optional(V.points(2)),
+           origin_m=V.optional(V.point(2)))
 def reduce_strip(
     strip: FreeStrip,
     *,

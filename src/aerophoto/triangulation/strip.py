@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import geometry as g
 from .. import plane
 from .._validate import check_positive, check_range
@@ -174,6 +175,7 @@ def _catalogue_arrays(catalogue):
     return [str(n) for n in names], XYZ, np.asarray(ctl, dtype=bool)
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), terrain=V.terrain(none=True))
 def design_points(
     camera: g.Camera,
     poses,
@@ -529,6 +531,8 @@ class Templates:
         )
 
 
+@V.checked(camera=g.Camera, poses=V.sequence(V.of_type(g.Pose), min_len=2), points=StripPoints,
+           seed=V.whole(0, 2**32 - 1))
 def measure_templates(
     camera: g.Camera,
     poses,
@@ -727,6 +731,7 @@ def _intersect_all(tmpl: Templates, centres, theta):
     return pts, nr, tri, sides
 
 
+@V.checked(templates=Templates)
 def lay_free_strip(
     templates: Templates,
     *,

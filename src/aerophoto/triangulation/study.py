@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from .. import _validate as V
 from .. import geometry as g
 from .._validate import check_int_range, check_percent
 from .reduction import reduce_strip
@@ -18,6 +19,8 @@ from .strip import PRICKING_MM, design_points, lay_free_strip, measure_templates
 __all__ = ["accumulation_study"]
 
 
+@V.checked(n_bases=V.sequence(V.whole(2, 40), min_len=1), seeds=V.sequence(V.whole(0, 2**32 - 1), min_len=1),
+           overlap_percent=V.number(50.0, 95.0, lo_open=True))
 def accumulation_study(n_bases=(2, 3, 4, 5, 6, 8), seeds=range(20), *, pricking_mm: float = PRICKING_MM,
                        f_mm: float = 100.0, m: float = 12000.0, M: float = 10000.0, overlap_percent: float = 60.0):
     """Monte Carlo: errors of reduced free strips against the number of bases between the control points.

@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 
+from .. import _validate as V
 from .._validate import check_int_range, check_positive
 
 __all__ = [
@@ -30,6 +31,7 @@ __all__ = [
 RHO_ARCMIN = 180.0 * 60.0 / math.pi
 
 
+@V.checked(n=V.values(1.0))
 def zhukov_radicand(n, reading: str = "n3"):
     """The radicand of (13.1): ``"n3"`` n³ + 11n + 34 (the book's reading), ``"n2"`` n² + 11n + 34,
     ``"n0"`` n⁰ + 11n + 34 (as scanned)."""
@@ -43,6 +45,7 @@ def zhukov_radicand(n, reading: str = "n3"):
     raise ValueError(f"reading = {reading!r}; valid: 'n3' (n³ + 11n + 34), 'n2', 'n0'")
 
 
+@V.checked(n=V.values(1.0))
 def zhukov_error_mm(n, *, k_i: float = 1.0, b_mm: float = 60.0, m_eps_arcmin: float = 4.5, reading: str = "n3"):
     """Zhukov's formula (13.1): RMS error m of an orienting point in the middle of n bases, mm.
 

@@ -1,0 +1,1 @@
+"""The tests that execute the book's notebooks (headless kernels; slow)."""

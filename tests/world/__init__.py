@@ -1,0 +1,1 @@
+"""Layer 3, the virtual world: terrain, site, simulate, render."""

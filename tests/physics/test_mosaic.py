@@ -521,13 +521,14 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     from aerophoto.demos.fotoschema import PAPER_MM, export_sheet, sheet_figure
 
     from aerophoto.demos.fotoschema import TRIM_MM, sheet_size_mm
+    from aerophoto.i18n.numbers import fmt_scale
 
     fs, gr = _fotoschema(relief_m=30.0)
     img, ext = mo.sheet_raster(fs, gr, 1.0)
     fig = sheet_figure(fs, img, ext, made_by="Student S.", checked_by="Teacher T.", year=2025)
     texts = " ".join(t.get_text() for t in fig.texts)
     assert "ФОТОСХЕМА" in texts and "Photo mosaic" in texts
-    assert f"М 1:{fs.scale.m_rounded:,}".replace(",", " ") in texts
+    assert f"М {fmt_scale(fs.scale.m_rounded)}" in texts  # the book's number format: 1:12 000 (narrow space)
     assert "2025" in texts and "Student S." in texts and "Teacher T." in texts
     paper = fig.aerophoto_paper
     w_mm, h_mm = PAPER_MM[paper]
@@ -554,7 +555,7 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     assert len(inked) == 2 and all(np.all(np.abs(np.abs(y) - 63.0) < 1.0) for y in inked)
     # signed with the scale the student computed, when given
     fig2 = sheet_figure(fs, img, ext, scale_m=12345.0)
-    assert "М 1:12 300" in " ".join(t.get_text() for t in fig2.texts)
+    assert f"М {fmt_scale(12300)}" in " ".join(t.get_text() for t in fig2.texts)
     # never overwrite silently
     with pytest.raises(FileExistsError, match="sheet.png"):
         export_sheet(fig, tmp_path / "out", "sheet")

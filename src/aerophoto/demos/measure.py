@@ -46,7 +46,7 @@ import pandas as pd
 from matplotlib import patheffects
 
 from .. import plots
-from ..i18n.numbers import fmt, fmt_scale
+from ..i18n.numbers import fmt_scale, fmt_spec
 
 __all__ = ["MeasureTool", "photo_tool", "plan_tool"]
 
@@ -354,7 +354,7 @@ def plan_tool(sheet, *, contour_interval_m: float = 2.0, **kwargs) -> MeasureToo
     Z = plan.contour_Z_m
     step = float(contour_interval_m)
     levels = np.arange(math.floor(Z.min() / step) * step, Z.max() + step, step)
-    kwargs.setdefault("title", f"Your plan at {fmt_scale(sheet.M)} with contours every {fmt(step, sig=3)} m")
+    kwargs.setdefault("title", f"Your plan at {fmt_scale(sheet.M)} with contours every {fmt_spec(step, '{:g}')} m")
     return MeasureTool(plan.image, plan.extent_mm, sheet.names, marks=sheet.marks("plan"),
                        contours=(plan.contour_x_mm, plan.contour_y_mm, Z, levels), xlabel="plan x (east), mm",
                        ylabel="plan y (north), mm", **kwargs)

@@ -47,21 +47,6 @@ are not loaded). Stop the server with Ctrl+C.
 The pages are generated from the chapters (their setup and demo cells) by `python -m aerophoto.book`; a test
 keeps them current. The whole chapter, with theory, worked example and tasks, is linked beside each page.
 """,
-    "tips": """
-## Tips for the projector
-
-* Each demo fits one 1280×800 screen, figure, key and table together; a wider screen gives the table more room,
-  and a narrower window shrinks the figure rather than cutting it off.
-* **Projector** (the button beside Reset) is for the back row: text at 19 px and more, the figures drawn 1.3
-  times larger with their lines and markers. The choice is remembered on the machine for the next page.
-* Keyboard: click a slider's handle, then ←/→ move it by one step and Page Up/Page Down by five — steadier
-  than dragging in front of a class.
-* Every demo can also be set from code in JupyterLab, e.g. `demo.set(alpha_deg=10)`.
-* Colours are the Okabe–Ito palette; every key's entries stay apart under simulated deuteranopia and
-  protanopia, or differ in shape as well (`tests/presentation/test_colours.py`).
-* Numbers are written one way throughout: `12 043` (a narrow space groups the digits), `−3.5` (a true minus),
-  `0,25` in Russian.
-""",
 }
 
 

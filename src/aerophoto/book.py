@@ -748,10 +748,6 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
     if live and ip is not None:
         ip.run_line_magic("matplotlib", "widget")
     if lecture:
-        from .demos import lecture as _lecture  # projector mode: as the lecturer left it on this machine
-
-        _lecture._PROJECTOR.on = bool(_state().get("projector", False))
-        _lecture._PROJECTOR.remember = lambda on: _save_state(projector=bool(on))
         return variant_for_index(0, "lecture — the guide's worked example")
     note = ""
     if record_book is not None and str(record_book).strip():

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import contextlib
 import html as _html
-import re
 
 import matplotlib as mpl
 import numpy as np
@@ -37,13 +36,8 @@ __all__ = [
     "steady_title",
     "steady_limits",
     "html_table",
-    "html_subscripts",
-    "html_details",
-    "math_subscripts",
-    "figure_subscripts",
     "legend_html",
     "mark_points",
-    "move_onc",
     "photo_frame",
 ]
 
@@ -378,109 +372,41 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL) -> bool:
     return True
 
 
-#: a symbol with a subscript in a label: p_x, m_z, λ_t, h_max (not a word joined by underscores: guide_table)
-_SUBSCRIPT = re.compile(r"(?<![\w\\$])([A-Za-zα-ωΑ-ΩΔ])_(\{[^}]{1,10}\}|[A-Za-z0-9α-ω]{1,8})(?![A-Za-z0-9_α-ω$])")
-
-
-def html_subscripts(text: str) -> str:
-    """Escape ``text`` for HTML and write its symbols' subscripts as subscripts: ``p_x, mm`` → ``p<sub>x</sub>, mm``."""
-    out = _html.escape(str(text))
-    return _SUBSCRIPT.sub(lambda m: f"{m.group(1)}<sub>{m.group(2).strip('{}')}</sub>", out)
-
-
-def math_subscripts(text: str) -> str:
-    """A figure text with its symbols' subscripts in mathtext: ``p_x, mm`` → ``$p_x$, mm`` (matplotlib draws the
-    subscript); text already holding ``$`` is left alone."""
-    if not isinstance(text, str) or "$" in text or "_" not in text:
-        return text
-    return _SUBSCRIPT.sub(lambda m: f"${m.group(1)}_{{{m.group(2).strip('{}')}}}$", text)
-
-
-def figure_subscripts(fig) -> int:
-    """Rewrite every text of ``fig`` (titles, labels, annotations, legends) with :func:`math_subscripts`; returns
-    how many changed.  The live demos call it once after building (:class:`aerophoto.widgets.LiveDemo`)."""
-    changed = 0
-    for art in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "set_text")):
-        s = art.get_text()
-        new = math_subscripts(s)
-        if new != s:
-            art.set_text(new)
-            changed += 1
-    return changed
-
-
 def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=None, highlight=None) -> str:
     """Render a DataFrame as compact, projector-friendly HTML for an HTML widget.
 
-    Numbers follow the book's one rule (:mod:`aerophoto.i18n.numbers`): ``float_format`` gives the precision
-    (``"{:.2f}"`` decimals, ``"{:.3g}"`` significant digits), whole-number columns are counts, a cell that is
-    a number written as text is rewritten the same way; ``12 043``, ``−3.5``, never ``−0.00`` (a decimal comma
-    in Russian).  Symbols' subscripts in headers and row labels are set as subscripts (``p_x`` → ``p<sub>x</sub>``).
     ``highlight`` is an optional boolean DataFrame/array of the same shape:
     True cells are shaded (e.g. a tolerance exceeded).  ``notes`` is a list of
     strings printed under the table.
     """
-    import pandas as pd
-
     from .i18n import translate as _tr  # the reader's language (aerophoto.i18n); English unchanged
-    from .i18n import translate_unit
-    from .i18n.numbers import fmt_count, fmt_spec, localise
 
-    def fmt(v, unit: bool = False):
-        """(cell HTML, whether it is a number: a number never breaks across lines)"""
-        if unit and isinstance(v, str) and translate_unit(v) != v:
-            return _html.escape(translate_unit(v)), True  # a unit column: m → м (the catalogue's "m" is the scale's)
-        if v is None or isinstance(v, (bool, np.bool_)):
-            return _html.escape(_tr(str(v))), False
-        if isinstance(v, (int, np.integer)):
-            return fmt_count(v), True
+    def fmt(v):
         if isinstance(v, (float, np.floating)):
-            return fmt_spec(v, float_format), True
-        text = _tr(str(v))
-        shown = localise(text)
-        return html_subscripts(shown), shown != text or len(text) <= 12
+            if np.isnan(v):
+                return "—"
+            return float_format.format(v)
+        return _html.escape(_tr(str(v)))
 
     hl = None if highlight is None else np.asarray(highlight, dtype=bool)
-    head = "".join(f"<th scope='col'>{html_subscripts(_tr(str(c)))}</th>" if str(c).strip()
-                   else f"<th scope='col'><span class='aerophoto-sr'>{_tr('value')}</span></th>" for c in df.columns)
-    index_name = html_subscripts(_tr(str(df.index.name or "")))
-    # a header for the row labels' column, read by screen readers even when the table shows none
-    index_head = (f"<th scope='col'>{index_name}</th>" if index_name
-                  else f"<th scope='col'><span class='aerophoto-sr'>{_tr('row')}</span></th>")
-    int_cols = [pd.api.types.is_integer_dtype(df[c]) for c in df.columns] if df.columns.is_unique else None
-    # a plain 0, 1, 2 … index is no label: rows are numbered from 1, as on paper
-    plain = isinstance(df.index, pd.RangeIndex) and df.index.start == 0 and df.index.step == 1 and not df.index.name
-    labels = [str(k + 1) for k in range(len(df))] if plain else [str(k) for k in df.index]
-    units = [str(c).strip().lower() in ("unit", "units", "ед.") for c in df.columns]
+    head = "".join(f"<th>{_html.escape(_tr(str(c)))}</th>" for c in df.columns)
+    index_name = _html.escape(_tr(str(df.index.name or "")))
     rows = []
-    for i in range(len(df)):
+    for i, (idx, row) in enumerate(df.iterrows()):
         cells = []
-        for j in range(df.shape[1]):
-            v = df.iat[i, j]
-            if int_cols is not None and int_cols[j] and isinstance(v, (float, np.floating)) and float(v).is_integer():
-                v = int(v)
+        for j, v in enumerate(row.values):
             style = ' style="background:#F0E442"' if hl is not None and hl[i, j] else ""
-            text, short = fmt(v, unit=units[j])
-            cells.append(f"<td{style}{' class=' + chr(39) + 'num' + chr(39) if short else ''}>{text}</td>")
-        rows.append(f"<tr><th scope='row'>{html_subscripts(localise(_tr(labels[i])))}</th>{''.join(cells)}</tr>")
-    cap = f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{html_subscripts(_tr(caption))}</caption>" if caption else ""
+            cells.append(f"<td{style}>{fmt(v)}</td>")
+        rows.append(f"<tr><th>{_html.escape(_tr(str(idx)))}</th>{''.join(cells)}</tr>")
+    cap = f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{_html.escape(_tr(caption))}</caption>" if caption else ""
     foot = ""
     if notes:
-        foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(f"<li>{html_subscripts(_tr(n))}</li>" for n in notes) + "</ul>"
+        foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(f"<li>{_html.escape(_tr(n))}</li>" for n in notes) + "</ul>"
     return (
         "<div class='aerophoto-table' style='font-size:15px'>"
         "<table style='border-collapse:collapse' border='1' cellpadding='3'>"
-        f"{cap}<thead><tr>{index_head}{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{foot}</div>"
+        f"{cap}<thead><tr><th>{index_name}</th>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{foot}</div>"
     )
-
-
-def html_details(summary: str, body: str) -> str:
-    """``body`` (HTML) folded under a one-line ``summary`` (translated) the reader opens: a demo's secondary tables,
-    so that the demo fits one projector screen."""
-    from .i18n import translate as _tr
-
-    return (f"<details class='aerophoto-more' style='margin-top:4px'><summary style='cursor:pointer'>"
-            f"{html_subscripts(_tr(summary))}</summary>{body}</details>")
 
 
 _MARKER_GLYPH = {"o": "●", "s": "■", "^": "▲", "v": "▼", "D": "◆", "+": "+", "x": "×", "*": "★", ".": "•"}
@@ -522,14 +448,8 @@ def legend_html(ax, *, remove: bool = True) -> str:
                     glyph = _MARKER_GLYPH.get(marker, "●")
                     if h.get_markerfacecolor() in ("none", "None"):
                         glyph = {"●": "○", "■": "□", "▲": "△", "▼": "▽", "◆": "◇"}.get(glyph, glyph)
-                        colour = to_hex(h.get_markeredgecolor())  # an open marker shows its edge's colour
-                    else:
-                        colour = to_hex(h.get_markerfacecolor())
                 elif h.get_linestyle() in ("--", "dashed", ":", "dotted", "-.", "dashdot"):
                     glyph = "┅" if h.get_linestyle() in (":", "dotted") else "╍"
-            elif getattr(h, "get_array", lambda: None)() is not None and getattr(h, "cmap", None) is not None:
-                colour = to_hex(h.cmap(0.6))  # colour-mapped points: a colour of their own map, not the default blue
-                glyph = "●"
             else:
                 for getter in ("get_edgecolor", "get_facecolor", "get_color"):
                     c = getattr(h, getter, lambda: None)()
@@ -541,7 +461,7 @@ def legend_html(ax, *, remove: bool = True) -> str:
         except (TypeError, ValueError):
             pass
         items.append(f"<span style='white-space:nowrap;margin-right:12px'><span style='color:{colour};{style}"
-                     f"font-size:17px'>{glyph}</span> {html_subscripts(label)}</span> ")
+                     f"font-size:17px'>{glyph}</span> {_html.escape(label)}</span> ")
     if not items:
         return ""
     return f"<div class='aerophoto-legend' style='font-size:14px;line-height:1.6;margin:4px 0'>{''.join(items)}</div>"
@@ -556,23 +476,6 @@ def photo_frame(ax, camera, *, color=None, label="photo frame", lw=1.5):
     ax.set_xlabel("x, mm")
     ax.set_ylabel("y, mm")
     return line
-
-
-def move_onc(marks: dict, o, n, c, u, *, offset_pt: float = 13.0) -> None:
-    """Move the o, n, c marks of :func:`mark_points` to the photo points ``o``, ``n``, ``c`` (mm), their labels fanned
-    out so that they never overlap: the three lie on the principal vertical (unit direction ``u``), n furthest from
-    o, so o's label goes behind o, n's beyond n and c's across the line (with α = 0 all three coincide)."""
-    o, n, c = (np.asarray(p, float) for p in (o, n, c))
-    d = n - o
-    ahead = d / np.hypot(*d) if np.hypot(*d) > 1e-9 else np.asarray(u, float)
-    across = np.array([-ahead[1], ahead[0]])
-    for name, pt, way in (("o", o, -ahead), ("n", n, ahead), ("c", c, across)):
-        marker, label = marks[name]
-        marker.set_data([pt[0]], [pt[1]])
-        label.xy = (pt[0], pt[1])
-        label.set_horizontalalignment("center")
-        label.set_verticalalignment("center")
-        label.xyann = (float(offset_pt * way[0]), float(offset_pt * way[1]))
 
 
 def mark_points(ax, points: dict, *, size=9):

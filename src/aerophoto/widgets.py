@@ -42,7 +42,7 @@ from dataclasses import dataclass
 
 from ._validate import check_range
 
-__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE", "FIGURE_MAX_PX", "FLUID_CSS",
+__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE", "FIGURE_MAX_PX",
            "table_after_picture", "TABLE_DELAY_S"]
 
 
@@ -96,26 +96,18 @@ def table_after_picture(demo, html, *args) -> None:
 def _after_picture(demo, slot: str, fill) -> None:
     """Call ``fill()`` :data:`TABLE_DELAY_S` from now in a running kernel (at once without an event loop).
 
-    ``slot`` names the attribute of ``demo`` that holds the pending call.  A newer call for the same slot while
-    one is pending replaces what it will fill but keeps its time: while a slider is dragged the table and the
-    status follow the picture at most :data:`TABLE_DELAY_S` behind, never frozen on an old move (the figure saying
-    196 nodes and the table 1225).  :func:`_drop_after_picture` drops it.  The demos' tables and status lines use it.
+    ``slot`` names the attribute of ``demo`` that holds the pending call: a newer call for the same slot
+    replaces a pending one, and :func:`_drop_after_picture` drops it.  The demos' tables and status lines use it.
     """
+    _drop_after_picture(demo, slot)
     loop = running_loop()
     if loop is None:
-        _drop_after_picture(demo, slot)
         fill()
         return
-    setattr(demo, slot + "_fill", fill)
-    if getattr(demo, slot, None) is not None:
-        return  # the pending call will fill the newest content
 
     def run():
         setattr(demo, slot, None)
-        latest = getattr(demo, slot + "_fill", None)
-        setattr(demo, slot + "_fill", None)
-        if latest is not None:
-            latest()
+        fill()
 
     setattr(demo, slot, loop.call_later(TABLE_DELAY_S, run))
 
@@ -126,7 +118,6 @@ def _drop_after_picture(demo, slot: str) -> None:
     if pending is not None:
         pending.cancel()
     setattr(demo, slot, None)
-    setattr(demo, slot + "_fill", None)
 
 
 class _HeldTable:
@@ -235,23 +226,6 @@ _DEMO_CSS = """<style>
 .aerophoto-demo .widget-label, .aerophoto-demo .widget-readout, .aerophoto-demo .widget-html-content,
 .aerophoto-demo .widget-button, .aerophoto-demo select { font-size: 15px; }
 .aerophoto-demo .aerophoto-hint { font-size: 15px; margin-bottom: 4px; max-width: 1200px; }
-.aerophoto-demo .aerophoto-table td.num { white-space: nowrap; }
-.aerophoto-demo .aerophoto-table tbody th { text-align: left; font-weight: normal; }
-.aerophoto-sr { position: absolute; width: 1px; height: 1px; overflow: hidden; clip: rect(0 0 0 0); white-space: nowrap; }
-</style>"""
-
-#: a figure inside ``.aerophoto-fluid`` keeps its natural size where there is room and shrinks with its column where
-#: there is not (JupyterLab beside its file browser, a narrow window): the ipympl canvas is scaled by the browser,
-#: its aspect kept, never wider than the column — no figure cut off, no horizontal scroll bar
-FLUID_CSS = """<style>
-.aerophoto-fluid { min-width: 0; max-width: 100%; }
-.aerophoto-fluid .jupyter-matplotlib, .aerophoto-fluid .jupyter-matplotlib-figure,
-.aerophoto-fluid .jupyter-matplotlib-canvas-container { min-width: 0 !important; max-width: 100% !important; }
-.aerophoto-fluid .jupyter-matplotlib-canvas-div { width: fit-content !important; height: auto !important;
-  max-width: 100% !important; }
-.aerophoto-fluid .jupyter-matplotlib-canvas-div canvas:first-child { position: relative !important;
-  max-width: 100% !important; height: auto !important; }
-.aerophoto-fluid .jupyter-matplotlib-canvas-div canvas + canvas { width: 100% !important; height: 100% !important; }
 </style>"""
 
 
@@ -298,8 +272,6 @@ class LiveDemo:
     _later = None
     #: True while a slider move is served (its table then follows the picture, :meth:`show`)
     _from_slider = False
-    #: the name of the parameter whose slider moved last (:meth:`on_slider` may treat it apart)
-    moved: str = ""
     #: the handle of a status line waiting to follow the picture (:meth:`_status_after_picture`)
     _status_pending = None
 
@@ -314,22 +286,17 @@ class LiveDemo:
             p.validate(p.default)
         self.values.update(self._checked(values))
         self.table = w.HTML()
-        # one line's height kept even when empty: a note appearing and going never moves the page (calm sliding)
-        self.status = w.HTML(layout=w.Layout(min_height="26px"))
-        self.status.add_class("aerophoto-status")
+        self.status = w.HTML()
         self.n_updates = 0
         self._controls = {}
         self._syncing = False
         self._layout = None
         self.build()
         translate_figure(self.fig)  # titles, axis labels, legends in the reader's language (aerophoto.i18n)
-        from .plots import fast_frames, figure_subscripts, freeze_layout, legend_html
-
+        from .plots import fast_frames, freeze_layout, legend_html
 
         #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)
         self.legend = w.HTML(legend_html(self.fig) if self.legend_beside else "")
-        if getattr(self, "fig", None) is not None:
-            figure_subscripts(self.fig)  # p_x → $p_{x}$: symbols' subscripts set as subscripts, not underscores
         if self.fixed_layout:
             freeze_layout(self.fig)
         fast_frames(self.fig)  # cheaper PNG frames to the browser (ipympl only)
@@ -547,7 +514,6 @@ class LiveDemo:
             if _same_value(value, self.values.get(name), self._params[name]):
                 return  # the page sent back the value the demo shows (e.g. after Reset): nothing to redraw
             self.values[name] = value
-            self.moved = name
             self._status_after_picture(t(self.on_slider()))
         except Exception as exc:  # never let a callback die silently
             self._drop_status_later()
@@ -603,21 +569,14 @@ class LiveDemo:
         self.reset_button = reset
         column += [reset, self.status, self.table]
         left = w.VBox(column, layout=w.Layout(width="350px", min_width="350px", margin="0 12px 0 0"))
-        parts = [w.HTML(_DEMO_CSS + FLUID_CSS)]
+        parts = [w.HTML(_DEMO_CSS)]
         if self.title:
             parts.append(w.HTML(f"<h3 style='margin:4px 0'>{t(self.title)}</h3>"))
         if self.hint:
             parts.append(w.HTML(f"<div class='aerophoto-hint'>{t(self.hint)}</div>"))
-        # beside the sliders when the figure fits there at 80 % of its size or more, else below them at full width
-        # (JupyterLab at 1280 px with its file browser open); it shrinks with the column, never cut off
-        width_px = int(round(self.fig.get_figwidth() * self.fig.dpi)) if getattr(self, "fig", None) is not None \
-            else FIGURE_MAX_PX
-        right = w.VBox([self.figure_widget(), self.legend],
-                       layout=w.Layout(flex=f"1 1 {int(0.8 * min(width_px, FIGURE_MAX_PX))}px", min_width="0",
-                                       max_width=f"{max(width_px, FIGURE_MAX_PX)}px"))
-        right.add_class("aerophoto-fluid")
-        parts.append(w.HBox([left, right], layout=w.Layout(align_items="flex-start", flex_flow="row wrap")))
-        self._layout = w.VBox(parts, layout=w.Layout(max_width="1300px"))
+        right = w.VBox([self.figure_widget(), self.legend], layout=w.Layout(max_width=f"{FIGURE_MAX_PX}px"))
+        parts.append(w.HBox([left, right], layout=w.Layout(align_items="flex-start")))
+        self._layout = w.VBox(parts, layout=w.Layout(max_width="1260px"))
         self._layout.add_class("aerophoto-demo")
         return self._layout
 

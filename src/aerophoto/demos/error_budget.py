@@ -17,7 +17,6 @@ import pandas as pd
 from .. import budget as bu
 from .. import plots
 from ..i18n import t
-from ..i18n.numbers import fmt, fmt_count
 from ..widgets import LiveDemo, Param
 
 __all__ = ["BAR_KEYS", "BudgetView", "BudgetDemo", "budget_figure", "MAP_SCALES", "DTM_OPTIONS"]
@@ -81,7 +80,7 @@ class BudgetView:
             self.texts[i].set_text(f"{v:.3f}" if (v > 0 or BAR_KEYS[i] != "interior") else t("left out"))
         self.ax.set_xlim(0, top)
         verdict = t("≤ 0.4 mm: meets") if B.meets_tolerance else t("> 0.4 mm: fails")
-        mk, mc = (fmt_count(x) for x in (B.M_k, B.M_c))
+        mk, mc = (f"{x:,.0f}".replace(",", " ") for x in (B.M_k, B.M_c))
         self.title.set_text(t("1:{mk} map, 1:{mc} photos\nv_d = {v:.2f} mm {verdict}", mk=mk, mc=mc, v=B.map_mean_mm,
                               verdict=verdict))
 
@@ -92,8 +91,7 @@ def _extra_table(B: bu.Budget, f_mm: float, relief_m: float, frame_mm: float) ->
     rows = [("total on the ground m_D", "m", f"{B.total_m:.3f}"), ("RMS on the map m_d", "mm", f"{B.map_rms_mm:.3f}"),
             ("mean on the map v_d = m_d/1.25", "mm", f"{B.map_mean_mm:.3f}"),
             ("meets v_d ≤ 0.4 mm", "", "yes" if B.meets_tolerance else "no"),
-            ("largest stage", "", t("{name} ({share} % of the variance)", name=t(B.dominant.name),
-                                    share=fmt(100 * B.shares()[B.dominant.key], 0))),
+            ("largest stage", "", f"{B.dominant.name} ({100 * B.shares()[B.dominant.key]:.0f} % of the variance)"),
             ("relief limit h_пред = 0.3·f·M_k/r_max (2)", "m", f"{h_lim:.2f}"),
             ("relief Δh/2 within it?", "", "yes: a plane would do" if relief_m / 2 <= h_lim else "no: a DEM is needed")]
     return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")

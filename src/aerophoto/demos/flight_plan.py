@@ -21,7 +21,6 @@ from matplotlib.collections import PolyCollection
 from .. import flight
 from .. import plots
 from ..i18n import t
-from ..i18n.numbers import fmt_count, fmt_spec
 from ..widgets import LiveDemo, Param
 from .own import after, task_label
 
@@ -42,11 +41,11 @@ MAX_FOOTPRINTS_PER_STRIP = MAX_PHOTOS_DRAWN
 def format_value(v) -> str:
     """A table value as text: whole numbers as they are, large values with thin spaces, else 4 digits."""
     if isinstance(v, (int, np.integer)):
-        return fmt_count(int(v))
+        return f"{int(v):,}".replace(",", " ")
     v = float(v)
     if abs(v) >= 1000:
-        return fmt_count(v)
-    return fmt_spec(v, "{:.4g}")
+        return f"{v:,.0f}".replace(",", " ")
+    return f"{v:.4g}"
 
 
 #: compact labels of the demo's table (symbol first), by FlightPlan attribute
@@ -324,7 +323,7 @@ def _every(count: int, step: int) -> np.ndarray:
 
 
 def _count_text(N: int) -> str:
-    return fmt_count(N)
+    return f"{N:,}".replace(",", " ")
 
 
 class FlightPlanDemo(LiveDemo):

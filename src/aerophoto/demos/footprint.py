@@ -154,8 +154,7 @@ class FootprintView:
         a.set_aspect("equal")
         a.set_xlabel("X (east), km")
         a.set_ylabel("Y (north), km")
-        # black dashed: apart from the green ground grid with deuteranopia too (tests/presentation/test_colours.py)
-        (self.vpoly,) = a.plot([], [], ls="--", color=C["black"], lw=1.5, label="vertical photo")
+        (self.vpoly,) = a.plot([], [], ls="--", color=C["grey"], lw=1.5, label="vertical photo")
         (self.poly,) = a.plot([], [], color=C["footprint"], lw=2.5, label="tilted photo")
         (self.N,) = a.plot([], [], "^", color=C["nadir"], ms=9, label="N (plumb point)")
         (self.O,) = a.plot([], [], "+", color=C["photo"], ms=13, mew=2, label="O")
@@ -195,7 +194,10 @@ class FootprintView:
         L = r.camera.half_mm * 1.4
         self.pv.set_data([-L * u[0], L * u[0]], [-L * u[1], L * u[1]])
         self.iso.set_data([r.c_mm[0] - L * v[0], r.c_mm[0] + L * v[0]], [r.c_mm[1] - L * v[1], r.c_mm[1] + L * v[1]])
-        plots.move_onc(self.marks, r.o_mm, r.n_mm, r.c_mm, u)  # labels fanned out: never overlapping
+        for name, pt in (("o", r.o_mm), ("n", r.n_mm), ("c", r.c_mm)):
+            marker, label = self.marks[name]
+            marker.set_data([pt[0]], [pt[1]])
+            label.xy = (pt[0], pt[1])
 
 
 class FootprintDemo(LiveDemo):
@@ -233,7 +235,7 @@ class FootprintDemo(LiveDemo):
 
     def render(self, result):
         self.view.update(result)
-        self.table.value = plots.html_table(result.table(), caption="Elements of the photo", float_format="{:.3g}")
+        self.table.value = plots.html_table(result.table(), caption="Elements of the photo", float_format="{:,.1f}")
 
 
 def own_footprint(variant, passed):

@@ -70,7 +70,6 @@ import pandas as pd
 from matplotlib.collections import LineCollection
 
 from .. import geometry as g
-from ..i18n.numbers import fmt, fmt_count
 from .. import mosaic as mo
 from .. import plots
 from .. import simulate as sim
@@ -166,9 +165,9 @@ class FotoschemaResult:
             ("largest cut-out (вырез), allowed −0.5", "mm", f"{fs.worst_cutout_mm:+.2f}"),
             ("largest duplicate (дублет)", "mm", f"{max(0.0, float(fs.dI_mm.max())) if fs.dI_mm.size else 0.0:+.2f}"),
             ("check points n", "", f"{fs.dI_mm.size}"),
-            ("mean scale 1:m (6.1), four bases", "1:", fmt_count(s.m)),
-            ("design scale of the photos", "1:", fmt_count(fs.m_design)),
-            ("spread of the partial scales m_i", "", fmt_count(float(np.ptp(s.m_i)))),
+            ("mean scale 1:m (6.1), four bases", "1:", f"{s.m:,.0f}".replace(",", " ")),
+            ("design scale of the photos", "1:", f"{fs.m_design:,.0f}".replace(",", " ")),
+            ("spread of the partial scales m_i", "", f"{float(np.ptp(s.m_i)):,.0f}".replace(",", " ")),
             ("seams", "", "pass" if fs.ok else "FAIL: cut-out > 0.5 mm"),
         ]
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
@@ -211,8 +210,8 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
     note = ""
     if alpha < alpha_max_deg - 1e-9:
         H = g.flying_height_m(f_mm, m)
-        note = (f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at H = {fmt_count(H)} m a larger tilt would carry "
-                "the photos off the 10 × 5 km site")
+        note = (f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at H = {H:,.0f} m a larger tilt would carry "
+                "the photos off the 10 × 5 km site").replace(",", " ")
     asked = alpha
     while True:  # a large tilt at a small base can leave two neighbours no common strip for their tie points:
         strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos,  # then fly a smaller one, 0.25° at a time
@@ -344,10 +343,10 @@ class FotoschemaView:
                 t.set_visible(True)
             else:
                 t.set_visible(False)
-        # the resolution is no news for the class: it is never written in the title (the picture just sharpens)
-        self.title.set_text(_t("Fotoschema 1:{m} · m = {rms} mm · {verdict}",
-                              m=fmt_count(fs.scale.m), rms=fmt(fs.rms_mm, 2),
-                              verdict=_t("seams pass") if fs.ok else _t("cut-out > 0.5 mm")))
+        res = _t("preview") if r.preview else _t("full resolution")
+        self.title.set_text(_t("Fotoschema 1:{m} · m = {rms:.2f} mm · {verdict} · {res}",
+                              m=f"{fs.scale.m:,.0f}".replace(",", " "), rms=fs.rms_mm,
+                              verdict=_t("seams pass") if fs.ok else _t("cut-out > 0.5 mm"), res=res))
         # ΔI chart: points grouped by cut
         xs, ticks, labels, seps = [], [], [], []
         x = 0.0
@@ -458,18 +457,14 @@ class FotoschemaDemo(LiveDemo):
     def _tables(self, result: FotoschemaResult) -> str:
         fs = result.fs
         H_m = g.flying_height_m(fs.camera.f_mm, fs.m_design)
-        notes = [_t("H = f·m = {H} m above the mean ground", H=fmt_count(H_m)),
+        notes = [_t("H = f·m = {H} m above the mean ground", H=f"{H_m:,.0f}".replace(",", " ")),
                  _t("ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip")]
         if result.note:
             notes.insert(0, "⚠ " + result.note)
         return (plots.html_table(result.table(), caption="Seams and scale (guide §6)", float_format="{:.3g}",
                                  notes=notes)
-                # the secondary tables folded: the demo, key included, stays on one lecture screen
-                + plots.html_details("Mismatches by cut, partial scales",
-                                     plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm",
-                                                      float_format="{:.2f}")
-                                     + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000",
-                                                        float_format="{:.1f}")))
+                + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm", float_format="{:.2f}")
+                + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000", float_format="{:.1f}"))
 
     # ---- preview / full resolution
     def update(self, preview: bool = False) -> None:
@@ -675,7 +670,7 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     yr = datetime.date.today().year if year is None else int(year)
     m_sign = fs.scale.m if scale_m is None else float(scale_m)
     m_rounded = int(round(m_sign / 100.0) * 100)
-    m_txt = fmt_count(m_rounded)
+    m_txt = f"{m_rounded:,}".replace(",", " ")
     cx = 0.5
     fig.text(cx, fy(ph - 16), "ФОТОСХЕМА", ha="center", va="center", fontsize=26, fontweight="bold")
     if english:
@@ -696,7 +691,7 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     for t in (0.0, 0.5, 1.0):
         fig.add_artist(Line2D([fx(bx + t * bar_mm)] * 2, [fy(by - 1.5), fy(by + 1.5)], lw=1.2, color="black",
                               transform=fig.transFigure))
-    fig.text(fx(bx + bar_mm + 3), fy(by), f"{fmt_count(bar_m)} m", va="center", fontsize=10)
+    fig.text(fx(bx + bar_mm + 3), fy(by), f"{bar_m:,.0f} m".replace(",", " "), va="center", fontsize=10)
     made = f"Фотосхема изготовлена в {yr} г." + (f" ({place})" if place else "")
     fig.text(fx(left), fy(by - 12), made + (f"  ·  made in {yr}" if english else ""), fontsize=11, va="center")
     rx = left + w
@@ -822,7 +817,7 @@ def own_sheet_figure(variant, ax=None, *, px_per_mm: float = 5.0):
     ax.set_ylim(y0 - 2, y1 + 10)
     ax.set_xlabel("along the strip, mm (from the principal point of photo %d)" % fs.numbers[0])
     ax.set_ylabel("across, mm")
-    m_txt = fmt_count(fs.m_design)
+    m_txt = f"{fs.m_design:,.0f}".replace(",", " ")
     ax.set_title(f"Your fotoschema: photos {fs.numbers[0]}–{fs.numbers[-1]}, f = {fs.camera.f_mm:g} mm, "
                  f"photos at 1:{m_txt}")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize=9, frameon=False)

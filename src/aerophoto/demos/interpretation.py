@@ -243,8 +243,7 @@ class KeyDemo(LiveDemo):
     title = "Table 10 as a key (топографическое дешифрирование)"
     hint = "Pick a row of table 10: the photo shows the site where that key applies, and what to look at."
     params = (
-        # numbered from 1, as a reader counts rows (key_model counts from 0)
-        Param("row", "table 10 row", 1, N_KEY_ROWS, 1, 1, kind="int", group="Key",
+        Param("row", "table 10 row", 0, N_KEY_ROWS - 1, 1, 0, kind="int", group="Key",
               help="the rows of table 10 that the site shows, in the table's order"),
         Param("camera", "film", default="colour film", kind="choice",
               options=(("natural colour", "colour film"), ("colour infrared", "colour-infrared film")), group="Key"),
@@ -257,9 +256,9 @@ class KeyDemo(LiveDemo):
         self._seen = {}  # close-ups already rendered (a row revisited is instant)
 
     def compute(self, **v):
-        k = (int(v["row"]) - 1, v["camera"])
+        k = (int(v["row"]), v["camera"])
         if k not in self._seen:
-            self._seen[k] = key_model(*k)
+            self._seen[k] = key_model(**v)
         return self._seen[k]
 
     def render(self, result):

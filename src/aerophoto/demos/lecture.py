@@ -15,101 +15,29 @@ its chapter: ``demo.set(...)``, Reset, the browser tests' slider moves.
 
 from __future__ import annotations
 
-__all__ = ["lecture_view", "LECTURE_CSS", "SLIDER_WIDTH_PX", "MAX_PER_COLUMN", "SCREEN_HEIGHT_PX", "PROJECTOR_SCALE",
-           "set_projector", "projector_on"]
+__all__ = ["lecture_view", "LECTURE_CSS", "SLIDER_WIDTH_PX", "MAX_PER_COLUMN", "SCREEN_HEIGHT_PX"]
 
 #: slider width in the band (the chapters use 340 px): four columns fit 1280 px beside nothing else
 SLIDER_WIDTH_PX = 292
 #: sliders per column of the band
 MAX_PER_COLUMN = 3
-#: projector mode: the figures' resolution (and with it their text, lines and markers) grows by this factor
-PROJECTOR_SCALE = 1.3
 
 LECTURE_CSS = """<style>
 .aerophoto-lecture .widget-label, .aerophoto-lecture .widget-readout, .aerophoto-lecture .widget-button,
-.aerophoto-lecture .widget-toggle-button, .aerophoto-lecture select { font-size: 16px; }
+.aerophoto-lecture select { font-size: 15px; }
 .aerophoto-lecture .widget-slider, .aerophoto-lecture .widget-dropdown { margin-top: 1px; margin-bottom: 1px; }
-.aerophoto-lecture .aerophoto-table { font-size: 15px !important; line-height: 1.3; }
-.aerophoto-lecture .aerophoto-table table { width: 100%; }
-.aerophoto-lecture .aerophoto-table td, .aerophoto-lecture .aerophoto-table th { padding: 1px 6px; }
-.aerophoto-lecture .aerophoto-table td.num { white-space: nowrap; }
-.aerophoto-lecture .aerophoto-table tbody th { text-align: left; font-weight: normal; }
-.aerophoto-lecture .aerophoto-table ul { margin-top: 2px !important; font-size: 15px; }
-.aerophoto-lecture .widget-html-content { line-height: 1.3; font-size: 15px; }
-.aerophoto-lecture .aerophoto-lecture-title { font-size: 20px; font-weight: bold; margin: 0 0 2px 0; }
-.aerophoto-lecture .aerophoto-lecture-title span { font-weight: normal; color: #444; font-size: 16px; }
-.aerophoto-lecture .aerophoto-legend { font-size: 15px !important; }
-.aerophoto-projector .widget-label, .aerophoto-projector .widget-readout, .aerophoto-projector .widget-button,
-.aerophoto-projector .widget-toggle-button, .aerophoto-projector select, .aerophoto-projector .widget-html-content,
-.aerophoto-projector .aerophoto-table, .aerophoto-projector .aerophoto-table ul, .aerophoto-projector .aerophoto-legend,
-.aerophoto-projector .aerophoto-lecture-title span, .aerophoto-projector .aerophoto-status
-  { font-size: 19px !important; }
-.aerophoto-projector .aerophoto-lecture-title { font-size: 24px; }
-.jp-RenderedHTMLCommon a, .jp-RenderedMarkdown a { text-decoration: underline; }
-.aerophoto-projector .widget-label { min-width: 0; }
+.aerophoto-lecture .aerophoto-table { font-size: 13px !important; line-height: 1.25; }
+.aerophoto-lecture .aerophoto-table td, .aerophoto-lecture .aerophoto-table th { padding: 1px 5px; }
+.aerophoto-lecture .aerophoto-table ul { margin-top: 2px !important; font-size: 12px; }
+.aerophoto-lecture .widget-html-content { line-height: 1.3; }
+.aerophoto-lecture .aerophoto-lecture-title { font-size: 18px; font-weight: bold; margin: 0 0 2px 0; }
+.aerophoto-lecture .aerophoto-lecture-title span { font-weight: normal; color: #555; font-size: 15px; }
 </style>"""
-
-
-class _Projector:
-    """Projector mode of the lecture pages: on/off for every lecture view of the kernel, remembered on the machine.
-
-    ``remember`` (set by :func:`aerophoto.setup` with ``lecture=True``) saves the choice, so the next lecture page
-    opens in the mode the lecturer left; ``on`` starts from what was saved.
-    """
-
-    def __init__(self):
-        import weakref
-
-        self.on = False
-        self.remember = None
-        self.views = weakref.WeakSet()
-
-
-_PROJECTOR = _Projector()
-
-
-def projector_on() -> bool:
-    """Whether the lecture pages are in projector mode."""
-    return _PROJECTOR.on
-
-
-def _apply(view) -> None:
-    demo = view._aerophoto_demo
-    on = _PROJECTOR.on
-    if on:
-        view.add_class("aerophoto-projector")
-    else:
-        view.remove_class("aerophoto-projector")
-    dpi = view._aerophoto_dpi * (PROJECTOR_SCALE if on else 1.0)
-    if demo.fig is not None and abs(demo.fig.dpi - dpi) > 1e-9:
-        demo.fig.set_dpi(dpi)  # text, lines and markers grow together: the frozen layout stays right
-        demo.draw()
-    toggle = getattr(view, "_aerophoto_toggle", None)
-    if toggle is not None and toggle.value != on:
-        toggle.value = on
-
-
-def set_projector(on: bool) -> bool:
-    """Projector mode on or off for every lecture view shown in this kernel (and remembered); returns it.
-
-    On: the pages' text at 19 px and over (the 1280×800 projector of a lecture hall), the figures drawn
-    :data:`PROJECTOR_SCALE` times larger — their text, lines and markers with them.
-    """
-    if bool(on) == _PROJECTOR.on:
-        return _PROJECTOR.on  # already so (the other views' buttons follow the one pressed)
-    _PROJECTOR.on = bool(on)
-    for view in list(_PROJECTOR.views):
-        _apply(view)
-    if _PROJECTOR.remember is not None:
-        _PROJECTOR.remember(_PROJECTOR.on)
-    return _PROJECTOR.on
 
 
 def _columns(demo):
     """The sliders as columns of at most :data:`MAX_PER_COLUMN`, each headed by its group (or a blank line)."""
     import ipywidgets as w
-
-    from ..i18n import t
 
     ctls = demo.controls()
     groups: dict[str, list] = {}
@@ -118,7 +46,7 @@ def _columns(demo):
     cols = []
     for name, items in groups.items():
         for k in range(0, len(items), MAX_PER_COLUMN):
-            head = w.HTML(f"<b>{t(name)}</b>" if k == 0 and name else "&nbsp;", layout=w.Layout(height="24px"))
+            head = w.HTML(f"<b>{name}</b>" if k == 0 and name else "&nbsp;", layout=w.Layout(height="22px"))
             cols.append(w.VBox([head, *items[k:k + MAX_PER_COLUMN]], layout=w.Layout(margin="0 8px 0 0")))
     for ctl in ctls.values():
         ctl.layout.width = f"{SLIDER_WIDTH_PX}px"
@@ -147,43 +75,24 @@ def lecture_view(demo, title: str = "", subtitle: str = "", *, full_screen: bool
 
     import ipywidgets as w
 
-    from ..i18n import t
-    from ..widgets import FLUID_CSS
-
-    reset = w.Button(description=t("Reset"), icon="undo", tooltip=t("Back to the starting values"),
+    reset = w.Button(description="Reset", icon="undo", tooltip="Back to the starting values",
                      layout=w.Layout(width="110px", flex="0 0 auto"))
     reset.on_click(lambda _b: demo.reset())
     demo.reset_button = reset
-    projector = w.ToggleButton(value=_PROJECTOR.on, description=t("Projector"), icon="tv",
-                               tooltip=t("Larger text, lines and markers for the back row (remembered)"),
-                               layout=w.Layout(width="130px", flex="0 0 auto", margin="0 8px 0 0"))
-    projector.observe(lambda ch: set_projector(ch["new"]), names="value")
     band = w.HBox(_columns(demo), layout=w.Layout(flex_flow="row wrap", align_items="flex-start",
                                                    margin="0 0 4px 0"))
-    head = html.escape(title or t(demo.title))
-    # the subtitle's parts ("… · the guide's example (variant 00)") never break inside: a line never starts with
-    # "(variant 00)" alone
-    parts = [f"<span style='white-space:nowrap'>{html.escape(p)}</span>" for p in subtitle.split(" · ")] if subtitle else []
-    sub = f" <span>{' · '.join(parts)}</span>" if parts else ""
-    top = w.HBox([w.HTML(f"{LECTURE_CSS}{FLUID_CSS}<div class='aerophoto-lecture-title' role='heading' aria-level='2'>"
-                         f"{head}{sub}</div>", layout=w.Layout(flex="1 1 auto")), projector, reset],
+    head = html.escape(title or demo.title)
+    sub = f" <span>{html.escape(subtitle)}</span>" if subtitle else ""
+    top = w.HBox([w.HTML(f"{LECTURE_CSS}<div class='aerophoto-lecture-title'>{head}{sub}</div>",
+                         layout=w.Layout(flex="1 1 auto")), reset],
                  layout=w.Layout(align_items="center", justify_content="space-between"))
-    # the figure takes its natural width where there is room and shrinks with the page where there is not (never a
-    # horizontal scroll bar); the side column keeps at least 280 px for the key, the status and the table
-    figure = w.Box([demo.figure_widget()], layout=w.Layout(flex="0 1 auto", min_width="0"))
-    figure.add_class("aerophoto-fluid")
-    # at most 760 px wide, its tables the column's width: a table does not jump in width as its texts change
-    side = w.VBox([demo.legend, demo.status, demo.table],
-                  layout=w.Layout(margin="0 0 0 12px", flex="1 1 280px", min_width="280px", max_width="760px"))
+    width_px = int(round(demo.fig.get_figwidth() * demo.fig.dpi))
+    figure = w.Box([demo.figure_widget()], layout=w.Layout(min_width=f"{width_px}px", flex="0 0 auto"))
+    side = w.VBox([demo.table, demo.status, demo.legend],
+                  layout=w.Layout(margin="0 0 0 12px", flex="1 1 auto"))
     main = w.HBox([figure, side], layout=w.Layout(align_items="flex-start"))
-    view = w.VBox([top, band, main], layout=w.Layout(width="100%",
+    view = w.VBox([top, band, main], layout=w.Layout(max_width="1270px",
                                                      min_height=f"{SCREEN_HEIGHT_PX}px" if full_screen else None))
     view.add_class("aerophoto-demo")
     view.add_class("aerophoto-lecture")
-    view._aerophoto_demo = demo
-    view._aerophoto_dpi = float(demo.fig.dpi)
-    view._aerophoto_toggle = projector
-    _PROJECTOR.views.add(view)
-    if _PROJECTOR.on:
-        _apply(view)
     return view

@@ -46,7 +46,6 @@ import pandas as pd
 from matplotlib import patheffects
 
 from .. import plots
-from ..i18n.numbers import fmt_scale, fmt_spec
 
 __all__ = ["MeasureTool", "photo_tool", "plan_tool"]
 
@@ -304,10 +303,7 @@ class MeasureTool:
                        f"{html.escape(_HELP)}</div>")]
         self._widgets = {"point": point, "readout": readout, "status": status, "table": table, "code": code}
         right = w.VBox(side, layout=w.Layout(width="350px", margin="0 0 0 12px"))
-        # the panel goes under the picture where the column is too narrow for both (JupyterLab beside its file
-        # browser): never clipped; the picture keeps its size (clicks are read in its pixels)
-        layout = w.HBox([plots.figure_widget(self.fig), right],
-                        layout=w.Layout(align_items="flex-start", flex_flow="row wrap"))
+        layout = w.HBox([plots.figure_widget(self.fig), right], layout=w.Layout(align_items="flex-start"))
         self._widgets["layout"] = layout
         self._widgets["readout"].value = "<b>cursor</b>: move the mouse over the picture"
         self._refresh()
@@ -354,7 +350,7 @@ def plan_tool(sheet, *, contour_interval_m: float = 2.0, **kwargs) -> MeasureToo
     Z = plan.contour_Z_m
     step = float(contour_interval_m)
     levels = np.arange(math.floor(Z.min() / step) * step, Z.max() + step, step)
-    kwargs.setdefault("title", f"Your plan at {fmt_scale(sheet.M)} with contours every {fmt_spec(step, '{:g}')} m")
+    kwargs.setdefault("title", f"Your plan at 1:{sheet.M:,.0f} with contours every {step:g} m".replace(",", " "))
     return MeasureTool(plan.image, plan.extent_mm, sheet.names, marks=sheet.marks("plan"),
                        contours=(plan.contour_x_mm, plan.contour_y_mm, Z, levels), xlabel="plan x (east), mm",
                        ylabel="plan y (north), mm", **kwargs)

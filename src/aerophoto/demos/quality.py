@@ -39,7 +39,6 @@ from matplotlib.collections import LineCollection
 
 from .. import geometry as g
 from .. import plots
-from ..i18n import t as _t  # functions here name a local t
 from .. import quality as q
 from .. import simulate as sim
 from ..widgets import TABLE_DELAY_S, LiveDemo, Param, table_after_picture  # noqa: F401 (TABLE_DELAY_S: importable from here, as before)
@@ -48,10 +47,8 @@ __all__ = ["QualityResult", "quality_model", "rough_mosaic_raster", "board_exten
            "QualityDemo", "verdict_html", "crab_limit_plot", "table_after_picture"]
 
 #: tints of ground covered by 1, 2, 3, 4+ prints (RGB 0…1) and their weight
-# the number of prints over a point as a lightness ramp (light blue, blue, navy): apart by CIEDE2000 ≥ 14 from
-# each other and from the grey photo under deuteranopia and protanopia too (tests/presentation/test_colours.py)
-_TINTS = {1: ((1.0, 1.0, 1.0), 0.0), 2: ((0.80, 0.92, 1.0), 0.55), 3: ((0.0, 0.45, 0.70), 0.50),
-          4: ((0.0, 0.12, 0.30), 0.60)}
+_TINTS = {1: ((1.0, 1.0, 1.0), 0.0), 2: ((0.34, 0.71, 0.91), 0.30), 3: ((0.0, 0.45, 0.70), 0.40),
+          4: ((0.80, 0.47, 0.65), 0.45)}
 _FAIL = plots.COLORS["vermillion"]
 _STRIP_COLORS = (plots.COLORS["blue"], plots.COLORS["green"], plots.COLORS["orange"], plots.COLORS["purple"])
 
@@ -278,7 +275,7 @@ def verdict_html(report: q.QualityReport, *, conclusion: bool = True) -> str:
     if conclusion:
         text = _html.escape(report.conclusion())
         out += (f"<div style='max-width:420px;font-size:12px;white-space:pre-wrap;margin-top:6px'>"
-                f"<b>{_t('Conclusion')}</b>\n{text}</div>")
+                f"<b>Conclusion</b>\n{text}</div>")
     return out
 
 
@@ -405,8 +402,8 @@ class RoughMosaicView:
             else:
                 t.set_visible(False)
         n_fail = len(rep.failures())
-        self.title.set_text(_t("Rough mosaic (накидной монтаж): all criteria met") if n_fail == 0 else
-                            _t("Rough mosaic (накидной монтаж): checks failed: {n}", n=n_fail))
+        self.title.set_text("Rough mosaic (накидной монтаж): " + ("all criteria met" if n_fail == 0 else
+                                                                   f"{n_fail} check{'s' if n_fail > 1 else ''} failed"))
 
 
 class QualityDemo(LiveDemo):

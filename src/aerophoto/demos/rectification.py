@@ -25,7 +25,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from matplotlib import patheffects
 import pandas as pd
 
 from .. import geometry as g
@@ -33,7 +32,6 @@ from .. import plots
 from .. import projective as pj
 from .. import rectify as rf
 from ..i18n import t as _t  # functions here name a local t
-from ..i18n.numbers import fmt
 from ..widgets import LiveDemo, Param
 
 __all__ = ["EXAMPLE", "TransformerResult", "transformer_model", "TransformerView", "TransformerDemo",
@@ -155,7 +153,7 @@ class TransformerResult:
         st = s.state
         first = self.run.within_tolerance_step
         conv = self.run.converged_step
-        rows = [("motion", "", _t("{step}: {name} (cycle {cycle})", step=self.step, name=_t(s.name), cycle=s.cycle)),
+        rows = [("motion", "", f"{self.step}: {s.name} (cycle {s.cycle})"),
                 ("what the operator does", "", rf.STEP_NAMES[s.name]),
                 ("screen tilt ε", "°", f"{st.eps_deg:.3f}"),
                 ("tilt direction λ_t", "°", f"{st.tilt_dir_deg % 360:.1f}"),
@@ -163,8 +161,8 @@ class TransformerResult:
                 ("enlargement s", "", f"{st.scale:.4f}")]
         names = ("1", "2", "3", "4", "centre")
         rows += [(f"residual at {n}", "mm", f"{d:.2f}") for n, d in zip(names, s.lengths_mm)]
-        rows.append(("largest residual vs 0.4 mm", "", fmt(s.max_residual_mm, 2) + " — "
-                     + _t("within" if s.max_residual_mm <= rf.TOLERANCE_MM else "not yet")))
+        rows.append(("largest residual vs 0.4 mm", "", f"{s.max_residual_mm:.2f} — "
+                     + ("within" if s.max_residual_mm <= rf.TOLERANCE_MM else "not yet")))
         rows.append(("every point within 0.4 mm from step", "", "—" if first is None else f"{first}"))
         rows.append(("first full cycle within 0.4 mm ends at step", "", "—" if conv is None else f"{conv}"))
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
@@ -221,15 +219,11 @@ class TransformerView:
                               interpolation="antialiased")
         (self.hh,) = a.plot([], [], "-.", color=_C["blue"], lw=1.6, label="principal horizontal hh")
         (self.hh_pts,) = a.plot([], [], "x", color=_C["blue"], ms=7, mew=1.6)
-        # a dark outline under the pink triangles: they stay visible on the grey photo with any colour vision
         (self.base,) = a.plot([], [], "^", mfc="none", mec=_C["control"], mew=2.4, ms=12,
-                              label="points on the base planchet",
-                              path_effects=[patheffects.withStroke(linewidth=4.4, foreground="black")])
+                              label="points on the base planchet")
         (self.images,) = a.plot([], [], "o", color=_C["orange"], ms=7, label="their images on the screen")
         self.arrows = a.quiver(np.zeros(5), np.zeros(5), np.zeros(5), np.zeros(5), angles="xy", scale_units="xy",
-                               scale=1.0, color=_C["vermillion"], width=0.006, zorder=5,
-                               label="misses (lengthened ×k)")
-        a.legend(loc="upper right")  # the key; a live demo shows it beside the figure (LiveDemo.legend_beside)
+                               scale=1.0, color=_C["vermillion"], width=0.006, zorder=5)
 
     def update(self, r: TransformerResult) -> None:
         s = r.current
@@ -259,8 +253,8 @@ class TransformerView:
             self.hh.set_data([], [])
             self.hh_pts.set_data([], [])
         # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
-        self.ax.title.set_text(_t("Step {step}: {name} — misses ×{k}, largest {largest} mm", step=r.step,
-                                  name=_t(s.name), k=k, largest=fmt(s.max_residual_mm, 2)))
+        self.ax.title.set_text(_t("Step {step}: {name} — misses ×{k}, largest {largest:.2f} mm", step=r.step,
+                                  name=_t(s.name), k=k, largest=s.max_residual_mm))
 
 
 class TransformerDemo(LiveDemo):
@@ -298,12 +292,7 @@ class TransformerDemo(LiveDemo):
         self.table.value = plots.html_table(result.table(), caption="The screen")
 
     def on_slider(self) -> str:
-        """Photo sliders: a preview render at once, the full resolution when the slider rests.  The step slider is
-        discrete and cheap: every step is drawn at full resolution at once (no blurred frame, no status line)."""
-        if self.moved == "step":
-            self.cancel_later()
-            self.update()
-            return ""
+        """Photo sliders: a preview render at once, the full resolution when the slider rests (the step slider is cheap)."""
         return self.preview_then_full(0.25)
 
 

@@ -46,7 +46,6 @@ from .. import plots
 from .. import triangulation as tri
 from .._validate import check_int_range, check_range
 from ..i18n import t
-from ..i18n.numbers import fmt_count
 from ..widgets import LiveDemo, Param
 
 __all__ = [
@@ -196,8 +195,8 @@ def reduction_model(f_mm: float = 100.0, m: float = 12000.0, scale_ratio: float 
     flown = strip.imperfections.max_tilt_deg
     if flown < max_tilt_deg - 1e-9:
         H = g.flying_height_m(f_mm, m)
-        tilt_note = (f"α max reduced from {max_tilt_deg:g}° to {flown:.2f}°: at H = {fmt_count(H)} m a larger tilt would "
-                     "carry the photos off the 10 × 5 km site")
+        tilt_note = (f"α max reduced from {max_tilt_deg:g}° to {flown:.2f}°: at H = {H:,.0f} m a larger tilt would "
+                     "carry the photos off the 10 × 5 km site").replace(",", " ")
         note = f"{note}; {tilt_note}" if note else tilt_note
     tm = tri.measure_templates(strip.camera, strip.poses, pts, pricking_mm=pricking_mm, seed=int(seed))
     fs = tri.lay_free_strip(tm, scale_ratio=scale_ratio, M=M)
@@ -686,7 +685,7 @@ def own_site_figure(variant, ax=None):
     from matplotlib.ticker import FuncFormatter
 
     view = SiteStripView(lab.strip, lab.free.points, site=site_mod.get_site(), ax=ax)
-    m_txt = fmt_count(lab.strip.m)
+    m_txt = f"{lab.strip.m:,.0f}".replace(",", " ")
     view.ax.set_title(f"Your strip: photos {lab.strip.shots[0].number}–{lab.strip.shots[-1].number}, "
                       f"f = {lab.strip.camera.f_mm:g} mm, 1:{m_txt}")
     # the student's geodetic coordinates (triangulation.geodetic): Y east along the axis, X north up it

@@ -210,7 +210,7 @@ and Q, and the river's flow read with table 10's keys.
 example = labs.ch08.example_photo()
 plots.static(di.lab_figure(example),
              alt="A colour aerial photo of the interpretation site with six yellow numbered marks, two blue marks P "
-                 "and Q on two forest stands, and two red marks A and B on opposite banks of the river.", dpi=150)
+                 "and Q on two forest stands, and two red marks A and B on opposite banks of the river.", dpi=72)
 """, id="example-1"),
     code("""
 labs.ch08.example_key()
@@ -226,7 +226,7 @@ text exactly, e.g. `obj1 = "lake (озеро)"`):
 
 Each name is graded on its own (half a point for each right one).
 
-The photo is drawn at its full resolution (1024 px across, 150 dpi). To look closer, open it in a browser tab of
+The photo is drawn at 72 dpi, so the notebook stays small. To look closer, open it in a browser tab of
 its own (right-click → *Open image in new tab*) and zoom there, or zoom the page (Ctrl and +); the colour-infrared
 copy below it helps to tell water, forest and fields apart.
 """, id="task-08-1"),
@@ -240,11 +240,11 @@ for name in labs.ch08.OBJECT_NAMES:
     code("""
 plots.static(di.lab_figure(lab),
              alt="Your colour aerial photo of the interpretation site with six numbered yellow marks, two blue "
-                 "marks P and Q on two forest stands, and red marks A and B on the two banks of the river.", dpi=150)
+                 "marks P and Q on two forest stands, and red marks A and B on the two banks of the river.", dpi=72)
 """, id="task-08-1-photo"),
     code("""
 plots.static(di.lab_figure(lab, "colour-infrared film"),
-             alt="The same photo as colour infrared: vegetation red, water black, with the same marks.", dpi=150)
+             alt="The same photo as colour infrared: vegetation red, water black, with the same marks.", dpi=72)
 """, id="task-08-1-cir"),
     answer_cell("task-08-1"),
     check_cell("task-08-1"),

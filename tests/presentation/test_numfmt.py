@@ -1,0 +1,70 @@
+"""The book's one number format (aerophoto.i18n.numfmt): decimal mark, grouping, minus, counts, scales."""
+
+import math
+
+import numpy as np
+import pytest
+
+from aerophoto.i18n import language
+from aerophoto.i18n.numfmt import (DASH, GROUP, MINUS, NBSP, decimals_for, fmt_count, fmt_number, fmt_percent,
+                                   fmt_quantity, fmt_scale, fmt_signed, fmt_value)
+
+
+@pytest.mark.parametrize("x, decimals, ru, en", [
+    (11859.2, 0, f"11{GROUP}859", f"11{GROUP}859"),
+    (2706, 0, "2706", "2706"),                       # four digits stay whole
+    (12043.0, 0, f"12{GROUP}043", f"12{GROUP}043"),
+    (1200.0, 2, "1200,00", "1200.00"),               # never "1,200.00"
+    (1234567.891, 1, f"1{GROUP}234{GROUP}567,9", f"1{GROUP}234{GROUP}567.9"),
+    (-3.25, 1, f"{MINUS}3,2", f"{MINUS}3.2"),        # round half to even, a true minus
+    (-0.004, 2, "0,00", "0.00"),                     # no signed zero
+    (0.0, 3, "0,000", "0.000"),
+])
+def test_fixed_decimals(x, decimals, ru, en):
+    assert fmt_number(x, decimals, lang="ru") == ru
+    assert fmt_number(x, decimals, lang="en") == en
+
+
+def test_significant_digits_never_scientific():
+    assert fmt_number(6004123.4, sig=4, lang="en") == f"6{GROUP}004{GROUP}123"
+    assert fmt_number(0.00395604, sig=3, lang="ru") == "0,00396"
+    assert fmt_number(0.00395604, lang="en") == "0.003956"   # default: 4 significant digits
+    assert "e" not in fmt_number(1.5e-9, lang="en")
+    assert decimals_for(123.4, 4) == 1 and decimals_for(0.012, 2) == 3 and decimals_for(98765, 3) == 0
+
+
+def test_language_in_use_and_missing_values():
+    with language("ru"):
+        assert fmt_number(0.67, 2) == "0,67"
+    with language("en"):
+        assert fmt_number(0.67, 2) == "0.67"
+    assert fmt_number(None) == DASH and fmt_number(float("nan")) == DASH and fmt_number(np.nan) == DASH
+    assert fmt_number(math.inf) == "∞" and fmt_number(-math.inf) == MINUS + "∞"
+
+
+def test_counts_scales_percent_units():
+    assert fmt_count(70.0) == "70" and fmt_count(np.int64(12043)) == f"12{GROUP}043"
+    with pytest.raises(ValueError, match="n = 2.5"):
+        fmt_count(2.5)
+    assert fmt_scale(17700) == f"1:17{GROUP}700" and fmt_scale(10000.4) == f"1:10{GROUP}000"
+    with pytest.raises(ValueError, match="m = 0"):
+        fmt_scale(0)
+    assert fmt_percent(12.34, lang="ru") == f"12,3{NBSP}%"
+    assert fmt_quantity(11859.2, "m", 0, lang="ru") == f"11{GROUP}859{NBSP}м"
+    assert fmt_quantity(3.0, "°", 1, lang="en") == "3.0°"
+    assert fmt_signed(0.12, 2, lang="ru") == "+0,12" and fmt_signed(-0.001, 2, lang="ru") == "0,00"
+
+
+def test_table_cells():
+    assert fmt_value(np.int64(5)) == "5" and fmt_value(12043) == f"12{GROUP}043"
+    assert fmt_value(True, lang="ru") == "да" and fmt_value(np.bool_(False), lang="en") == "no"
+    assert fmt_value("1a–4a") == "1a–4a" and fmt_value(np.float64("nan")) == DASH
+    assert fmt_value(0.1234567, lang="ru") == "0,1235"
+
+
+@pytest.mark.parametrize("bad", [-1, 1.5, True, "2"])
+def test_bad_precision_named(bad):
+    with pytest.raises(ValueError, match="decimals"):
+        fmt_number(1.0, bad)
+    with pytest.raises(ValueError, match="lang"):
+        fmt_number(1.0, 1, lang="de")

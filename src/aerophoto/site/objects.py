@@ -49,6 +49,7 @@ use them.  Data and geometry only (layer 3).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -143,9 +144,9 @@ class SiteObjects:
     def __len__(self) -> int:
         return self.n_polyhedra + self.n_ellipsoids
 
-    @property
+    @functools.cached_property
     def canopy_max_m(self) -> float:
-        """The tallest canopy, metres."""
+        """The tallest canopy, metres (read once: every ray cast asks for it twice)."""
         return float(self.canopy_dm.max()) * 0.1 if self.canopy_dm.size else 0.0
 
     @property

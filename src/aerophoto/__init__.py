@@ -31,6 +31,7 @@ import importlib
 __version__ = "0.1.0"
 
 _SUBMODULES = (
+    "cache",
     "geometry",
     "plane",
     "variants",

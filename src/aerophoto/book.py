@@ -179,6 +179,10 @@ _M = ("m (scale 1:m)", "PageUp")  # scale denominator: five steps up
 CHAPTERS = (
     Chapter("00", "start_here", "start here: your variant, central projection",
             "задание; центральная проекция", section=1, tables=False, demos=(
+                # the cheapest live figure of the book (one blitted line): also the browser benchmark's floor
+                Demo("demo-ray", "aerophoto.demos.ray.RayDemo", "One ray of a vertical photo", "x",
+                     "the ray from S turns and its ground point X = x·m slides along the footprint: the scale "
+                     "1:m = f:H of a vertical photo", (("x, mm", "ArrowRight"),)),
                 Demo("demo-footprint", "aerophoto.demos.footprint.FootprintDemo", "Camera footprint — o, n, c",
                      "α (tilt), then f and m (scale 1:m)",
                      "the footprint turns from a square into a trapezoid; n and c leave o along the principal "

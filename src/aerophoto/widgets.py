@@ -265,6 +265,10 @@ class LiveDemo:
     fixed_layout: bool = True
     #: show the figure's legends as HTML under it instead of drawing them on every update
     legend_beside: bool = True
+    #: the demo's picture is mostly a photo that a move changes whole (a moved mosaic, a rendered photo, a
+    #: map): its frames to the browser go as JPEG of :data:`aerophoto.plots.PHOTO_QUALITY` (see
+    #: :func:`aerophoto.plots.fast_frames`); the figure itself, savefig and the saved notebook stay exact
+    photo_frames: bool = False
     #: the artists a move changes (lines, markers, whole Axes whose limits move), set in :meth:`build`;
     #: when given, a move redraws only these over a cached picture of the rest (:class:`blit.Blitter`)
     animated: tuple = ()
@@ -299,7 +303,10 @@ class LiveDemo:
         self.legend = w.HTML(legend_html(self.fig) if self.legend_beside else "")
         if self.fixed_layout:
             freeze_layout(self.fig)
-        fast_frames(self.fig)  # cheaper PNG frames to the browser (ipympl only)
+        from .plots import PHOTO_QUALITY
+
+        # cheaper frames to the browser (ipympl only): unfiltered PNG rows; a photo demo's moved photo as JPEG
+        fast_frames(self.fig, photo_quality=PHOTO_QUALITY if self.photo_frames else None)
         #: draws only ``animated`` on a move (None: every move draws the whole figure)
         self.blitter = None
         if self.animated and getattr(self, "fig", None) is not None and os.environ.get("AEROPHOTO_BLIT", "1") != "0":

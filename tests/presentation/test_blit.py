@@ -20,6 +20,8 @@ pytestmark = pytest.mark.usefixtures("plot_style")
 #: (module, class, moves): each move a dict for demo.set and whether it must be blitted (False: something static
 #: changes — limits beyond the rounding, ticks — so it is a full draw; the picture must be right either way)
 DEMOS = [
+    # the floor of the browser benchmark: every move one blitted line
+    ("ray", "RayDemo", [({"x_mm": 41.0}, True), ({"x_mm": -90.0}, True), ({"x_mm": 90.0}, True)]),
     # the plan's half-width is a round value (2, 2.5, 3.2 km …) around N: a move that outgrows it is a full draw
     ("footprint", "FootprintDemo", [({"f_mm": 150}, True), ({"alpha_deg": 8}, False), ({"m": 15000}, False),
                                     ({"lambda_deg": 30}, True), ({"kappa_deg": 45}, True), ({"alpha_deg": 8.5}, True)]),
@@ -140,8 +142,8 @@ def test_figure_size_change_falls_back_to_a_full_draw():
     demo.close()
 
 
-#: the first three, and demos that animate an axis of their own (its limits follow the data)
-SAVED = DEMOS[:3] + [d for d in DEMOS if d[1] in ("BaseHeightDemo", "ResectionDemo")]
+#: the first four (the floor's ray among them), and demos that animate an axis of their own (its limits follow the data)
+SAVED = DEMOS[:4] + [d for d in DEMOS if d[1] in ("BaseHeightDemo", "ResectionDemo")]
 
 
 def _registry_demos():

@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 
 _SUBMODULES = (
+    "ray",  # one ray of a vertical photo (chapter 00): the cheapest live figure, the browser benchmark's floor
     "footprint",  # camera footprint with o, n, c (chapter 00)
     "displacement",  # relief and tilt displacement explorer (chapters 03, 04)
     "flight_plan",  # survey plan: strips, photos, footprints, timing (chapter 01)

@@ -407,6 +407,7 @@ class FotoschemaDemo(LiveDemo):
     ``demo.set(..., preview=True)`` at the preview one.
     """
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "The single-strip fotoschema (одномаршрутная фотосхема)"
     hint = ("Raise the relief or the tilt and watch cut-outs (−, vermillion) and duplicates (+, blue) appear along "
             "the cuts; a longer focal length flies higher at the same scale and shrinks the relief mismatches.")

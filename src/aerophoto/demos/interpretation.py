@@ -119,6 +119,7 @@ class ConditionsView:
 class ConditionsDemo(LiveDemo):
     """What makes a photo readable: the shooting conditions of guide §9 on one patch of the site."""
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "What makes a photo readable (дешифрируемость)"
     hint = ("Change the season, lower the sun, thicken the haze, wet the soil, slow the shutter: "
             "watch what you can still tell apart.")
@@ -240,6 +241,7 @@ class KeyView:
 class KeyDemo(LiveDemo):
     """Table 10 as an interactive key: pick a row, see where it applies on the site."""
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "Table 10 as a key (топографическое дешифрирование)"
     hint = "Pick a row of table 10: the photo shows the site where that key applies, and what to look at."
     params = (

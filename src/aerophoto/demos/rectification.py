@@ -260,6 +260,7 @@ class TransformerView:
 class TransformerDemo(LiveDemo):
     """Walk through the photo transformer's motions until the points fall within 0.4 mm."""
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "The photo transformer: matching four points (guide §12)"
     hint = ("Move 'step' to follow the operator: centre, scale, draw hh through the crossings of corresponding "
             "lines, turn it onto the screen's axis, tilt the screen. The arrows (lengthened ×k) are the misses; "

@@ -444,3 +444,24 @@ _BLOCK_ADJUSTMENT = {
     "critical |w| = 4": "критический |w| = 4",
 }
 MESSAGES = {**MESSAGES, **_BLOCK_ADJUSTMENT}
+
+# the ray of a vertical photo (chapter 00; the browser benchmark's floor, aerophoto.demos.ray)
+_RAY = {
+    "x, mm": "x, мм",
+    "Photo point": "Точка снимка",
+    "the point on the photo, from o along the flight": "точка на снимке, от o вдоль маршрута",
+    "One ray of a vertical photo": "Один луч горизонтального снимка",
+    "Move x: the ray from S turns, its ground point X = x·m slides along the footprint.":
+        "Двигайте x: луч из S поворачивается, его точка на местности X = x·m скользит по границам снимка.",
+    "f = {f} mm, 1:{m}: H = f·m = {H} m": "f = {f} мм, 1:{m}: H = f·m = {H} м",
+    "footprint's edge rays": "лучи на края снимка",
+    "footprint": "покрытие снимка",
+    "the ray of x": "луч точки x",
+    "X on the ground, m": "X на местности, м",
+    "Z above the ground, m": "Z над местностью, м",
+    "One ray": "Один луч",
+    "x on the photo": "x на снимке",
+    "X = x·m on the ground": "X = x·m на местности",
+    "θ = arctan(x/f) from the vertical": "θ = arctg(x/f) от отвесной линии",
+}
+MESSAGES = {**MESSAGES, **{k: v for k, v in _RAY.items() if k not in MESSAGES}}

@@ -537,6 +537,8 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
 
     See the module's docstring for the inputs and their checks.  Raises :class:`LiteBuildError`.
     """
+    from .website import live
+
     t0 = time.monotonic()
     deploy = deploy_dir(root)
     root = deploy.parents[1]
@@ -575,6 +577,8 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
         contents = tmp / "contents"
         contents.mkdir()
         names = _contents(notebooks, contents, out)
+        names += live.russian_contents(contents, notebooks, out)  # the Russian book (aerophoto.website.live)
+        live.lecture_apps(contents)
         (lite_dir / "jupyter-lite.json").write_text(json.dumps(_lite_config(PRELOAD), indent=2) + "\n",
                                                     encoding="utf-8")
         (lite_dir / "overrides.json").write_text(json.dumps(SETTINGS, indent=2) + "\n", encoding="utf-8")
@@ -583,6 +587,7 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
         lock_files = {v["file_name"]: v["sha256"] for v in site_lock["packages"].values()}
         _check_site(site, lock_files)
         patches = [patch_comm_cancel(site)]
+        worker = live.cache_service_worker(site)  # the browser's cache on any static host
 
         files = _binaries(site, sources)
         size = sum(p.stat().st_size for p in site.rglob("*") if p.is_file())
@@ -599,6 +604,7 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
             "notebooks": names,
             "binaries": files,
             "patches": patches,
+            "service_worker": worker,
         }
         (site / MANIFEST).write_text(json.dumps(manifest, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
         _replace(out_dir, site)

@@ -38,7 +38,10 @@ __all__ = ["build", "main", "cache_dir", "MANIFEST", "check_site", "chapter_note
 
 #: the site's build record (also the mark that a folder is a built web book)
 MANIFEST = "aerophoto-site.json"
-_REMOTE = re.compile(r"""(?:src|href)\s*=\s*["'](?:https?:)?//[^"']+["']|url\(\s*["']?(?:https?:)?//""", re.I)
+#: a resource the browser would fetch from another host: a script, picture, frame or media source, a stylesheet or
+#: preload, a CSS url() (plain links to other sites are fine: the reader follows them or not)
+_REMOTE = re.compile(r"""<(?:script|img|iframe|source|video|audio|embed|track)\b[^>]*\s(?:src|srcset)\s*=\s*["']\s*(?:https?:)?//"""
+                     r"""|<link\b[^>]*\shref\s*=\s*["']\s*(?:https?:)?//|url\(\s*["']?\s*(?:https?:)?//""", re.I)
 
 
 def cache_dir() -> Path:
@@ -87,7 +90,7 @@ def check_site(site: Path) -> list[str]:
             continue  # the browser book is checked by its own build (aerophoto.lite)
         text = p.read_text(encoding="utf-8", errors="replace")
         for m in _REMOTE.finditer(text):
-            problems.append(f"{p.relative_to(site)}: {m.group(0)[:100]}")
+            problems.append(f"{p.relative_to(site)}: {text[m.start():m.start() + 120]}")
         for src in re.findall(r"""<img[^>]+src=["']([^"'#?]+)""", text):
             if not src.startswith("data:") and not (p.parent / src).is_file():
                 problems.append(f"{p.relative_to(site)}: missing picture {src}")

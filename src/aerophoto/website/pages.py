@@ -116,7 +116,7 @@ def chapter_links(text: str, lang: str, pages: set) -> str:
 
     def link(m):
         page = by_num.get(m.group(2))
-        return f"[{m.group(1)}{m.group(2)}]({page}.ipynb)" if page else m.group(0)
+        return f"[{m.group(0)}]({page}.ipynb)" if page else m.group(0)
 
     pieces = _CODE.split(text)
     return "".join(p if i % 2 else pattern.sub(link, p) for i, p in enumerate(pieces))
@@ -213,6 +213,10 @@ def page_notebook(nb: dict, *, chapter: str, lang: str, figdir: Path, rel: str, 
                 text = f"<p class='aerophoto-untranslated' role='note'>{note}</p>\n\n{text}"
             c["source"] = text
         elif c.get("cell_type") == "code":
+            if re.fullmatch(r"task-\d\d-\d+-answer", cid):  # the page marks it (myst-nb: class tag_aerophoto-answer)
+                tags = c.setdefault("metadata", {}).setdefault("tags", [])
+                if "aerophoto-answer" not in tags:
+                    tags.append("aerophoto-answer")
             c["outputs"] = _code_outputs(c, figs, demo=demos.get(cid), live_url=live_url, lang=lang)
             c.get("metadata", {}).pop("execution", None)
     return out, {"figures": figs.n_fig, "tables": figs.n_table, "files": sorted(set(figs.files))}

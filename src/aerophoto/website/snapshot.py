@@ -46,10 +46,16 @@ def _figure_alt(fig) -> str:
     return "; ".join(parts) or "figure"
 
 
-def _number(x) -> str:
-    from ..i18n.numfmt import fmt_value
+def _number(x, readout_format: str | None = None) -> str:
+    """``x`` in the book's number format, with the decimals of a slider's ``readout_format`` (".1f", "d") if given."""
+    import re
+
+    from ..i18n.numfmt import fmt_number, fmt_value
 
     try:
+        m = re.fullmatch(r"\.?(\d*)([fd])", readout_format or "")
+        if m:
+            return fmt_number(x, int(m.group(1) or 0) if m.group(2) == "f" else 0)
         return fmt_value(x)
     except (TypeError, ValueError):
         return html.escape(str(x))
@@ -70,9 +76,9 @@ def _control(wd) -> str:
 
         value = t("yes") if wd.value else t("no")
     elif isinstance(getattr(wd, "value", None), (tuple, list)):
-        value = " – ".join(_number(v) for v in wd.value)
+        value = " – ".join(_number(v, getattr(wd, "readout_format", None)) for v in wd.value)
     elif hasattr(wd, "value"):
-        value = _number(wd.value)
+        value = _number(wd.value, getattr(wd, "readout_format", None))
     else:
         return ""
     sep = ": " if label else ""

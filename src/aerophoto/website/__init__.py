@@ -235,7 +235,11 @@ def build(out_dir="_book", *, root=None, notebooks=None, cache=None, hub_url=Non
             pairs = [(item, d) for (lg, item), d in zip(todo, done) if lg == lang]
             src = tmp / f"src-{lang}"
             summary[lang] = _book(lang, pairs, src=src, root=root, hub_url=hub_url, out=out)
-            times[f"sphinx_{lang}_s"] = round(stack.sphinx_build(bindir, src, site / lang, jobs=jobs, out=out), 1)
+            html_out = tmp / "html" / lang  # myst-nb writes jupyter_execute/ beside the output folder: not in the site
+            times[f"sphinx_{lang}_s"] = round(stack.sphinx_build(bindir, src, html_out, jobs=jobs, out=out), 1)
+            for p in html_out.rglob("*.map"):  # the theme's source maps: for its developers, 3.5 MB a book
+                p.unlink()
+            shutil.move(str(html_out), str(site / lang))
             if pdf:
                 single = tmp / "print" / lang
                 stack.sphinx_build(bindir, src, single, builder="singlehtml", jobs=jobs, out=out)

@@ -54,7 +54,8 @@ def russian_contents(contents: Path, notebooks: Path, out=print) -> list[str]:
         names.append(f"ru/{ch.notebook}")
     for page in [Path(contents) / book.LECTURE_INDEX, *sorted((Path(contents) / book.LECTURES_DIR).glob("*.ipynb"))]:
         rel = page.relative_to(contents)
-        nb, _u = prose.russian_notebook(_read(page), [])
+        blocks = prose.read_translations(prose.translation_path(Path(notebooks) / rel))  # e.g. ru/lectures.md
+        nb, _u = prose.russian_notebook(_read(page), blocks)
         _write(Path(contents) / "ru" / rel, nb)
         names.append(f"ru/{rel.as_posix()}")
     out(f"lite: contents: {len(names)} Russian notebooks and lecture pages under ru/")

@@ -67,7 +67,9 @@ myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "html_image"]
 myst_heading_anchors = 3
 suppress_warnings = ["myst.header", "myst.xref_missing", "misc.highlighting_failure", "myst.strikethrough"]
 html_theme = "sphinx_book_theme"
-html_title = {title!r}
+html_title = "aerophoto"
+html_favicon = "_static/favicon.png"
+html_context = {{"default_mode": "light"}}
 html_static_path = ["_static"]
 html_css_files = ["aerophoto-site.css"]
 html_copy_source = False
@@ -150,6 +152,21 @@ def lectures_page(lang: str, titles: dict) -> str:
     return "\n".join(rows) + "\n"
 
 
+def _favicon() -> bytes:
+    """The site's icon: a 32 × 32 PNG, a blue frame (the camera's) with its principal point, drawn here."""
+    import io
+
+    from PIL import Image, ImageDraw
+
+    img = Image.new("RGBA", (32, 32), (0, 0, 0, 0))
+    d = ImageDraw.Draw(img)
+    d.rectangle((3, 3, 28, 28), outline=(0, 90, 140, 255), width=3)
+    d.ellipse((13, 13, 18, 18), fill=(213, 94, 0, 255))
+    buf = io.BytesIO()
+    img.save(buf, format="PNG", optimize=True)
+    return buf.getvalue()
+
+
 def write_book(dest: Path, *, lang: str, pages: dict, glossary: dict, titles: dict, settings: dict, root: Path,
                css: str) -> None:
     """Write one book's Sphinx source into ``dest`` (emptied first).
@@ -164,6 +181,7 @@ def write_book(dest: Path, *, lang: str, pages: dict, glossary: dict, titles: di
     shutil.copy2(Path(__file__).with_name("sphinx_ext.py"), dest / "_ext" / "aerophoto_site.py")
     (dest / "_static").mkdir(exist_ok=True)
     (dest / "_static" / "aerophoto-site.css").write_text(css, encoding="utf-8")
+    (dest / "_static" / "favicon.png").write_bytes(_favicon())
     (dest / "conf.py").write_text(conf_py(lang, settings), encoding="utf-8")
     for name, nb in pages.items():
         (dest / f"{name}.ipynb").write_text(json.dumps(nb, ensure_ascii=False, indent=1), encoding="utf-8")

@@ -4,8 +4,9 @@ The web book (:mod:`aerophoto.website`) executes every chapter at build time in 
 :func:`install` first (the builder's ``IPYTHONDIR`` profile, ``exec_lines``).  From then on every ipywidgets
 widget the chapter displays — a :class:`aerophoto.widgets.LiveDemo`'s layout, a measuring tool — is shown as
 plain HTML instead of a widget view that needs a kernel: each ipympl canvas becomes a PNG of its figure (with a text
-alternative), HTML widgets keep their HTML (a demo's table, legend, title and hint), and each control is shown as
-``label: value`` with the value in the book's number format (:mod:`aerophoto.i18n.numfmt`); buttons are dropped.
+alternative) and comes first, each control follows as ``label: value`` on one line with the value in the book's
+number format (:mod:`aerophoto.i18n.numfmt`), then the HTML widgets' HTML (a demo's hint, legend, status, table);
+buttons and a demo's own title (the page's caption names the demo) are dropped.
 The chapter's code and its notebooks are not changed: outside that kernel nothing of this runs.
 
 The HTML carries ``data-aerophoto-live="demo"`` on a live demo's picture (its layout has the CSS class
@@ -82,7 +83,7 @@ def _control(wd) -> str:
     else:
         return ""
     sep = ": " if label else ""
-    return f"<div class='aerophoto-snapshot-control'>{label}{sep}<b>{value}</b></div>"
+    return f"<span class='aerophoto-snapshot-control'>{label}{sep}<b>{value}</b></span>"
 
 
 def _output_html(out) -> str:
@@ -101,30 +102,46 @@ def _output_html(out) -> str:
     return "".join(parts)
 
 
-def widget_html(wd, *, alt: str | None = None) -> str:
-    """The static HTML of a widget tree (see the module notes); ``alt`` overrides the figures' text alternative."""
+def _walk(wd, alt, items: list) -> None:
+    """Collect a widget tree's parts in order: ``("figure" | "control" | "html", html)``."""
     import ipywidgets as w
 
     fig = getattr(wd, "figure", None)
     if isinstance(wd, w.DOMWidget) and fig is not None and hasattr(fig, "savefig"):  # an ipympl canvas
         data = base64.b64encode(figure_png(fig)).decode("ascii")
         text = html.escape(alt or _figure_alt(fig), quote=True)
-        return f"<img class='aerophoto-snapshot-figure' src='data:image/png;base64,{data}' alt='{text}'>"
-    if isinstance(wd, w.Box):
-        row = isinstance(wd, w.HBox) or getattr(wd.layout, "flex_flow", None) in ("row", "row wrap")
-        style = "display:flex;flex-flow:row wrap;gap:12px;align-items:flex-start" if row else \
-            "display:flex;flex-direction:column;gap:4px"
-        inner = "".join(widget_html(c, alt=alt) for c in wd.children)
-        return f"<div style='{style}'>{inner}</div>" if inner else ""
-    if isinstance(wd, (w.HTML, w.HTMLMath)):
-        return str(wd.value or "")
-    if isinstance(wd, w.Label):
-        return f"<span>{html.escape(str(wd.value))}</span>"
-    if isinstance(wd, w.Output):
-        return _output_html(wd)
-    if isinstance(wd, w.DOMWidget):
-        return _control(wd)
-    return ""
+        items.append(("figure", f"<img class='aerophoto-snapshot-figure' src='data:image/png;base64,{data}' "
+                                f"alt='{text}'>"))
+    elif isinstance(wd, w.Box):
+        for c in wd.children:
+            _walk(c, alt, items)
+    elif isinstance(wd, (w.HTML, w.HTMLMath)):
+        value = str(wd.value or "")
+        if value.strip() and "<h3" not in value:  # a demo's title: the page's caption names the demo
+            items.append(("html", value))
+    elif isinstance(wd, w.Label):
+        items.append(("html", f"<span>{html.escape(str(wd.value))}</span>"))
+    elif isinstance(wd, w.Output):
+        out = _output_html(wd)
+        if out:
+            items.append(("figure" if "<img" in out else "html", out))
+    elif isinstance(wd, w.DOMWidget):
+        text = _control(wd)
+        if text:
+            items.append(("control", text))
+
+
+def widget_html(wd, *, alt: str | None = None) -> str:
+    """The static HTML of a widget tree (see the module notes): its figures first, then the controls' starting
+    values on one line, then its HTML (hint, legend, tables) in order; ``alt`` overrides the figures' text
+    alternative."""
+    items: list = []
+    _walk(wd, alt, items)
+    figures = "".join(h for k, h in items if k == "figure")
+    controls = [h for k, h in items if k == "control"]
+    rest = "".join(h for k, h in items if k == "html")
+    line = (f"<div class='aerophoto-snapshot-controls'>{' · '.join(controls)}</div>" if controls else "")
+    return figures + line + rest
 
 
 def _bundle(wd):

@@ -22,6 +22,7 @@ import io
 
 __all__ = ["install", "widget_html", "figure_png", "MARK"]
 
+_GROUP_HEAD = __import__("re").compile(r"<b>[^<]{0,60}</b>")
 #: the attribute the builder looks for (value ``demo`` or ``tool``)
 MARK = "data-aerophoto-live"
 
@@ -117,7 +118,9 @@ def _walk(wd, alt, items: list) -> None:
             _walk(c, alt, items)
     elif isinstance(wd, (w.HTML, w.HTMLMath)):
         value = str(wd.value or "")
-        if value.strip() and "<h3" not in value:  # a demo's title: the page's caption names the demo
+        # a demo's title (the page's caption names the demo) and its sliders' group headings ("<b>Camera</b>":
+        # the values' line has no groups) are left out
+        if value.strip() and "<h3" not in value and not _GROUP_HEAD.fullmatch(value.strip()):
             items.append(("html", value))
     elif isinstance(wd, w.Label):
         items.append(("html", f"<span>{html.escape(str(wd.value))}</span>"))

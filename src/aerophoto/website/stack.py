@@ -116,12 +116,12 @@ def print_pdf(html_file: Path, pdf: Path, *, title: str, out=print) -> float:
             page.route("**/*", lambda route: route.continue_() if route.request.url.startswith("file:")
                        else route.abort())
             page.goto(html_file.resolve().as_uri(), wait_until="load", timeout=300_000)
-            page.wait_for_function("() => !window.MathJax || (window.MathJax.startup && window.MathJax.startup.promise"
-                                   " && (window.__aeroTypeset = window.__aeroTypeset || "
-                                   "window.MathJax.startup.promise.then(() => true)) && true)", timeout=300_000)
-            page.evaluate("() => window.__aeroTypeset")
-            page.evaluate("() => Promise.all([...document.images].map(i => i.loading = 'eager'))")
-            page.wait_for_function("() => [...document.images].every(i => i.complete)", timeout=300_000)
+            page.evaluate("""async () => {
+                document.querySelectorAll('img').forEach((i) => { i.loading = 'eager'; });
+                await Promise.all([...document.images].map((i) => i.complete ? null
+                    : new Promise((r) => { i.onload = i.onerror = r; })));
+                if (window.MathJax && MathJax.startup && MathJax.startup.promise) await MathJax.startup.promise;
+            }""")
             page.pdf(path=str(pdf), format="A4", print_background=True, display_header_footer=True,
                      header_template="<span></span>",
                      footer_template=f"<div style='font-size:8px;width:100%;text-align:center'>{html.escape(title)} · "

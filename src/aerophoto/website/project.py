@@ -71,6 +71,7 @@ html_title = "aerophoto"
 html_favicon = "_static/favicon.png"
 html_context = {{"default_mode": "light"}}
 html_static_path = ["_static"]
+templates_path = ["_templates"]
 html_css_files = ["aerophoto-site.css"]
 html_copy_source = False
 html_show_sourcelink = False
@@ -182,6 +183,7 @@ def write_book(dest: Path, *, lang: str, pages: dict, glossary: dict, titles: di
     (dest / "_static").mkdir(exist_ok=True)
     (dest / "_static" / "aerophoto-site.css").write_text(css, encoding="utf-8")
     (dest / "_static" / "favicon.png").write_bytes(_favicon())
+    shutil.copytree(Path(__file__).with_name("templates"), dest / "_templates", dirs_exist_ok=True)
     (dest / "conf.py").write_text(conf_py(lang, settings), encoding="utf-8")
     for name, nb in pages.items():
         (dest / f"{name}.ipynb").write_text(json.dumps(nb, ensure_ascii=False, indent=1), encoding="utf-8")

@@ -5,6 +5,7 @@ JupyterLite's own worker, as the browser book was before).
     python benchmarks/run.py site                               # builds the web book into a temporary folder
     AEROPHOTO_BENCH_SITE=_book python benchmarks/run.py site    # measures a site already built
     python benchmarks/run.py site --quick                       # 2 repetitions instead of 3
+    AEROPHOTO_BENCH_REPS=1 python benchmarks/run.py site        # one (a loaded machine)
 
 What is measured (JSON), the site served from 127.0.0.1 by a plain static server (no caching headers, as the README's
 ``python -m http.server``), chromium with every request off the machine trapped:
@@ -113,7 +114,7 @@ def run(quick: bool = False) -> dict:
 
     from aerophoto import website
 
-    reps = 2 if quick else 3
+    reps = int(os.environ.get("AEROPHOTO_BENCH_REPS") or (2 if quick else 3))
     result = {"repetitions": reps, "load_average_start": [round(x, 2) for x in os.getloadavg()]}
     with tempfile.TemporaryDirectory(prefix="aerophoto-bench-site-") as tmp:
         site = Path(os.environ.get("AEROPHOTO_BENCH_SITE") or Path(tmp) / "book")

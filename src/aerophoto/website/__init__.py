@@ -126,18 +126,6 @@ def _live_default(lang: str) -> str:
     return live_path("00_start_here.ipynb", lang)
 
 
-def _replace(out_dir: Path, new: Path) -> None:
-    """Put the built site at ``out_dir``, removing an earlier build (never a folder that is not one)."""
-    from .stack import SiteBuildError
-
-    if out_dir.exists():
-        if not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / MANIFEST).is_file()):
-            raise SiteBuildError(f"{out_dir} exists and is not an aerophoto web book: choose another --out")
-        shutil.rmtree(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    shutil.move(str(new), str(out_dir))
-
-
 def _live(tmp: Path, lite_dir, root: Path, out) -> tuple[Path, dict]:
     """The browser book: a copy of an already built one (``lite_dir``), or built here."""
     from .. import lite
@@ -198,7 +186,7 @@ def build(out_dir="_book", *, root=None, notebooks=None, cache=None, hub_url=Non
     :class:`aerophoto.website.stack.SiteBuildError`.  ``only`` (chapter names, and ``"glossary"``) builds those
     pages alone — for trying a change; the book's table of contents then names pages that are not there.
     """
-    from .. import __version__
+    from .. import __version__, lite
     from . import stack
     from .execute import execute_all
     from .project import MATHJAX, PDF_NAME
@@ -270,7 +258,10 @@ def build(out_dir="_book", *, root=None, notebooks=None, cache=None, hub_url=Non
             "chapters": summary,
         }
         (site / MANIFEST).write_text(json.dumps(manifest, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
-        _replace(out_dir, site)
+        try:
+            lite._replace(out_dir, site, marker=MANIFEST, what="an aerophoto web book")
+        except lite.LiteBuildError as exc:
+            raise stack.SiteBuildError(str(exc)) from None
     out(f"site: built {out_dir} in {manifest['build_s']:.0f} s: {manifest['site_bytes'] / 1e6:.1f} MB "
         f"({', '.join(f'{k} {v / 1e6:.1f} MB' for k, v in sizes.items())})")
     return manifest

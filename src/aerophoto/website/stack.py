@@ -18,7 +18,7 @@ import shutil
 import time
 from pathlib import Path
 
-from ..lite import LiteBuildError, _key, _run, tools_venv
+from ..lite import LiteBuildError, _run, npm_ci, tools_venv
 
 __all__ = ["deploy_dir", "sphinx_bin", "npm_assets", "sphinx_build", "print_pdf", "copy_mathjax", "SiteBuildError",
            "SOURCE_DATE_EPOCH"]
@@ -49,20 +49,10 @@ def sphinx_bin(deploy: Path, cache: Path, out=print) -> Path:
 
 def npm_assets(deploy: Path, cache: Path, out=print) -> Path:
     """``node_modules`` of deploy/site's lock (``npm ci``, cached under the lock's digest)."""
-    d = cache / f"npm-{_key(deploy / 'package.json', deploy / 'package-lock.json')}"
-    if not (d / ".aerophoto-complete").is_file():
-        npm = shutil.which("npm")
-        if npm is None:
-            raise SiteBuildError("npm is not installed (MathJax comes from npm): apt-get install -y nodejs npm")
-        out(f"site: MathJax and axe-core → {d} (npm ci: package-lock.json's sha512)")
-        shutil.rmtree(d, ignore_errors=True)
-        d.mkdir(parents=True)
-        for name in ("package.json", "package-lock.json"):
-            shutil.copy2(deploy / name, d / name)
-        _run([npm, "ci", "--ignore-scripts", "--no-audit", "--no-fund", "--loglevel=error"], cwd=d,
-             what="npm ci (deploy/site)")
-        (d / ".aerophoto-complete").write_text("", encoding="utf-8")
-    return d / "node_modules"
+    try:
+        return npm_ci(deploy, cache, what="site: MathJax and axe-core", out=out) / "node_modules"
+    except LiteBuildError as exc:
+        raise SiteBuildError(str(exc)) from None
 
 
 #: the parts of MathJax 3's es5 build the site serves: the TeX-to-SVG component and what it may load later

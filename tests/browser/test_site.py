@@ -43,9 +43,7 @@ def web_book(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def served(web_book):
-    """(site server, egress trap, chromium whose non-loopback requests all go to the trap)."""
-    if h.chromium_path() is None:
-        pytest.fail(f"chromium is not installed: {h.INSTALL_HINT}")
+    """(site server, egress trap, chromium whose non-loopback requests all go to the trap; no chromium: an error)."""
     with L.trapped_chromium(web_book) as trapped:
         yield trapped
 

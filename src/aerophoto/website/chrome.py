@@ -34,15 +34,13 @@ RU = {
     "Guide for students, lecturers and instructors": "Руководство для студентов, лекторов и преподавателей",
     "Lectures in the browser": "Лекции в браузере",
     "Search the book…": "Поиск по книге…",
-    "Read in": "Читать на языке:",
+    "This page": "Эта страница",
     "live demos": "живые демонстрации",
     "source": "источник",
     "chapter": "глава",
-    "topic": "тема",
     "yes": "да",
     "no": "нет",
     "Read the book": "Читать книгу",
-    "the lecture page": "страница лекции",
     "the whole chapter": "глава целиком",
     "Each lecture page shows a chapter's live demos one screen each, for a projector, without the code: it opens in "
     "the browser book (JupyterLite) in the same folder, so a lecture needs no server and nothing installed. Choose "
@@ -66,8 +64,7 @@ RU = {
         "установленной книге (руководство для студентов).",
     "The lecture pages": "Страницы лекций",
     "The glossary": "Словарь терминов",
-    "Open as an app in the browser": "Открыть как приложение в браузере",
-    "Skip to the book": "Перейти к книге",
+    "This guide is in English for now.": "Это руководство пока написано только по-английски.",
 }
 
 

@@ -43,7 +43,7 @@ def conf_py(lang: str, settings: dict) -> str:
     """The book's conf.py (Sphinx configuration), as text."""
     words = {"run": say("Run this chapter in the browser", lang), "run_book": say("Open the book in the browser", lang),
              "hub": say("Open on the course hub", lang), "pdf": say("The whole book as PDF", lang),
-             "bar": say("Read in", lang)}
+             "bar": say("This page", lang)}
     other = "ru" if lang == "en" else "en"
     site = {**settings, "other": other, "other_name": LANG_NAMES[other], "pdf": PDF_NAME.format(lang=lang),
             "words": words}
@@ -195,7 +195,12 @@ def write_book(dest: Path, *, lang: str, pages: dict, glossary: dict, titles: di
         order = json.loads((src / "order.json").read_text(encoding="utf-8")) if (src / "order.json").is_file() else \
             sorted(p.stem for p in src.glob("*.md"))
         for stem in order:
-            shutil.copy2(src / f"{stem}.md", dest / "manual" / f"{stem}.md")
+            text = (src / f"{stem}.md").read_text(encoding="utf-8")
+            if lang == "ru":  # the guide is written in English: said at the top of each page, under its title
+                head, _, rest = text.partition("\n")
+                note = say("This guide is in English for now.", lang)
+                text = f"{head}\n\n<p class='aerophoto-untranslated' role='note'>{note}</p>\n{rest}"
+            (dest / "manual" / f"{stem}.md").write_text(text, encoding="utf-8")
             manual.append(stem)
     (dest / "index.md").write_text(front_page(lang, titles, manual), encoding="utf-8")
     (dest / "lectures.md").write_text(lectures_page(lang, titles), encoding="utf-8")

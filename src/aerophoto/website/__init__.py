@@ -227,6 +227,8 @@ def build(out_dir="_book", *, root=None, notebooks=None, cache=None, hub_url=Non
             times[f"sphinx_{lang}_s"] = round(stack.sphinx_build(bindir, src, html_out, jobs=jobs, out=out), 1)
             for p in html_out.rglob("*.map"):  # the theme's source maps: for its developers, 3.5 MB a book
                 p.unlink()
+            if not any(p.is_file() for p in (html_out / "_sources").rglob("*")):
+                shutil.rmtree(html_out / "_sources", ignore_errors=True)  # Sphinx leaves it empty (no sources copied)
             shutil.move(str(html_out), str(site / lang))
             if pdf:
                 single = tmp / "print" / lang

@@ -80,19 +80,26 @@ def _visits(h, L, browser, server, live: Path, chapters, reps: int) -> dict:
     first = next(c for c in chapters.CHAPTERS if c.name == "00_start_here")
     other = next(c for c in chapters.CHAPTERS if c.name == "01_flight_planning")
     runs = {"first": [], "second": [], "other_chapter": []}
+    failed = []
     fetched = {k: [] for k in runs}
     for _ in range(reps):
         page, _log, _req = L.new_lite_page(browser)
         context = page.context
         for key, ch in (("first", first), ("second", first), ("other_chapter", other)):
             mark = len(server.requests)
-            runs[key].append(lite_bench._open_demo(h, L, page, server, ch, ch.demos[0]))
+            try:
+                runs[key].append(lite_bench._open_demo(h, L, page, server, ch, ch.demos[0]))
+            except Exception as exc:  # a timeout on a loaded machine: said, and the run goes on
+                failed.append(f"{key}: {type(exc).__name__}: {str(exc)[:120]}")
             fetched[key].append(lite_bench._served_bytes(live, server.requests[mark:]))
             page.close()
             page = context.new_page()
         context.close()
-    return {k: {"to_demo": summarize(v), "bytes_fetched_median": sorted(fetched[k])[len(fetched[k]) // 2]}
-            for k, v in runs.items()}
+    out = {k: {"to_demo": summarize(v), "bytes_fetched_median": sorted(fetched[k])[len(fetched[k]) // 2]}
+           for k, v in runs.items()}
+    if failed:
+        out["failed"] = failed
+    return out
 
 
 def _baseline_copy(live: Path, dest: Path) -> Path:

@@ -73,6 +73,7 @@ html_context = {{"default_mode": "light"}}
 html_static_path = ["_static"]
 templates_path = ["_templates"]
 html_css_files = ["aerophoto-site.css"]
+html_js_files = ["aerophoto-site.js"]
 html_copy_source = False
 html_show_sourcelink = False
 html_last_updated_fmt = None
@@ -182,8 +183,9 @@ def write_book(dest: Path, *, lang: str, pages: dict, glossary: dict, titles: di
     shutil.copy2(Path(__file__).with_name("sphinx_ext.py"), dest / "_ext" / "aerophoto_site.py")
     (dest / "_static").mkdir(exist_ok=True)
     (dest / "_static" / "aerophoto-site.css").write_text(css, encoding="utf-8")
+    shutil.copy2(Path(__file__).with_name("site.js"), dest / "_static" / "aerophoto-site.js")
     (dest / "_static" / "favicon.png").write_bytes(_favicon())
-    shutil.copytree(Path(__file__).with_name("templates"), dest / "_templates", dirs_exist_ok=True)
+    shutil.copytree(Path(__file__).with_name("templates"), dest / "_templates", dirs_exist_ok=True)  # theme overrides
     (dest / "conf.py").write_text(conf_py(lang, settings), encoding="utf-8")
     for name, nb in pages.items():
         (dest / f"{name}.ipynb").write_text(json.dumps(nb, ensure_ascii=False, indent=1), encoding="utf-8")

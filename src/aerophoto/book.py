@@ -28,7 +28,7 @@ from importlib import metadata
 from pathlib import Path
 
 from . import __version__
-from .plots import use_style
+from .plots import register_table_display, use_style
 from .variants import Variant, variant, variant_for_index
 
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
@@ -738,6 +738,7 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
         if saved:
             set_language(saved)
     use_style()
+    register_table_display()  # the package's tables and the guide's audits in the book's number format
     problems = check_installation()
     if problems:
         raise RuntimeError("aerophoto cannot run in this environment:\n- " + "\n- ".join(problems))

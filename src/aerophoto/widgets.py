@@ -278,7 +278,7 @@ class LiveDemo:
     def __init__(self, **values):
         import ipywidgets as w
 
-        from .i18n import translate_figure
+        from .plots import finish_figure
 
         self._params = {p.name: p for p in self.params}
         self.values = {p.name: p.default for p in self.params}
@@ -292,7 +292,7 @@ class LiveDemo:
         self._syncing = False
         self._layout = None
         self.build()
-        translate_figure(self.fig)  # titles, axis labels, legends in the reader's language (aerophoto.i18n)
+        finish_figure(self.fig)  # texts in the reader's language, ticks in the book's number format, subscripts
         from .plots import fast_frames, freeze_layout, legend_html
 
         #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)

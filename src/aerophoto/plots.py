@@ -43,6 +43,7 @@ __all__ = [
     "register_table_display",
     "legend_html",
     "mark_points",
+    "move_onc",
     "photo_frame",
 ]
 
@@ -454,7 +455,7 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision
     """
     import pandas as pd
 
-    from .i18n import get_language, translate_unit
+    from .i18n import get_language, translate_unit, translate_units_in
     from .i18n import translate as _tr  # the reader's language (aerophoto.i18n); English unchanged
     from .i18n.numfmt import fmt_count, fmt_text, fmt_value
 
@@ -469,7 +470,7 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision
         if isinstance(v, str):
             # a unit column's units are the tasks' (m → м; a lone "m" elsewhere may be a point's name)
             shown = translate_unit(v) if j == unit_col and translate_unit(v) != v else _tr(v)
-            return html_subscripts(fmt_text(shown, lang=lang))
+            return html_subscripts(translate_units_in(fmt_text(shown, lang=lang)))
         if v is None or isinstance(v, (bool, np.bool_)):
             return _html.escape(fmt_value(v, lang=lang))
         if isinstance(v, (int, np.integer)):
@@ -483,7 +484,7 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision
             if spec is None and int_col[j] and float(v).is_integer():
                 spec = "count"
             return _html.escape(_cell_format(float_format if spec is None else spec, v, lang))
-        return html_subscripts(fmt_text(_tr(str(v)), lang=lang))
+        return html_subscripts(translate_units_in(fmt_text(_tr(str(v)), lang=lang)))
 
     hl = None if highlight is None else np.asarray(highlight, dtype=bool)
     head = "".join(f"<th>{html_subscripts(_tr(c))}</th>" for c in cols)
@@ -501,7 +502,7 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision
     foot = ""
     if notes:
         foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(
-            f"<li>{html_subscripts(fmt_text(_tr(n), lang=lang))}</li>" for n in notes) + "</ul>"
+            f"<li>{html_subscripts(translate_units_in(fmt_text(_tr(n), lang=lang)))}</li>" for n in notes) + "</ul>"
     return (
         "<div class='aerophoto-table' style='font-size:15px'>"
         "<table style='border-collapse:collapse' border='1' cellpadding='3'>"
@@ -581,6 +582,9 @@ def legend_html(ax, *, remove: bool = True) -> str:
                     glyph = _MARKER_GLYPH.get(marker, "●")
                     if h.get_markerfacecolor() in ("none", "None"):
                         glyph = {"●": "○", "■": "□", "▲": "△", "▼": "▽", "◆": "◇"}.get(glyph, glyph)
+                        colour = to_hex(h.get_markeredgecolor())  # an open marker shows its edge's colour
+                    else:
+                        colour = to_hex(h.get_markerfacecolor())
                 elif h.get_linestyle() in ("--", "dashed", ":", "dotted", "-.", "dashdot"):
                     glyph = "┅" if h.get_linestyle() in (":", "dotted") else "╍"
             else:
@@ -609,6 +613,24 @@ def photo_frame(ax, camera, *, color=None, label="photo frame", lw=1.5):
     ax.set_xlabel("x, mm")
     ax.set_ylabel("y, mm")
     return line
+
+
+def move_onc(marks: dict, o, n, c, u, *, offset_pt: float = 14.0) -> None:
+    """Move the o, n, c marks of :func:`mark_points` to the photo points ``o``, ``n``, ``c`` (mm) with their labels
+    fanned out so that they never overlap, at any tilt: the three lie on the principal vertical (unit direction
+    ``u``, from o towards n), so o's label goes behind o, n's beyond n and c's across the line (α = 0: all three
+    coincide, and the labels still stand apart)."""
+    o, n, c = (np.asarray(p, float) for p in (o, n, c))
+    d = n - o
+    ahead = d / np.hypot(*d) if np.hypot(*d) > 1e-9 else np.asarray(u, float) / max(np.hypot(*u), 1e-12)
+    across = np.array([-ahead[1], ahead[0]])
+    for name, pt, way in (("o", o, -ahead), ("n", n, ahead), ("c", c, across)):
+        marker, label = marks[name]
+        marker.set_data([pt[0]], [pt[1]])
+        label.xy = (pt[0], pt[1])
+        label.set_horizontalalignment("center")
+        label.set_verticalalignment("center")
+        label.xyann = (float(offset_pt * way[0]), float(offset_pt * way[1]))
 
 
 def mark_points(ax, points: dict, *, size=9):

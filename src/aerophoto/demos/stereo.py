@@ -335,7 +335,8 @@ class BaseHeightView:
         C = plots.COLORS
         (self.exact,) = a1.plot([], [], color=C["blue"], label="Δp = b·h/(H − h)")
         (self.small,) = a1.plot([], [], color=C["orange"], ls="--", label="small form b·h/H")
-        (self.point,) = a1.plot([], [], "o", color=C["vermillion"], ms=9, label="the object")
+        # black: a vermilion dot on the orange dashed curve merged with deuteranopia (tests/presentation/test_colours)
+        (self.point,) = a1.plot([], [], "o", color=C["black"], ms=9, label="the object")
         a1.set_xlabel("height h above the ground, m")
         a1.set_ylabel("parallax difference Δp, mm")
         a1.set_title("Parallax grows with height")

@@ -387,6 +387,17 @@ _LEGENDS = {
     "v  principal vertical\n(+ away from n)": "v  главная вертикаль\n(+ от n)",
     "sheet mm": "мм листа",
     "DEM − true height, m": "ЦМР − истинная высота, м",
+    # chapter 13's bands (Landsat TM), short names
+    "nir": "БИК", "swir1": "СИК-1", "swir2": "СИК-2",
+    "NIR": "БИК", "RED": "К", "GREEN": "З", "BLUE": "С", "SWIR1": "СИК-1", "SWIR2": "СИК-2",
+    # chapter 09
+    "the ground now (photo) / the old plan": "местность сейчас (снимок) / старый план",
+    "grid cells": "ячейки сетки",
+    "changes: on the photo / carried onto the plan": "изменения: на снимке / перенесённые на план",
+    "where the changes really are": "где изменения на самом деле",
+    "control (transformation) points": "опорные (трансформационные) точки",
+    "central": "центральные направления",
+    "proportional": "пропорциональное деление",
     # the variant (Variant.table())
     "The variant (guide §1)": "Вариант (пособие §1)",
     "Record-book number (номер зачётной книжки)": "Номер зачётной книжки",

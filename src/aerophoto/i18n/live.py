@@ -21,6 +21,8 @@ _TEMPLATES = {
     "colour: DEM − true height, −{lim} m": "цвет: ЦМР − истинная высота, −{lim} м",
     "+{lim} m (red: DEM too high)": "+{lim} м (красный: ЦМР выше истины)",
     "{step}: {name} (cycle {cycle})": "{step}: {name} (цикл {cycle})",
+    "Rough mosaic (накидной монтаж): all criteria met": "Накидной монтаж: все критерии выполнены",
+    "Rough mosaic (накидной монтаж): checks failed: {n}": "Накидной монтаж: не выполнено проверок: {n}",
     "The principal plane W (α = {a}°, exaggerated)": "Главная плоскость W (α = {a}°, в увеличенном виде)",
     "Correction sheet (корректурный лист): ΔI in mm along each cut · m = {rms} mm, n = {n}":
         "Корректурный лист: ΔI в мм вдоль каждого пореза · m = {rms} мм, n = {n}",
@@ -49,7 +51,7 @@ _TEMPLATES = {
     "{triangles}; arrows ×{x:g}; k = {k:.4f}": "{triangles}; стрелки ×{x:g}; k = {k:.4f}",
     "Free strip, {n} templates; centre {centre}": "Свободный маршрут, восковок: {n}; центр {centre}",
     "Patch: {bands} as RGB": "Участок: {bands} как RGB",
-    "{area}: p = {p:.2f} mm": "{area}: p = {p:.2f} мм",
+    "{area}: p = {p} mm": "{area}: p = {p} мм",
 }
 
 _WORDS = {

@@ -381,7 +381,7 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL) -> bool:
 
 #: a symbol with a subscript in a label: p_x, m_z, λ_t, h_c, m_ЦМР, h_{max} (not words joined by underscores)
 _SUBSCRIPT = re.compile(r"(?<![\w\\$])([A-Za-zα-ωΑ-ΩΔ])_(\{[^}]{1,10}\}|[A-Za-z0-9α-ωА-Яа-яЁё.]{1,8}?)"
-                        r"(?=[\s,;:()/·=+−\-²³′″]|$)")
+                        r"(?=[\s,;:()/·=+−–\-²³′″]|$)")
 #: mathtext written by :func:`math_subscripts` (read back by :func:`html_subscripts`)
 _MATH_SUB = re.compile(r"\$([A-Za-zα-ωΑ-ΩΔ])_\{([^}]{1,10})\}\$")
 

@@ -224,7 +224,8 @@ def fmt_spec(x, spec: str = "{:.4g}", *, lang=None) -> str:
 #: 17 700); the separators of both languages are read by :func:`parse_number`
 NUMBER = (r"(?<![\w.,])[-−+]?(?:\d{1,3}(?:[\u202f\u00a0\u2009 ]\d{3})+|\d+)(?:[.,]\d+)?(?![\w]|[.,]\d)")
 _NUMBER_RE = re.compile(NUMBER)
-_PY_NUMBER = re.compile(r"(?<![\w.,\u202f\u00a0\u2009])(?P<sign>-)?(?P<int>\d+)(?:\.(?P<frac>\d+))?(?![\w.,]|\u202f\d)")
+_PY_NUMBER = re.compile(r"(?<![\w.,\u202f\u00a0\u2009])(?P<sign>-)?(?P<int>\d+)(?:\.(?P<frac>\d+))?"
+                        r"(?![\w]|[.,]\d|\u202f\d)")
 
 
 def parse_number(text, *, lang=None) -> float:

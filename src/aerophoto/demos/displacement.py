@@ -304,8 +304,9 @@ class DisplacementView:
         self.pts = ax.scatter(zeros, zeros, c=zeros, s=16, cmap="BrBG_r", vmin=-1, vmax=1, zorder=3,
                               edgecolors="none")
         kw = dict(angles="xy", scale_units="xy", scale=1.0, zorder=4)
-        self.q_relief = ax.quiver(zeros, zeros, zeros, zeros, color=C["relief"], width=0.006, **kw)
-        self.q_tilt = ax.quiver(zeros, zeros, zeros, zeros, color=C["tilt"], width=0.006, **kw)
+        # arrows thick enough for the back row at the fixed ×2 (a relief step of 5 m must show on a projector)
+        self.q_relief = ax.quiver(zeros, zeros, zeros, zeros, color=C["relief"], width=0.009, **kw)
+        self.q_tilt = ax.quiver(zeros, zeros, zeros, zeros, color=C["tilt"], width=0.009, **kw)
         self.q_approx = ax.quiver(zeros, zeros, zeros, zeros, color=C["approx"], width=0.0025, **kw)
         self.marks = plots.mark_points(ax, {"o": (0, 0), "n": (0, 0), "c": (0, 0)})
         if legend:
@@ -505,9 +506,9 @@ def principal_plane_figure(ax=None, *, f_mm=100.0, alpha_deg=12.0, H=300.0):
         ax.plot([Xg], [0], "o", color=colours[name], ms=6)
         ax.annotate(name.upper(), (Xg, 0), xytext=(-5, -16), textcoords="offset points", color=colours[name])
     # the tilt α between the plumb line SN and the optical axis SO
-    t = np.linspace(-math.pi / 2, -math.pi / 2 + math.radians(alpha_deg), 20)
-    ax.plot(60 * np.cos(t), H + 60 * np.sin(t), color=C["grey"], lw=1)
-    ax.annotate("α", (60 * math.cos(t[10]), H + 60 * math.sin(t[10])), xytext=(3, -14), textcoords="offset points")
+    arc = np.linspace(-math.pi / 2, -math.pi / 2 + math.radians(alpha_deg), 20)
+    ax.plot(60 * np.cos(arc), H + 60 * np.sin(arc), color=C["grey"], lw=1)
+    ax.annotate("α", (60 * math.cos(arc[10]), H + 60 * math.sin(arc[10])), xytext=(3, -14), textcoords="offset points")
     ax.set_title(t("The principal plane W (α = {a}°, exaggerated)", a=fmt_spec(alpha_deg, "{:g}")))
     ax.set_aspect("equal")
     ax.set_ylim(-25, H + 20)

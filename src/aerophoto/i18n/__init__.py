@@ -110,10 +110,35 @@ def translate(text, lang: str | None = None):
     return catalogue().get(text, text)
 
 
+class _BookFormatter(string.Formatter):
+    """``str.format`` with the book's number format for a real number under a plain ``f``, ``g`` or ``%`` spec
+    (``{v:.2f}`` → ``0,25`` in Russian, ``−3.5``, never ``−0.00``, ``12 043``: :func:`.numfmt.fmt_spec`); any
+    other field (text, a count without a spec, ``{i:02d}``, a width) as Python formats it."""
+
+    _PLAIN = None
+
+    def format_field(self, value, format_spec):
+        import re
+        from numbers import Real
+
+        if _BookFormatter._PLAIN is None:
+            _BookFormatter._PLAIN = re.compile(r"^\+?(?:\.\d+)?[fg%]$")
+        if (format_spec and isinstance(value, Real) and not isinstance(value, bool)
+                and _BookFormatter._PLAIN.match(format_spec)):
+            from .numfmt import fmt_spec
+
+            return fmt_spec(value, "{:" + format_spec + "}")
+        return super().format_field(value, format_spec)
+
+
+_FORMATTER = _BookFormatter()
+
+
 def t(key: str, /, **fmt) -> str:
-    """The message ``key`` (its English text) in the language in use, formatted with ``fmt`` (``str.format``)."""
+    """The message ``key`` (its English text) in the language in use, formatted with ``fmt`` (``str.format``; a
+    real number under an ``f``/``g``/``%`` spec in the book's number format, :mod:`.numfmt`)."""
     text = translate(key)
-    return text.format(**fmt) if fmt else text
+    return _FORMATTER.format(text, **fmt) if fmt else text
 
 
 _ = t

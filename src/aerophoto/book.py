@@ -199,7 +199,8 @@ CHAPTERS = (
             section=4, views=("measure",), demos=(
         Demo("demo-relief", "aerophoto.demos.displacement.ReliefDemo", "Displacement explorer, relief", "relief ±h, then α and f",
              "arrows radiate from the nadir n — outwards for hills, inwards for the valley; a longer lens at the "
-             "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "ArrowRight")),
+             # relief by PageUp (25 m): with the arrows at a fixed ×2 one 5 m step is a sub-pixel change at f = 150 mm
+             "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "PageUp")),
              timed="relief ±h, m"),
     )),
     Chapter("04", "tilt_displacement", "tilt displacement", "смещения за угол наклона",

@@ -40,13 +40,16 @@ MAX_FOOTPRINTS_PER_STRIP = MAX_PHOTOS_DRAWN
 
 
 def format_value(v) -> str:
-    """A table value as text: whole numbers as they are, large values with thin spaces, else 4 digits."""
+    """A table value as text in the book's number format (:mod:`aerophoto.i18n.numfmt`): whole numbers as
+    counts, values of 1000 and more whole, else 4 significant digits."""
+    from ..i18n.numfmt import fmt_count, fmt_number
+
     if isinstance(v, (int, np.integer)):
-        return f"{int(v):,}".replace(",", " ")
+        return fmt_count(int(v))
     v = float(v)
     if abs(v) >= 1000:
-        return f"{v:,.0f}".replace(",", " ")
-    return f"{v:.4g}"
+        return fmt_number(v, 0)
+    return fmt_number(v, sig=4)
 
 
 #: compact labels of the demo's table (symbol first), by FlightPlan attribute
@@ -324,7 +327,9 @@ def _every(count: int, step: int) -> np.ndarray:
 
 
 def _count_text(N: int) -> str:
-    return f"{N:,}".replace(",", " ")
+    from ..i18n.numfmt import fmt_count
+
+    return fmt_count(N)
 
 
 class FlightPlanDemo(LiveDemo):

@@ -99,8 +99,9 @@ def test_site_has_table_10_objects(isite):
     d = t[-1] - t[-2]
     angle = math.degrees(math.atan2(-d[1], d[0]))
     assert d[0] > 0 and 20 < angle < 50
-    # canopies: spruce uneven and pointed, pine even
-    can = isite.site.objects.canopy_dm.astype(float) / 10
+    # canopies: spruce uneven and pointed, pine even (the canopy at the class map's texel centres)
+    rows, cols = np.indices(isite.classes.shape)
+    can = isite.site.objects.canopy_at(cols + 0.5, rows + 0.5)
     pine = can[isite.classes == cover.CLASS_CODES["pine forest"]]
     spruce = can[isite.classes == cover.CLASS_CODES["spruce forest"]]
     assert np.percentile(pine[pine > 0], 90) - np.percentile(pine[pine > 0], 50) < 3.0
@@ -110,8 +111,10 @@ def test_site_has_table_10_objects(isite):
 def test_site_is_deterministic():
     a = cover.build_interpretation_site(0)
     b = cover.interpretation_site(0)
-    assert np.array_equal(a.classes, b.classes) and np.array_equal(a.grain, b.grain)
+    assert np.array_equal(a.classes, b.classes) and np.array_equal(a.under_roads, b.under_roads)
     assert np.array_equal(a.site.objects.canopy_dm, b.site.objects.canopy_dm)
+    assert np.array_equal(a.crowns.index, b.crowns.index) and np.array_equal(a.crowns.tone, b.crowns.tone)
+    assert np.array_equal(a.site.objects.planes, b.site.objects.planes)
 
 
 # ----------------------------------------------------------------------------------------------- rendering

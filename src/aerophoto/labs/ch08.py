@@ -256,7 +256,7 @@ class LabPhoto:
 
         if camera not in sp.CAMERAS:
             raise ValueError(f"camera = {camera!r} is not one of {list(sp.CAMERAS)}")
-        return to_display(self.bands[..., [sp.BAND_NAMES.index(b) for b in sp.CAMERAS[camera]]])
+        return to_display(self.bands[..., [sp.BAND_NAMES.index(b) for b in sp.CAMERAS[camera]]], camera)
 
     @property
     def extent_mm(self) -> tuple:

@@ -161,10 +161,15 @@ def _base(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int, 
         can = np.flatnonzero(surf == 4)
         crowns = isite.crowns
         if len(can) and crowns is not None:
-            k, _, _ = crowns.lookup(Xg.ravel()[obj_pix[can]], Yg.ravel()[obj_pix[can]])
+            from .crowns import DEPTH_M
+
+            xc, yc = Xg.ravel()[obj_pix[can]], Yg.ravel()[obj_pix[can]]
+            k, _, _ = crowns.lookup(xc, yc)
             got = k >= 0
             cls[obj_pix[can[got]]] = crowns.cls[k[got]]
-            tone[can[got]] = crowns.tone[k[got]]
+            # the crown's own tone, and the foliage deeper in the canopy in its neighbours' shade
+            depth = crowns.surface_depth(xc, yc, photo.ground_m[..., 2].ravel()[obj_pix[can]] - site.height(xc, yc))
+            tone[can] = np.where(got, crowns.tone[np.maximum(k, 0)], 1.0) * np.exp(-depth / DEPTH_M)
         gain[obj_pix] = tone * np.where(surf == 2, 1.0, gain[obj_pix])
         soil[obj_pix] = 0.0
     cls = cls.reshape(n_px, n_px)

@@ -5,7 +5,7 @@ object                 how it is built (metres; seeded)
 =====================  ============================================================================================
 stands of forest       crowns on a jittered lattice over each stand (:data:`STANDS`): pine — domes of one height
                        (21–23 m, R 2.2–2.8 m, tone even); spruce — cones of uneven height (14–25 m, R 1.5–2.1 m,
-                       tone mottled); broadleaf — broad lumpy crowns (15–21 m, R 3.4–4.6 m); shrub — small low
+                       in groups of taller and shorter, darker and lighter crowns some 20 m across: tone mottled); broadleaf — broad lumpy crowns (15–21 m, R 3.4–4.6 m); shrub — small low
                        crowns (1.8–3.5 m).  The crowns overhang their stand's edge (they are not cut at it)
 sparse shrub           bushes scattered over the floodplain meadow and along the river's banks (table 10: a meadow's
                        marks are haystacks and sparse shrub)
@@ -34,7 +34,7 @@ __all__ = ["STANDS", "CANOPY_TEXEL_M", "village_layout", "paint_village", "build
 #: class: (lattice spacing m, crown radius m, top height m, shape code of aerophoto.site.crowns, tone spread)
 STANDS = {
     "pine forest": (5.5, (2.2, 2.8), (21.0, 23.0), 1, 0.04),
-    "spruce forest": (4.6, (1.5, 2.1), (14.0, 25.0), 0, 0.10),
+    "spruce forest": (4.6, (1.5, 2.1), (14.0, 25.0), 0, 0.16),
     "deciduous forest": (7.5, (3.4, 4.6), (15.0, 21.0), 2, 0.10),
     "shrub": (3.0, (1.0, 1.6), (1.8, 3.5), 2, 0.08),
 }
@@ -153,7 +153,14 @@ def _stand_crowns(rng, cls, codes) -> list:
         cy = ys + rng.uniform(-0.35, 0.35, len(ys)) * sp_m
         R = rng.uniform(r_lo, r_hi, len(xs))
         H = rng.uniform(h_lo, h_hi, len(xs))
-        tone = 1.0 + spread * rng.standard_normal(len(xs))
+        white = rng.standard_normal(len(xs))
+        if shape == 0 and len(xs):  # spruce grows in groups: taller, darker and lighter clumps of some 10 m
+            from .texture import noise
+
+            clump = noise(cx, cy, 10.0, 91)
+            H = np.clip(0.5 * (h_lo + h_hi) + 0.3 * (h_hi - h_lo) * (0.9 * clump + 0.45 * white), h_lo, h_hi)
+            white = 0.9 * noise(cx, cy, 10.0, 92) + 0.45 * white
+        tone = 1.0 + spread * white
         tone += 1.0 - tone.mean() if len(tone) else 0.0
         out.append((cx, cy, R, H, np.full(len(xs), shape), np.full(len(xs), codes[name]), tone))
     return out

@@ -31,13 +31,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Crowns", "SHAPES", "BUMP", "crown_height"]
+__all__ = ["Crowns", "SHAPES", "BUMP", "SIDE_M", "DEPTH_M", "crown_height"]
 
 #: crown shapes by code
 SHAPES = ("cone", "dome", "round")
 #: lumpiness of each shape's surface: (amplitude, m; scale of the lumps, m) — branch clumps on the crown
 BUMP = {0: (0.10, 0.7), 1: (0.18, 1.0), 2: (0.45, 1.1)}
-_K = 6  # crowns looked at per point (the nearest by centre)
+#: a point this far (m) below its crown's surface is on the crown's flank (:meth:`Crowns.normal_at`)
+SIDE_M = 0.6
+#: the depth into the canopy over which the foliage's light falls to 1/e, m (the colour step's shade of depth)
+DEPTH_M = 6.0
 
 
 def crown_height(shape: np.ndarray, H: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -108,11 +111,13 @@ class Crowns:
                                                                                                           -np.inf)
         return idx, h, q
 
-    def normal_at(self, X, Y) -> np.ndarray:
+    def normal_at(self, X, Y, h_m=None) -> np.ndarray:
         """Unit normal (…, 3) of the crown surface seen at ground points (X, Y); straight up where no crown.
 
         The crown's own slope (its shape) plus its lumps: the gradient of a seeded smooth noise of the shape's
-        :data:`BUMP` amplitude and scale.
+        :data:`BUMP` amplitude and scale.  With ``h_m`` (the point's height above the ground, m), a point more
+        than :data:`SIDE_M` below its crown's surface is on the crown's side — what a ray far from the nadir meets
+        (the raster's column wall): its normal leans out from the crown's axis, the foliage's flank.
         """
         from .texture import wave_gradient
 
@@ -137,8 +142,21 @@ class Crowns:
                 gx[m] += amp * bx
                 gy[m] += amp * by
         n = np.column_stack([-gx, -gy, np.ones(len(i))])
+        if h_m is not None:  # on the crown's flank: the normal leans out, 70° from the vertical
+            depth = self.surface_depth(X, Y, h_m)[on]
+            side = depth > SIDE_M
+            if side.any():
+                ux, uy = dx[side] / r[side], dy[side] / r[side]
+                n[side] = np.column_stack([2.75 * ux - gx[side] * 0.2, 2.75 * uy - gy[side] * 0.2, np.ones(int(side.sum()))])
         out[on] = n / np.linalg.norm(n, axis=1, keepdims=True)
         return out
+
+    def surface_depth(self, X, Y, h_m) -> np.ndarray:
+        """How far below its crown's surface a point at height ``h_m`` above the ground lies, m (0 on it or above;
+        0 where no crown): the depth into the canopy, where the foliage is in its neighbours' shade."""
+        idx, h, _ = self.lookup(X, Y)
+        d = np.where(idx >= 0, h - np.asarray(h_m, float), 0.0)
+        return np.clip(np.nan_to_num(d, nan=0.0, neginf=0.0, posinf=0.0), 0.0, None)
 
     def with_rasters(self, n: int, texel_m: float) -> tuple:
         """``(crowns, canopy_dm)``: the canopy raster the ray-caster marches — the crowns' surfaces as columns

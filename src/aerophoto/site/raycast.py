@@ -406,7 +406,7 @@ def canopy_hits(site, objs, S, ax, ay, u_near, u_ground, march, Xg=None, Yg=None
     u = uc[hit]
     P = S + u[:, None] * D[hit]
     if getattr(objs, "crowns", None) is not None:  # the crowns' own surfaces (aerophoto.site.crowns)
-        return idx, u, objs.crowns.normal_at(P[:, 0], P[:, 1])
+        return idx, u, objs.crowns.normal_at(P[:, 0], P[:, 1], P[:, 2] - site.height(P[:, 0], P[:, 1]))
     d = objs.texel_m  # the canopy's normal from its slope over ± one texel (the gentle ground's slope left out)
     c = objs.canopy_at
     gx = (c(P[:, 0] + d, P[:, 1]) - c(P[:, 0] - d, P[:, 1])) / (2 * d)

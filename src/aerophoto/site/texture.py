@@ -375,24 +375,30 @@ def _tex_water(isite, code, X, Y, fp, gain):
         gain += 0.08 * noise(X, Y, 5.0, 45, footprint_m=fp) + 0.04 * noise(X, Y, 1.5, 46, footprint_m=fp)
 
 
+def _across(d, centres, width_m, half_m, fp):
+    """Lines along a road at distances ``centres`` from its axis (m), ``width_m`` wide, minus their mean over the
+    road's half-width ``half_m``: zero-mean across the carriageway."""
+    g = sum(pulses(d - c, 1e3, width_m, fp) for c in centres)
+    return g - np.float32(len(centres) * width_m * 1.0645 / half_m)
+
+
 def _tex_lines(code, d, s, fp):
     """Roads and the railway across and along their centre line: wheel paths, ruts, sleepers and rails."""
-    from .cover import CLASS_CODES as C
+    from .cover import CLASS_CODES as C, LINEAR
 
     g = np.zeros(len(d), np.float32)
-    if code == C["asphalt road"]:
-        for c in (0.95, 2.55):  # each lane's two wheel paths, lighter (polished)
-            g += 0.06 * pulses(d - c, 1e3, 0.6, fp)
+    if code == C["asphalt road"]:  # each lane's two wheel paths, lighter (polished)
+        g += 0.06 * _across(d, (0.95, 2.55), 0.6, LINEAR["asphalt road"][1], fp)
         g += 0.05 * noise(d, s, 6.0, 51, footprint_m=fp) + 0.03 * noise(d, s, 0.5, 52, footprint_m=fp)
-    elif code == C["gravel road"]:
-        for c in (0.8, 2.1):  # the ruts
-            g += -0.12 * pulses(d - c, 1e3, 0.45, fp)
+    elif code == C["gravel road"]:  # the ruts, darker
+        g += -0.12 * _across(d, (0.8, 2.1), 0.45, LINEAR["gravel road"][1], fp)
         g += 0.06 * noise(d, s, 1.0, 53, footprint_m=fp)
     elif code == C["railway"]:
+        w = LINEAR["railway"][1]
         band = 1.0 / (1.0 + np.exp((d - 1.35) / 0.12))  # the sleepers' band, 2.7 m wide, in the lighter ballast
-        g += -0.20 * (band - 1.35 / 4.0)
+        g += -0.20 * (band - 1.35 / w)
         g += band * 0.12 * stripes(s, 0.55, fp)  # sleepers
-        g += -0.5 * pulses(d - 0.76, 1e3, 0.07, fp)  # the two rails (d is the distance from the track's axis)
+        g += -0.5 * _across(d, (0.76,), 0.07, w, fp)  # the two rails (d is the distance from the track's axis)
         g += 0.05 * noise(d, s, 0.4, 54, footprint_m=fp)
     return g
 

@@ -183,6 +183,13 @@ The keys as the guide lists them, and the five steps of soil interpretation. The
 practises is the second one: the office interpreter first divides the image into areas homogeneous in
 tone, texture and soil-forming factors, and only then names the soils — in the office where the keys
 allow, otherwise in the field, checking each soil type at least three times.
+
+The guide's office work is done on **contact prints** (контактные отпечатки), interpreting **every other photo** of
+a strip (дешифрирование через снимок: with 60 % overlap the even, or the odd, photos cover the ground between them);
+on **photo mosaics** (фотосхемы, chapter 05) where the landscape as a whole decides which soils to expect — the
+landscape approach — and on **stereo mosaics** (стереофотосхемы) where the relief matters most. The finished
+contours go onto the topographic or base land map at the map's scale, by computer or with projection instruments
+that bring the photos to that scale.
 """, id="keys-theory"),
     code("""
 guide.ch13.keys_table()

@@ -24,6 +24,7 @@ __all__ = [
     "use_style",
     "style_context",
     "new_axes",
+    "panels",
     "figure",
     "figure_widget",
     "static",
@@ -130,6 +131,19 @@ def new_axes(ax=None, *, figsize=None, **subplot_kw):
         return ax.figure, ax
     fig = figure(figsize=figsize)
     return fig, fig.add_subplot(1, 1, 1, **subplot_kw)
+
+
+def panels(ax=None, n: int = 2, *, figsize=None, width_ratios=None) -> tuple:
+    """Return ``(fig, axes)``: the ``n`` given Axes side by side and their figure, or a new figure of ``n`` panels
+    in a row (``width_ratios`` their relative widths) — the two-panel views' ``ax=None``."""
+    if ax is not None:
+        axes = tuple(ax)
+        if len(axes) != n:
+            raise ValueError(f"ax holds {len(axes)} Axes; give {n} or None")
+        return axes[0].figure, axes
+    fig = figure(figsize=figsize)
+    kw = {"gridspec_kw": {"width_ratios": list(width_ratios)}} if width_ratios is not None else {}
+    return fig, tuple(fig.subplots(1, n, **kw))
 
 
 def figure_widget(fig):

@@ -194,7 +194,7 @@ N_KEY_ROWS = 19
 KEY_PHOTO_M = 8000.0
 #: pixels across a close-up, and across its quick preview
 KEY_PX = 384
-KEY_PREVIEW_PX = 144
+KEY_PREVIEW_PX = 128
 
 
 @dataclass(frozen=True, eq=False)
@@ -315,7 +315,7 @@ class KeyDemo(LiveDemo):
 
 # =========================================================================== the lab's photo
 #: the resolution at which :func:`lab_figure`'s own figure shows the photo's 1024 pixels one for one (dpi)
-LAB_DPI = 165
+LAB_DPI = 166
 
 
 def lab_figure(lab, camera: str = "colour film", ax=None, *, marks: bool = True):
@@ -324,10 +324,11 @@ def lab_figure(lab, camera: str = "colour film", ax=None, *, marks: bool = True)
     Saved at :data:`LAB_DPI` (``plots.static(..., dpi=di.LAB_DPI, format="jpeg")``) the photo shows at its full
     resolution, 1024 pixels across.
     """
-    own = ax is None
-    fig, ax = plots.new_axes(ax, figsize=(7.0, 7.0))
-    if own:  # the photo takes the figure: at LAB_DPI its 1024 pixels are shown one for one
-        fig.subplots_adjust(left=0.085, right=0.975, bottom=0.075, top=0.965)
+    if ax is None:  # the photo takes the figure: at LAB_DPI its 1024 pixels are shown one for one
+        fig = plots.figure(figsize=(7.0, 7.0), layout="none")
+        ax = fig.add_subplot(1, 1, 1)
+        fig.subplots_adjust(left=0.105, right=0.985, bottom=0.09, top=0.97)
+    fig = ax.figure
     ax.imshow(lab.composite(camera), extent=lab.extent_mm, interpolation="antialiased")
     if marks:
         for name, row in lab.marks.iterrows():

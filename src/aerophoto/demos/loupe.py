@@ -107,12 +107,7 @@ class LoupeView:
     def __init__(self, lab, result: LoupeResult | None = None, ax=None, camera: str = "colour film"):
         from matplotlib.patches import Rectangle
 
-        if ax is None:
-            fig = plots.figure(figsize=(8.8, 5.0))
-            ax_all, ax_glass = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.45]})
-        else:
-            ax_all, ax_glass = ax
-            fig = ax_all.figure
+        fig, (ax_all, ax_glass) = plots.panels(ax, 2, figsize=(8.8, 5.0), width_ratios=(1.0, 1.45))
         self.fig, self.ax_all, self.ax_glass, self.lab = fig, ax_all, ax_glass, lab
         self.marks = lab.marks
         self._camera = camera

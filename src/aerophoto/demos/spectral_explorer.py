@@ -112,12 +112,7 @@ class SpectralView:
     """Reflectance curve with the camera's bands (left) and the patch's composite (right); ``update`` moves them."""
 
     def __init__(self, result: ExplorerResult | None = None, ax=None):
-        if ax is None:
-            fig = plots.figure(figsize=(8.9, 4.1))
-            ax_curve, ax_img = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.3, 1]})
-        else:
-            ax_curve, ax_img = ax
-            fig = ax_curve.figure
+        fig, (ax_curve, ax_img) = plots.panels(ax, 2, figsize=(8.9, 4.1), width_ratios=(1.3, 1))
         self.fig, self.ax_curve, self.ax_img = fig, ax_curve, ax_img
         C = plots.COLORS
         a = ax_curve

@@ -149,8 +149,10 @@ class SiteObjects:
 
     @property
     def canopy_max_m(self) -> float:
-        """The tallest canopy, metres."""
-        return float(self.canopy_dm.max()) * 0.1 if self.canopy_dm.size else 0.0
+        """The tallest canopy, metres (found once: the raster is read-only)."""
+        if "canopy_max" not in self._index:
+            self._index["canopy_max"] = float(self.canopy_dm.max()) * 0.1 if self.canopy_dm.size else 0.0
+        return self._index["canopy_max"]
 
     @property
     def height_m(self) -> np.ndarray:

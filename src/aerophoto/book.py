@@ -252,6 +252,13 @@ CHAPTERS = (
                      "each row of table 10 shows the place on the site where its key applies: islands and the "
                      "tributary give the flow, tone and crowns tell pine from spruce, curvature a railway from a road",
                      (("table 10 row", "ArrowRight"),), timed="table 10 row"),
+                Demo("demo-loupe", "aerophoto.demos.loupe.LoupeDemo", "A magnifier on the photo",
+                     "the mark to centre on, then the power, then x and y (or a click on the photo)",
+                     "under the glass the marks of table 10 come out: pine's round crowns of one height against "
+                     "spruce's small dark ones, a field's rows and tramlines, a road's shoulders and ditches, the "
+                     "rails on the ballast",
+                     (("power, ×", "ArrowLeft"), ("x (glass centre), mm", "PageUp")),
+                     timed="x (glass centre), mm"),
             )),
     Chapter("09", "plan_correction", "correcting a plan by mutual projective grids",
             "корректировка плана методом взаимно-проектных сеток", section=10, demos=(

@@ -25,10 +25,15 @@ __all__ = [
     "use_style",
     "style_context",
     "new_axes",
+    "panels",
     "figure",
     "figure_widget",
     "static",
     "StaticFigure",
+    "JPEG_QUALITY",
+    "JPEG_MIN_SSIM",
+    "JPEG_MAX_DE",
+    "picture_difference",
     "draw",
     "freeze_layout",
     "fast_frames",
@@ -134,6 +139,19 @@ def new_axes(ax=None, *, figsize=None, **subplot_kw):
     return fig, fig.add_subplot(1, 1, 1, **subplot_kw)
 
 
+def panels(ax=None, n: int = 2, *, figsize=None, width_ratios=None) -> tuple:
+    """Return ``(fig, axes)``: the ``n`` given Axes side by side and their figure, or a new figure of ``n`` panels
+    in a row (``width_ratios`` their relative widths) — the two-panel views' ``ax=None``."""
+    if ax is not None:
+        axes = tuple(ax)
+        if len(axes) != n:
+            raise ValueError(f"ax holds {len(axes)} Axes; give {n} or None")
+        return axes[0].figure, axes
+    fig = figure(figsize=figsize)
+    kw = {"gridspec_kw": {"width_ratios": list(width_ratios)}} if width_ratios is not None else {}
+    return fig, tuple(fig.subplots(1, n, **kw))
+
+
 def figure_widget(fig):
     """The widget that shows ``fig``: its ipympl canvas, or an Output holding a static image.
 
@@ -153,34 +171,88 @@ def figure_widget(fig):
 
 
 class StaticFigure:
-    """A finished figure as a PNG with a text alternative — the book's one way to show a static figure.
+    """A finished figure as a picture with a text alternative — the book's one way to show a static figure.
 
-    Displays as ``<img alt="…">`` in HTML (JupyterLab, Voilà, nbconvert) and as
-    PNG elsewhere.  Attributes: ``png`` (bytes), ``alt`` (str).
+    Displays as ``<img alt="…">`` in HTML (JupyterLab, Voilà, nbconvert) and as the picture elsewhere.
+    Attributes: ``data`` (the encoded bytes), ``mime`` (``image/png`` or ``image/jpeg``), ``alt`` (str); ``png``
+    is ``data`` of a PNG.  A JPEG (:func:`static`'s ``format="jpeg"``, for photos) is shown through its HTML only:
+    every front end the book supports renders HTML, and a second copy of the picture in the output would double
+    its size.
     """
 
-    def __init__(self, png: bytes, alt: str):
-        self.png = png
+    def __init__(self, data: bytes, alt: str, mime: str = "image/png"):
+        if mime not in ("image/png", "image/jpeg"):
+            raise ValueError(f"mime = {mime!r} is not one of ['image/png', 'image/jpeg']")
+        self.data = data
         self.alt = alt
+        self.mime = mime
+
+    @property
+    def png(self) -> bytes | None:
+        return self.data if self.mime == "image/png" else None
 
     def _repr_png_(self):
         return self.png
 
+    def _repr_jpeg_(self):
+        return self.data if self.mime == "image/jpeg" else None
+
     def _repr_html_(self) -> str:
         import base64
 
-        data = base64.b64encode(self.png).decode("ascii")
-        return f"<img src='data:image/png;base64,{data}' alt='{_html.escape(self.alt, quote=True)}' style='max-width:100%'>"
+        data = base64.b64encode(self.data).decode("ascii")
+        return (f"<img src='data:{self.mime};base64,{data}' alt='{_html.escape(self.alt, quote=True)}' "
+                "style='max-width:100%'>")
 
     def _repr_mimebundle_(self, include=None, exclude=None):
-        return {"text/html": self._repr_html_(), "image/png": self.png, "text/plain": f"[figure: {self.alt}]"}
+        bundle = {"text/html": self._repr_html_(), "text/plain": f"[figure: {self.alt}]"}
+        if self.mime == "image/png":
+            bundle["image/png"] = self.data
+        return bundle
 
 
-def static(fig, alt: str, *, dpi: int = 100) -> StaticFigure:
-    """Show ``fig`` once as a PNG with the alternative text ``alt`` (say what the figure shows); the figure is closed.
+#: JPEG quality of a photo shown by :func:`static` (``format="jpeg"``, no chroma subsampling): the lowest of 50,
+#: 55, …, 95 whose pictures of chapter 08's photos keep a structural similarity of at least :data:`JPEG_MIN_SSIM`
+#: and a mean colour difference of at most :data:`JPEG_MAX_DE` against the lossless PNG (measured by
+#: docs/tools/measure_jpeg_quality.py: 85 gives SSIM 0.974, 90 gives 0.982 and ΔE₀₀ 0.92; the three photos of
+#: the chapter then take 1.2 MB of the notebook instead of 5.6 MB as PNG; tests/presentation/test_plots_jpeg.py)
+JPEG_QUALITY = 90
+#: the least structural similarity (SSIM of the luminance, Wang et al. 2004; scikit-image) a JPEG photo keeps
+JPEG_MIN_SSIM = 0.98
+#: the largest mean CIEDE2000 colour difference ΔE₀₀ a JPEG photo may show (1 ≈ a just noticeable difference)
+JPEG_MAX_DE = 1.0
 
-    Use it for every figure that does not move (a theory sketch, a worked
-    example's plot); live figures are the demos' ipympl canvases.
+
+def picture_difference(ref, got) -> dict:
+    """How much two pictures (h, w, 3) uint8 of one shape differ, as an eye would judge it.
+
+    ``ssim``: the structural similarity of their luminance (Wang, Bovik, Sheikh & Simoncelli 2004: Gaussian
+    window σ = 1.5 px; scikit-image), 1 for equal pictures; ``dE_mean`` and ``dE_p99``: the mean and 99th
+    percentile of the CIEDE2000 colour difference ΔE₀₀ (Sharma, Wu & Dalal 2005), 0 for equal colours and about
+    1 for a just noticeable difference.
+    """
+    from skimage.color import deltaE_ciede2000, rgb2gray, rgb2lab
+    from skimage.metrics import structural_similarity
+
+    a = np.asarray(ref)
+    b = np.asarray(got)
+    if a.shape != b.shape or a.ndim != 3 or a.shape[-1] != 3:
+        raise ValueError(f"ref has shape {a.shape} and got {b.shape}; both must be one (h, w, 3) shape")
+    a = a.astype(np.float64) / 255.0 if a.dtype == np.uint8 else a.astype(np.float64)
+    b = b.astype(np.float64) / 255.0 if b.dtype == np.uint8 else b.astype(np.float64)
+    s = structural_similarity(rgb2gray(a), rgb2gray(b), data_range=1.0, gaussian_weights=True, sigma=1.5,
+                              use_sample_covariance=False)
+    de = deltaE_ciede2000(rgb2lab(a), rgb2lab(b))
+    return {"ssim": float(s), "dE_mean": float(de.mean()), "dE_p99": float(np.percentile(de, 99))}
+
+
+def static(fig, alt: str, *, dpi: int = 100, format: str = "png", quality: int | None = None) -> StaticFigure:
+    """Show ``fig`` once as a picture with the alternative text ``alt`` (say what the figure shows); the figure is
+    closed.
+
+    Use it for every figure that does not move (a theory sketch, a worked example's plot); live figures are the
+    demos' ipympl canvases.  ``format="jpeg"`` suits a photo (a tenth of a PNG's size at a full photo's
+    resolution), at ``quality`` (1…95, default :data:`JPEG_QUALITY`); diagrams stay PNG (sharp lines and text).
     """
     import io
 
@@ -188,11 +260,19 @@ def static(fig, alt: str, *, dpi: int = 100) -> StaticFigure:
 
     if not str(alt).strip():
         raise ValueError("alt = '' is empty; describe what the figure shows (read aloud by screen readers)")
+    if format not in ("png", "jpeg"):
+        raise ValueError(f"format = {format!r} is not one of ['png', 'jpeg']")
     finish_figure(fig)  # the reader's language, the book's number format on the ticks, subscripts set
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
+    if format == "png":
+        fig.savefig(buf, format="png", dpi=dpi)
+    else:
+        from ._validate import check_int_range
+
+        q = JPEG_QUALITY if quality is None else check_int_range("quality", quality, 1, 95)
+        fig.savefig(buf, format="jpeg", dpi=dpi, pil_kwargs={"quality": int(q), "optimize": True, "subsampling": 0})
     plt.close(fig)
-    return StaticFigure(buf.getvalue(), str(alt))
+    return StaticFigure(buf.getvalue(), str(alt), "image/png" if format == "png" else "image/jpeg")
 
 
 def draw(fig, *, force: bool = False) -> None:

@@ -444,3 +444,30 @@ _BLOCK_ADJUSTMENT = {
     "critical |w| = 4": "критический |w| = 4",
 }
 MESSAGES = {**MESSAGES, **_BLOCK_ADJUSTMENT}
+
+# aerophoto.demos.loupe and the table-10 key's close-ups (chapter 08)
+_LOUPE = {
+    "A magnifier on the photo (лупа)": "Лупа на снимке",
+    "Put the glass on a mark or click on the photo; at ×5–×6 you see the crowns of a stand, the rows and wheel "
+    "tracks of a field, a road's shoulders and ditches, the rails.":
+        "Наведите лупу на метку или щёлкните по снимку; при ×5–×6 видны кроны деревьев, рядки и колеи на поле, "
+        "обочины и кюветы дороги, рельсы.",
+    "x (glass centre), mm": "x (центр лупы), мм",
+    "y (glass centre), mm": "y (центр лупы), мм",
+    "centre on": "навести на",
+    "power, ×": "увеличение, ×",
+    "Where the glass is": "Где лупа",
+    "Glass": "Лупа",
+    "photo x of the glass's centre": "координата x центра лупы на снимке",
+    "photo y of the glass's centre": "координата y центра лупы на снимке",
+    "put the glass over one of the photo's marks": "навести лупу на одну из меток снимка",
+    "how many times larger than the print": "во сколько раз крупнее отпечатка",
+    "— (use x, y)": "— (по x, y)",
+    "mark 1": "метка 1", "mark 2": "метка 2", "mark 3": "метка 3", "mark 4": "метка 4", "mark 5": "метка 5",
+    "mark 6": "метка 6",
+    "stand P": "насаждение P", "stand Q": "насаждение Q",
+    "bank point A": "точка берега A", "bank point B": "точка берега B",
+    "the glass: full detail when the slider rests": "лупа: все подробности, когда ползунок остановится",
+    "the close-up: full detail when the slider rests": "участок: все подробности, когда ползунок остановится",
+}
+MESSAGES = {**MESSAGES, **_LOUPE}

@@ -90,7 +90,7 @@ def run(quick: bool = False) -> dict:
         w, h = demo.fig.canvas.get_width_height()
         out["conditions_demo"]["figure_px"] = [w, h]
         key = di.KeyDemo()
-        out["key_demo"] = _drive(key, [{"row": r % di.N_KEY_ROWS} for r in range(1, (6 if quick else 18) + 1)])
+        out["key_demo"] = _drive(key, [{"row": 1 + r % di.N_KEY_ROWS} for r in range(1, (6 if quick else 18) + 1)])
 
     t0 = time.perf_counter()
     for i in range(100 if not quick else 10):

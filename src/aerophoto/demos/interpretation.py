@@ -243,8 +243,8 @@ class KeyDemo(LiveDemo):
     title = "Table 10 as a key (топографическое дешифрирование)"
     hint = "Pick a row of table 10: the photo shows the site where that key applies, and what to look at."
     params = (
-        Param("row", "table 10 row", 0, N_KEY_ROWS - 1, 1, 0, kind="int", group="Key",
-              help="the rows of table 10 that the site shows, in the table's order"),
+        Param("row", "table 10 row", 1, N_KEY_ROWS, 1, 1, kind="int", group="Key",
+              help="the rows of table 10 that the site shows, in the table's order, counted from 1"),
         Param("camera", "film", default="colour film", kind="choice",
               options=(("natural colour", "colour film"), ("colour infrared", "colour-infrared film")), group="Key"),
     )
@@ -257,8 +257,8 @@ class KeyDemo(LiveDemo):
 
     def compute(self, **v):
         k = (int(v["row"]), v["camera"])
-        if k not in self._seen:
-            self._seen[k] = key_model(**v)
+        if k not in self._seen:  # the slider counts rows from 1, key_model from 0
+            self._seen[k] = key_model(row=int(v["row"]) - 1, camera=v["camera"])
         return self._seen[k]
 
     def render(self, result):

@@ -163,7 +163,8 @@ def _sensor_class():
 
 
 def page_sensor(*, store: str = "", projector: bool = False):
-    """The page-side helper of one demo layout (an invisible widget; put it first in the demo's box).
+    """The page-side helper of one demo layout (an invisible widget; put it first in the demo's box), or None
+    where anywidget is not installed (the browser book: its figures keep their natural size).
 
     ``store``: the localStorage key the projector mode is remembered under (empty: not remembered).
     Observe its ``box`` (:meth:`PageBox.of`) and ``projector`` traits.
@@ -172,6 +173,9 @@ def page_sensor(*, store: str = "", projector: bool = False):
 
     from .i18n import get_language
 
-    sensor = _sensor_class()(store=store, projector=bool(projector), lang=get_language(),
-                             layout=w.Layout(width="100%", height="0px", margin="0", overflow="hidden"))
-    return sensor
+    try:
+        cls = _sensor_class()
+    except ImportError:
+        return None
+    return cls(store=store, projector=bool(projector), lang=get_language(),
+               layout=w.Layout(width="100%", height="0px", margin="0", overflow="hidden"))

@@ -636,7 +636,7 @@ class LiveDemo:
         self._figure_box = figure
         self._grid = w.GridBox([controls, figure, table], layout=w.Layout(**_GRID[False]))
         self._grid._aerophoto_parts = (controls, table)
-        parts = [w.HTML(_DEMO_CSS), self.page_sensor()]
+        parts = [w.HTML(_DEMO_CSS), *filter(None, [self.page_sensor()])]
         if self.title:
             parts.append(w.HTML(f"<h3 style='margin:4px 0'>{t(self.title)}</h3>"))
         if self.hint:
@@ -659,11 +659,13 @@ class LiveDemo:
 
     # ----------------------------------------------------------- the page's size
     def page_sensor(self, *, store: str = "", projector: bool = False):
-        """A new page sensor (:func:`aerophoto.fit.page_sensor`) whose reports size this demo's figure."""
+        """A new page sensor (:func:`aerophoto.fit.page_sensor`) whose reports size this demo's figure (None
+        without anywidget)."""
         from .fit import page_sensor
 
         sensor = page_sensor(store=store, projector=projector)
-        sensor.observe(self._on_page_box, names="box")
+        if sensor is not None:
+            sensor.observe(self._on_page_box, names="box")
         return sensor
 
     def _on_page_box(self, change) -> None:

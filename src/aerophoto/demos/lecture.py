@@ -82,8 +82,9 @@ def _apply(view) -> None:
         view.remove_class("aerophoto-projector")
     if view._aerophoto_toggle.value != on:
         view._aerophoto_toggle.value = on
-    if view._aerophoto_sensor.projector != on:
-        view._aerophoto_sensor.projector = on  # the page remembers it (localStorage)
+    sensor = view._aerophoto_sensor
+    if sensor is not None and sensor.projector != on:
+        sensor.projector = on  # the page remembers it (localStorage)
     view._aerophoto_demo.refit()
 
 
@@ -176,7 +177,8 @@ def lecture_view(demo, title: str = "", subtitle: str = "", *, full_screen: bool
                                layout=w.Layout(width="auto", flex="0 0 auto", margin="0 8px 0 0"))
     projector.observe(lambda ch: set_projector(ch["new"]), names="value")
     sensor = demo.page_sensor(store=PROJECTOR_STORE, projector=_PROJECTOR.on)
-    sensor.observe(lambda ch: set_projector(ch["new"]), names="projector")
+    if sensor is not None:  # None without anywidget: no page size, no memory (the figure keeps its size)
+        sensor.observe(lambda ch: set_projector(ch["new"]), names="projector")
     band = w.HBox(_columns(demo), layout=w.Layout(flex_flow="row wrap", align_items="flex-start",
                                                    margin="0 0 4px 0"))
     band.add_class("aerophoto-band")
@@ -192,7 +194,7 @@ def lecture_view(demo, title: str = "", subtitle: str = "", *, full_screen: bool
     side.add_class("aerophoto-side")
     main = w.HBox([figure, side], layout=w.Layout(align_items="flex-start"))
     main.add_class("aerophoto-main")
-    view = w.VBox([sensor, top, band, main],
+    view = w.VBox([*filter(None, [sensor]), top, band, main],
                   layout=w.Layout(width="100%", min_height=f"max({SCREEN_HEIGHT_PX}px, 100vh)" if full_screen else None))
     view.add_class("aerophoto-demo")
     view.add_class("aerophoto-lecture")

@@ -45,13 +45,13 @@ def _key_first_views(di, colour, quick: bool) -> dict:
     demo.draw(force=True)
     load = [os.getloadavg()[0]]
     preview, full = [], []
-    rows = list(range(1, di.N_KEY_ROWS)) * (1 if quick else 2)
+    rows = list(range(2, di.N_KEY_ROWS + 1)) * (1 if quick else 2)  # the slider counts rows from 1
     for r in rows:
         for path, out in (("preview", preview), ("full", full)):
             colour._base.cache_clear()
             colour._geometry.cache_clear()
             demo._seen.clear()
-            demo.values["row"] = 0 if r != 0 else 1
+            demo.values["row"] = 1
             t0 = time.perf_counter()
             demo.values["row"] = r
             demo._preview = path == "preview"
@@ -130,7 +130,7 @@ def run(quick: bool = False) -> dict:
         w, h = demo.fig.canvas.get_width_height()
         out["conditions_demo"]["figure_px"] = [w, h]
         key = di.KeyDemo()
-        out["key_demo"] = _drive(key, [{"row": r % di.N_KEY_ROWS} for r in range(1, (6 if quick else 18) + 1)])
+        out["key_demo"] = _drive(key, [{"row": 1 + r % di.N_KEY_ROWS} for r in range(1, (6 if quick else 18) + 1)])
         out["key_first_view"] = _key_first_views(di, colour, quick)
 
     t0 = time.perf_counter()

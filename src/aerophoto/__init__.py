@@ -60,6 +60,7 @@ _SUBMODULES = (
     "plots",
     "blit",
     "widgets",
+    "fit",
     "demos",
     "i18n",
     "checks",

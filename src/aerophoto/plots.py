@@ -15,6 +15,7 @@ from __future__ import annotations
 import contextlib
 import html as _html
 import re
+import threading
 
 import matplotlib as mpl
 import numpy as np
@@ -36,6 +37,10 @@ __all__ = [
     "picture_difference",
     "draw",
     "freeze_layout",
+    "scale_figure",
+    "natural_size_px",
+    "figure_lock",
+    "lock_canvas",
     "fast_frames",
     "snapped_limits",
     "coarse_ceil",
@@ -298,9 +303,163 @@ def freeze_layout(fig) -> None:
 
     def freeze(_event):
         fig.canvas.mpl_disconnect(fig._aerophoto_freeze)
+        fig._aerophoto_engine = fig.get_layout_engine()  # scale_figure lays the figure out again with it
         fig.set_layout_engine(PlaceHolderLayoutEngine(adjust_compatible=False, colorbar_gridspec=True))
 
     fig._aerophoto_freeze = fig.canvas.mpl_connect("draw_event", freeze)
+
+
+def figure_lock(fig):
+    """The figure's re-entrant lock (made once per figure).
+
+    ipykernel 7 may handle a page's widget messages on two threads (JupyterLab sends them through a kernel
+    subshell, others arrive on the main shell): ipympl's request to draw can then run while a demo moves artists
+    or resizes the figure, and the frame shows a half-made layout.  A live figure is changed and drawn under this
+    lock (:func:`lock_canvas`, :class:`aerophoto.widgets.LiveDemo`).
+    """
+    lock = fig.__dict__.get("_aerophoto_lock")
+    if lock is None:
+        lock = fig.__dict__.setdefault("_aerophoto_lock", threading.RLock())
+    return lock
+
+
+def lock_canvas(fig) -> None:
+    """Draw ``fig``'s canvas and take its frames (ipympl) only under :func:`figure_lock`; idempotent."""
+    canvas = fig.canvas
+    if getattr(canvas, "_aerophoto_locked", False):
+        return
+    lock = figure_lock(fig)
+    for name in ("draw", "get_diff_image"):
+        method = getattr(canvas, name, None)
+        if method is None:
+            continue
+
+        def locked(*args, _method=method, **kwargs):
+            with lock:
+                return _method(*args, **kwargs)
+
+        setattr(canvas, name, locked)
+    canvas._aerophoto_locked = True
+
+
+class _Natural:
+    """A figure as built: its size (in), logical dpi and the places of its Axes (figure fractions)."""
+
+    def __init__(self, fig):
+        self.w_in, self.h_in = (float(v) for v in fig.get_size_inches())
+        self.dpi = float(getattr(fig, "_original_dpi", fig.dpi))
+        self.boxes = [(ax, ax.get_position(original=True).bounds) for ax in fig.axes]
+
+    @property
+    def px(self) -> tuple[float, float]:
+        return self.w_in * self.dpi, self.h_in * self.dpi
+
+
+def _natural(fig) -> _Natural:
+    nat = getattr(fig, "_aerophoto_natural", None)
+    if nat is None:
+        nat = fig._aerophoto_natural = _Natural(fig)
+    return nat
+
+
+def natural_size_px(fig) -> tuple[float, float]:
+    """The figure's (width, height) in CSS px as built (its figsize at its dpi), whatever it is drawn at now."""
+    return _natural(fig).px
+
+
+def _stretch(edges: list[tuple[float, float]], k: float) -> dict[float, float]:
+    """Figure fractions along one direction → new fractions when everything outside the Axes (margins and gaps:
+    tick labels, axis labels, titles) grows by ``k`` and the Axes share what is left (at least 40 % of before)."""
+    cuts = sorted({0.0, 1.0, *(min(max(v, 0.0), 1.0) for e in edges for v in e)})
+    spans = list(zip(cuts[:-1], cuts[1:]))
+    inside = [any(a <= lo + 1e-9 and hi <= b + 1e-9 for a, b in edges) for lo, hi in spans]
+    margin = sum(hi - lo for (lo, hi), i in zip(spans, inside) if not i)
+    data = 1.0 - margin
+    if data <= 0 or margin <= 0:
+        return {c: c for c in cuts}
+    c = max((1.0 - k * margin) / data, 0.4)
+    grow = (1.0 - c * data) / margin  # == k unless the Axes reached their floor
+    out, x = {cuts[0]: 0.0}, 0.0
+    for (lo, hi), i in zip(spans, inside):
+        x += (hi - lo) * (c if i else grow)
+        out[hi] = x
+    return out
+
+
+def _lay_out_fixed(nat: _Natural, kx: float, ky: float) -> None:
+    """Axes placed by hand (``add_axes``, ``subplots_adjust``): margins and gaps grow with the text, the Axes
+    take the rest (:func:`_stretch`), from their places as built."""
+    mx = _stretch([(b[0], b[0] + b[2]) for _ax, b in nat.boxes], kx)
+    my = _stretch([(b[1], b[1] + b[3]) for _ax, b in nat.boxes], ky)
+
+    def at(m, v):
+        return m[min(m, key=lambda c: abs(c - v))]
+
+    for ax, (x, y, w, h) in nat.boxes:
+        x0, x1 = at(mx, max(x, 0.0)), at(mx, min(x + w, 1.0))
+        y0, y1 = at(my, max(y, 0.0)), at(my, min(y + h, 1.0))
+        ax.set_position([x0, y0, x1 - x0, y1 - y0])
+
+
+def scale_figure(fig, width_px: float, height_px: float, text: float = 1.0) -> bool:
+    """Draw ``fig`` at ``width_px`` × ``height_px`` CSS pixels with its text, lines and markers ``text`` times
+    their size as built (1: as built); returns True if that changed anything.
+
+    The figure's dpi becomes ``text`` × its dpi as built and its size in inches follows: when ``text`` is the
+    zoom (``width_px`` over the natural width) the whole figure is zoomed and keeps its layout; otherwise it is
+    laid out again — by its layout engine (constrained, also after :func:`freeze_layout`), or, for Axes placed
+    by hand, by growing the margins with the text (:func:`_stretch`).  The device pixel ratio of a HiDPI screen
+    is kept (ipympl's canvas draws at it).  Call the figure's draw afterwards.
+    """
+    nat = _natural(fig)
+    w0, h0 = nat.px
+    text = float(text)
+    if not (width_px > 0 and height_px > 0 and text > 0):
+        raise ValueError(f"scale_figure: width_px = {width_px}, height_px = {height_px}, text = {text}; all must be > 0")
+    dpi = nat.dpi * text
+    w_in, h_in = width_px / dpi, height_px / dpi
+    cur_w, cur_h = fig.get_size_inches()
+    if abs(getattr(fig, "_original_dpi", fig.dpi) - dpi) < 1e-6 and abs(cur_w - w_in) < 1e-4 and abs(cur_h - h_in) < 1e-4:
+        return False
+    ratio = float(getattr(fig.canvas, "device_pixel_ratio", 1.0) or 1.0)
+    fig._original_dpi = dpi
+    if abs(fig.dpi - dpi * ratio) < 1e-6:
+        fig.set_size_inches(w_in, h_in, forward=True)
+    else:
+        fig.set_size_inches(w_in, h_in, forward=False)
+        fig.set_dpi(dpi * ratio)  # tells the page (ipympl) the new size in pixels
+    kx, ky = text * w0 / width_px, text * h0 / height_px  # text relative to the picture, 1 = zoomed as built
+    engine = getattr(fig, "_aerophoto_engine", None) or fig.get_layout_engine()
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    if engine is not None and not isinstance(engine, PlaceHolderLayoutEngine):
+        if getattr(fig, "_aerophoto_engine", None) is not None:  # frozen: lay it out once for the new size
+            engine.execute(fig)
+    elif nat.boxes:
+        _lay_out_fixed(nat, kx, ky)
+    _fit_titles(fig)
+    fig.stale = True
+    return True
+
+
+def _fit_titles(fig) -> None:
+    """Titles wider than the figure (larger text in a narrower figure) are set smaller until they fit; a title
+    that fits again at its own size gets it back."""
+    texts = [fig._suptitle] if getattr(fig, "_suptitle", None) is not None else []
+    for ax in fig.axes:
+        texts += [ax.title, ax._left_title, ax._right_title]
+    renderer = fig.canvas.get_renderer()
+    room = fig.bbox.width - 6 * fig.dpi / 72
+    for text in texts:
+        if not text.get_visible() or not text.get_text():
+            continue
+        size = getattr(text, "_aerophoto_size", None)
+        if size is None:
+            size = text._aerophoto_size = text.get_fontsize()
+        text.set_fontsize(size)
+        width = text.get_window_extent(renderer).width
+        if width > room > 0:
+            text.set_fontsize(max(size * room / width, 0.6 * size))
 
 
 def snapped_limits(lo: float, hi: float, *, steps: int = 40) -> tuple[float, float]:
@@ -520,7 +679,7 @@ def _cell_format(spec, v, lang):
 
 
 def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision=None, notes=None,
-               highlight=None) -> str:
+               highlight=None, fold: bool | str = False) -> str:
     """Render a DataFrame as compact, projector-friendly HTML for an HTML widget, in the book's number format.
 
     Numbers follow :mod:`aerophoto.i18n.numfmt` (the reader's decimal mark, ``12 043``, a true minus, never
@@ -531,7 +690,14 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision
     (``1:12 000``).  Text is translated, a number written in it by Python rewritten (``-0.00`` → ``0.00``), and
     symbols' subscripts set (``p_x`` → p<sub>x</sub>); a ``unit`` column's units are the reader's (m → м).
     ``highlight`` is an optional boolean DataFrame/array of the same shape: True cells are shaded (e.g. a
-    tolerance exceeded).  ``notes`` is a list of strings printed under the table.
+    tolerance exceeded).  ``notes`` is a list of strings printed under the table.  ``fold`` (a secondary
+    table): ``True`` folds the table under its caption (a ``<details>`` the reader opens; a demo's page keeps it
+    open or closed across updates), ``"open"`` shows it unfolded.
+
+    Column headers are ``<th scope="col">``, row labels ``<th scope="row">``; the corner cell is an empty
+    ``<td>`` when the index has no name, and a table whose columns have no names has no header row; cells of
+    numbers (a digit and no word of four letters or more: "12 043", "1a–4a", "−0.48 mm") carry the class ``num``
+    and never break across lines (:data:`aerophoto.widgets.TABLE_CSS`).
     """
     import pandas as pd
 
@@ -566,28 +732,44 @@ def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision
             return _html.escape(_cell_format(float_format if spec is None else spec, v, lang))
         return html_subscripts(translate_units_in(fmt_text(_tr(str(v)), lang=lang)))
 
+    def num(text: str) -> str:
+        return " class='num'" if _NUMBER_LIKE.search(text) and not _WORD.search(text) else ""
+
     hl = None if highlight is None else np.asarray(highlight, dtype=bool)
-    head = "".join(f"<th>{html_subscripts(_tr(c))}</th>" for c in cols)
+    head = "".join(f"<th scope='col'>{html_subscripts(_tr(c))}</th>" for c in cols)
     index_name = html_subscripts(_tr(str(df.index.name or "")))
+    corner = f"<th scope='col'>{index_name}</th>" if index_name else "<td></td>"
     rows = []
     for ri in range(len(df)):
         label = str(df.index[ri])
         cells = []
         for j in range(df.shape[1]):
             style = ' style="background:#F0E442"' if hl is not None and hl[ri, j] else ""
-            cells.append(f"<td{style}>{fmt(df.iat[ri, j], label, j)}</td>")
-        rows.append(f"<tr><th>{html_subscripts(fmt_text(_tr(label), lang=lang))}</th>{''.join(cells)}</tr>")
-    cap = (f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{html_subscripts(_tr(caption))}"
-           "</caption>") if caption else ""
+            text = fmt(df.iat[ri, j], label, j)
+            cells.append(f"<td{num(text)}{style}>{text}</td>")
+        shown = html_subscripts(fmt_text(_tr(label), lang=lang))
+        rows.append(f"<tr><th scope='row'{num(shown)}>{shown}</th>{''.join(cells)}</tr>")
+    title = html_subscripts(_tr(caption)) if caption else ""
+    cap = (f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{title}</caption>"
+           if caption and not fold else "")
     foot = ""
     if notes:
         foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(
             f"<li>{html_subscripts(translate_units_in(fmt_text(_tr(n), lang=lang)))}</li>" for n in notes) + "</ul>"
-    return (
-        "<div class='aerophoto-table' style='font-size:15px'>"
-        "<table style='border-collapse:collapse' border='1' cellpadding='3'>"
-        f"{cap}<thead><tr><th>{index_name}</th>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{foot}</div>"
-    )
+    # a table whose columns have no names has no header row (no empty header cells)
+    thead = f"<thead><tr>{corner}{head}</tr></thead>" if index_name or any(cols) else ""
+    table = (f"<table style='border-collapse:collapse' border='1' cellpadding='3'>"
+             f"{cap}{thead}<tbody>{''.join(rows)}</tbody></table>{foot}")
+    if fold:
+        key = _html.escape(str(caption or "table"), quote=True)
+        table = (f"<details data-fold='{key}'{' open' if fold == 'open' else ''}><summary>{title or '…'}</summary>"
+                 f"{table}</details>")
+    return f"<div class='aerophoto-table' style='font-size:15px'>{table}</div>"
+
+
+#: a table cell of a number: a digit, and no word of four letters or more (kept on one line)
+_NUMBER_LIKE = re.compile(r"\d")
+_WORD = re.compile(r"[^\W\d_]{4,}")
 
 
 def register_table_display() -> bool:

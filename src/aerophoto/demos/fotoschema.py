@@ -471,8 +471,9 @@ class FotoschemaDemo(LiveDemo):
             notes.insert(0, "⚠ " + result.note)
         return (plots.html_table(result.table(), caption="Seams and scale (guide §6)", float_format="{:.3g}",
                                  notes=notes)
-                + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm", float_format="{:.2f}")
-                + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000", float_format="{:.1f}"))
+                + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm", float_format="{:.2f}", fold=True)
+                + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000", float_format="{:.1f}",
+                                   fold=True))
 
     # ---- preview / full resolution
     def update(self, preview: bool = False) -> None:

@@ -284,8 +284,8 @@ class KeyDemo(LiveDemo):
     title = "Table 10 as a key (топографическое дешифрирование)"
     hint = "Pick a row of table 10: the photo shows the site where that key applies, and what to look at."
     params = (
-        Param("row", "table 10 row", 0, N_KEY_ROWS - 1, 1, 0, kind="int", group="Key",
-              help="the rows of table 10 that the site shows, in the table's order"),
+        Param("row", "table 10 row", 1, N_KEY_ROWS, 1, 1, kind="int", group="Key",
+              help="the rows of table 10 that the site shows, in the table's order, counted from 1"),
         Param("camera", "film", default="colour film", kind="choice",
               options=(("natural colour", "colour film"), ("colour infrared", "colour-infrared film")), group="Key"),
     )
@@ -300,9 +300,10 @@ class KeyDemo(LiveDemo):
         k = (int(v["row"]), v["camera"])
         if k in self._seen:
             return self._seen[k]
+        row = int(v["row"]) - 1  # the slider counts rows from 1, key_model from 0
         if self._preview:  # a row seen for the first time: a quick preview now, the full close-up when it rests
-            return key_model(v["row"], v["camera"], KEY_PREVIEW_PX)
-        self._seen[k] = key_model(**v)
+            return key_model(row, v["camera"], KEY_PREVIEW_PX)
+        self._seen[k] = key_model(row=row, camera=v["camera"])
         return self._seen[k]
 
     def render(self, result):

@@ -383,6 +383,10 @@ _WIDGETS = {
     # aerophoto.widgets.LiveDemo
     "Reset": "Сброс",
     "Back to the starting values": "Вернуть начальные значения",
+    # aerophoto.demos.lecture.lecture_view: the projector mode
+    "Projector": "Проектор",
+    "Larger text, lines and markers for the back row (remembered)":
+        "Крупнее текст, линии и маркеры для задних рядов (запоминается)",
     # aerophoto.widgets.pending_html: the status line while the full picture waits for the slider to rest
     "preview — full resolution when the slider rests": "предпросмотр — полное разрешение, когда ползунок остановится",
     "preview (10 m raster) — full resolution when the slider rests":

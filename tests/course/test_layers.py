@@ -7,7 +7,7 @@ The layers (docs/CONTRIBUTING.md, "The house"):
 3. the virtual world — ``terrain``, ``site``, ``simulate``, ``render`` (data only)
 4. the course's content — ``guide/`` (printed tables and their audits), ``labs/`` (the students' lab worlds),
    ``tasks/`` (graded tasks: rubrics only)
-5. presentation — ``plots``, ``blit``, ``widgets``, ``fit``, ``demos/``, ``i18n``
+5. presentation — ``plots``, ``tables``, ``blit``, ``widgets``, ``fit``, ``demos/``, ``i18n``
 6. course — ``checks``, ``gradebook``, ``book``, ``course``, ``nbtools``, ``report``, ``lite``, ``website`` (the web book)
 
 A module may import from its own layer or any lower one.  Every import counts, also one inside a function.
@@ -30,7 +30,7 @@ LAYERS = {
         "accuracy", "interpretation", "spectral", "bundle", "dem", "budget", "rectify", "soilmap"),
     3: ("terrain", "site", "simulate", "render"),
     4: ("guide", "labs", "tasks"),
-    5: ("plots", "blit", "widgets", "fit", "demos", "i18n"),
+    5: ("plots", "tables", "blit", "widgets", "fit", "demos", "i18n"),
     6: ("checks", "gradebook", "book", "course", "nbtools", "report", "lite", "website", "__init__", "__main__"),
 }
 LAYER_OF = {name: layer for layer, names in LAYERS.items() for name in names}

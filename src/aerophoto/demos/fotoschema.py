@@ -75,6 +75,7 @@ from .. import plots
 from .. import simulate as sim
 from ..terrain import RescaledRelief
 from ..i18n import t as _t  # functions here name a local t
+from ..i18n.numfmt import fmt_number
 from ..widgets import LiveDemo, Param, pending_html, running_loop, table_after_picture
 
 __all__ = [
@@ -613,7 +614,8 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     "ФОТОСХЕМА" (and "Photo mosaic" if ``english``) and the mean scale
     "М 1:m" rounded to hundreds as in the guide's appendix ("M 1: 13000"); under
     it a scale bar, the year it was made and "Выполнил / made by",
-    "Проверил / checked by".
+    "Проверил / checked by".  With ``english=False`` every text is Russian (the scale bar in "м", no footer),
+    as the guide's sample.
 
     Parameters
     ----------
@@ -670,7 +672,7 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     yr = datetime.date.today().year if year is None else int(year)
     m_sign = fs.scale.m if scale_m is None else float(scale_m)
     m_rounded = int(round(m_sign / 100.0) * 100)
-    m_txt = f"{m_rounded:,}".replace(",", " ")
+    m_txt = f"{m_rounded:,}".replace(",", " ") if english else fmt_number(m_rounded, 0, lang="ru")
     cx = 0.5
     fig.text(cx, fy(ph - 16), "ФОТОСХЕМА", ha="center", va="center", fontsize=26, fontweight="bold")
     if english:
@@ -691,7 +693,8 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     for t in (0.0, 0.5, 1.0):
         fig.add_artist(Line2D([fx(bx + t * bar_mm)] * 2, [fy(by - 1.5), fy(by + 1.5)], lw=1.2, color="black",
                               transform=fig.transFigure))
-    fig.text(fx(bx + bar_mm + 3), fy(by), f"{bar_m:,.0f} m".replace(",", " "), va="center", fontsize=10)
+    bar_txt = f"{bar_m:,.0f} m".replace(",", " ") if english else fmt_number(bar_m, 0, lang="ru") + "\u00a0м"
+    fig.text(fx(bx + bar_mm + 3), fy(by), bar_txt, va="center", fontsize=10)
     made = f"Фотосхема изготовлена в {yr} г." + (f" ({place})" if place else "")
     fig.text(fx(left), fy(by - 12), made + (f"  ·  made in {yr}" if english else ""), fontsize=11, va="center")
     rx = left + w
@@ -699,8 +702,9 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
              fontsize=11, ha="right", va="center")
     fig.text(fx(rx), fy(by - 12), f"Проверил{' (checked by)' if english else ''}: {checked_by or '________________'}",
              fontsize=11, ha="right", va="center")
-    fig.text(1 - fx(6), fy(5), f"{name}, mosaic drawn at 1:{m_txt}", fontsize=7, ha="right", va="bottom",
-             color="#777777")
+    if english:  # the guide's sample (appendix) has no such line: the Russian sheet leaves it out
+        fig.text(1 - fx(6), fy(5), f"{name}, mosaic drawn at 1:{m_txt}", fontsize=7, ha="right", va="bottom",
+                 color="#777777")
     fig.aerophoto_paper = name
     return fig
 

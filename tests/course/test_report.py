@@ -125,6 +125,7 @@ def flat(text: str) -> str:
     import unicodedata
 
     text = "".join(unicodedata.normalize("NFKC", c) if 0x1D400 <= ord(c) <= 0x1D7FF else c for c in text)
+    text = re.sub(r"\u00ad\s*", "", text)  # a word hyphenated at a line's end
     return re.sub(r"[ \t\n\r\f\u2009]+", " ", text)
 
 
@@ -137,15 +138,17 @@ def keep_on_failure(pages: dict, name: str) -> None:
 
 @pytest.fixture(scope="module")
 def notes(tmp_path_factory):
-    """Both students' notes, built once: {rb: (Report, pdf text, html text, folder)}."""
+    """Both students' notes, built once: {rb: (Report, pdf text, html text, folder)} (the second without figures
+    and sheet, whose tests the first covers: it keeps the module's time down)."""
     from aerophoto import report
 
     out = {}
     for rb, plan in STUDENTS.items():
         top = tmp_path_factory.mktemp(f"report-{rb}")
         wb = make_workbook(top / "workbook", rb)
+        full = rb == "19-0457"  # the second student's note without figures and sheet: the text's tests only
         r = report.build(wb, top / "out", student=plan["name"], group="ЗиК 31", checked_by="Пресняков В. В.",
-                         date=DATE, cache=top / "cache")
+                         date=DATE, cache=top / "cache", figures=full, sheet=full)
         out[rb] = (r, pdf_text(r.pdf), r.html.read_text(encoding="utf-8"), top)
     return out
 
@@ -346,7 +349,8 @@ def test_no_reference_value_of_a_task_not_done(notes):
 def test_every_done_sections_figures_are_there_and_vector(notes):
     from aerophoto.report.figure_draws import FIGURES
 
-    for rb, plan in STUDENTS.items():
+    for rb in ("19-0457",):
+        plan = STUDENTS[rb]
         r, text, _, _ = notes[rb]
         drawn = set(r.figures)
         for ch, specs in FIGURES.items():

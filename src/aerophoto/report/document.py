@@ -35,6 +35,14 @@ NUMBER_RE = re.compile(r"^[0-9\u202f\u00a0,.\u2212+\u2014\u221e/ ()−]*$")
 _PLACEHOLDER = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 
+def _seg(seg: dict) -> dict:
+    """A copy of a text/math segment or cell, its math with thin spaces before the units."""
+    out = dict(seg)
+    if "math" in out:
+        out["math"] = _thin_units(str(out["math"]))
+    return out
+
+
 def _thin_units(typst: str) -> str:
     """Quoted strings that open with a space (the units, ``" мм"``) become ``thin "мм"``; strings pair up from the
     start (the package's formulas have no escaped quotes)."""
@@ -112,12 +120,12 @@ class Document:
     def par(self, text, style: str = "normal") -> None:
         """A paragraph: ``text`` a string, or a list of segments ``{"text": …}`` / ``{"math": …}`` (math the
         package's own).  ``style``: normal, plain (no indent), note, missing, bad, ok."""
-        segs = [{"text": str(text)}] if isinstance(text, str) else [dict(s) for s in text]
+        segs = [{"text": str(text)}] if isinstance(text, str) else [_seg(s) for s in text]
         self.blocks.append({"t": "par", "segs": segs, "style": style})
 
     def items(self, entries, *, numbered: bool = False) -> None:
         """A list; each entry a string or a list of segments as in :meth:`par`."""
-        out = [[{"text": str(e)}] if isinstance(e, str) else [dict(s) for s in e] for e in entries]
+        out = [[{"text": str(e)}] if isinstance(e, str) else [_seg(s) for s in e] for e in entries]
         self.blocks.append({"t": "list", "items": out, "numbered": bool(numbered)})
 
     def math(self, typst: str, *, num: str = "", text: str = "") -> None:
@@ -141,7 +149,7 @@ class Document:
         if label is None:
             label = str(self.first_extra_table + self.n_tables)
             self.n_tables += 1
-        cells = lambda r: [c if isinstance(c, dict) else {"text": str(c)} for c in r]  # noqa: E731
+        cells = lambda r: [_seg(c) if isinstance(c, dict) else {"text": str(c)} for c in r]  # noqa: E731
         header = [cells(r) for r in header]
         rows = [cells(r) for r in rows]
         taken: set = set()
@@ -199,6 +207,7 @@ TEMPLATE = r"""
 #show heading: set block(above: 1.4em, below: 1em)
 #show heading: it => {
   set par(first-line-indent: 0pt, justify: false)
+  set text(hyphenate: false)
   it
 }
 

@@ -161,6 +161,14 @@ class Writer:
         self.doc.heading(2, self.L(ru, en), num=num)
         return num
 
+    def step(self, t: TaskView | None, ru: str, en: str) -> bool:
+        """A subsection for task ``t``; True when the student did it (else its "not done" notice is written)."""
+        self.sub(ru, en)
+        if t is None or not t.attempted:
+            self.not_done(t)
+            return False
+        return True
+
     def par(self, ru, en=None, style: str = "normal") -> None:
         """A paragraph in the note's language: ``ru``/``en`` strings, or lists of segments (see Document.par).
 
@@ -238,6 +246,12 @@ class Writer:
             self.par("Значения, вычисленные в тетради кодом пакета, взяты из сохранённого вывода проверочной ячейки.",
                      "Values computed in the notebook with package code are taken from the check cell's saved output.",
                      "note")
+
+    def conclude(self, parts: list) -> None:
+        """The conclusion from its clauses (Russian; the English note has them as they are): "A; b; c."."""
+        if parts:
+            text = "; ".join(parts) + "."
+            self.conclusion(text[0].upper() + text[1:], text)
 
     def conclusion(self, ru: str, en: str) -> None:
         """The section's conclusion paragraph ("Вывод. …")."""

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 
+from .prose import ru_plural as _pl
+
 __all__ = ["write_14", "write_15", "write_16", "write_17", "EXTRACT"]
 
 
@@ -54,11 +56,6 @@ EXTRACT = {"task-14-1": _survey, "task-14-2": _mc, "task-15-1": _block, "task-15
            "task-17-2": _case, "task-17-3": _case}
 
 
-def _pl(n, one, few, many):
-    from .prose import ru_plural
-
-    return ru_plural(n, one, few, many)
-
 
 # =========================================================================== chapter 14: article 001
 def write_14(w, T: dict) -> None:
@@ -70,10 +67,7 @@ def write_14(w, T: dict) -> None:
           "фотографирования нужны плановые и высотные опознаки для заданных масштабов и сечения рельефа.",
           "Errors accumulate along a strip as d·√(Σk²) (10.20); with control at both ends the middle is worst, and "
           "(10.21) gives the control spacing for the survey's scales and contour interval [3].")
-    w.sub("Расстояние между опорными точками по формуле (10.21)", "Control spacing by (10.21)")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Расстояние между опорными точками по формуле (10.21)", "Control spacing by (10.21)"):
         d = t1.inputs
         mD, mZ, npl, nh = (t1.number(k) for k in ("mD_mm", "mZ_m", "n_plan", "n_height"))
         if d and mD is not None:
@@ -101,10 +95,7 @@ def write_14(w, T: dict) -> None:
                   (" (то есть на каждом базисе: даже один базис даёт ошибку больше допустимой)." if nh == 0 else "."),
                   f"Plan control every {int(npl)} bases, height control every {int(nh)}.")
         w.check_note(t1)
-    w.sub("Закон накопления ошибок по моделированию", "The accumulation law from the simulation")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Закон накопления ошибок по моделированию", "The accumulation law from the simulation"):
         dd, m20, gain = (t2.number(k) for k in ("d_mm", "m20_mm", "gain"))
         if dd is not None and m20 is not None:
             w.par("По результатам моделирования свободного ряда подобрана ошибка звена d закона (10.20); по ней "
@@ -138,11 +129,8 @@ def write_15(w, T: dict) -> None:
           "blunders, its accuracy and your point.")
     w.figure("block", "Блок снимков варианта: центры снимков, опорные, контрольные, связующие и определяемые точки",
              "Your block: photo centres, control, check, tie and field points")
-    w.sub("Размер блока", "The block's size")
     d = next((t.inputs for t in (t1, t2) if t is not None and t.inputs), {})
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Размер блока", "The block's size"):
         n, fits = t1.number("n_unknowns"), t1.flag("fits_1986")
         if d and n is not None:
             w.eq('N = 6 n_"сн" + 3 n_"т" = 6 dot {p} + 3 dot {q} = {N}', p=w.count(d["photos"]), q=w.count(d["points"]),
@@ -153,10 +141,7 @@ def write_15(w, T: dict) -> None:
                                                                   "в него не укладывается."),
                   f"{d['points']} points; the 1986 package {'could' if fits else 'could not'} adjust it.")
         w.check_note(t1)
-    w.sub("Промахи и точность блока", "Blunders and accuracy")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Промахи и точность блока", "Blunders and accuracy"):
         bp, bc, rp, rz = (t2.number(k) for k in ("blunder_point", "bad_control", "rms_plan_m", "rms_Z_m"))
         if None not in (bp, bc, rp, rz):
             w.par(f"Поиск грубых ошибок по нормированным поправкам отбраковал измерение изображения точки {w.count(bp)} и опорную точку "
@@ -165,10 +150,7 @@ def write_15(w, T: dict) -> None:
                   f"Rejected: image of point {int(bp)}, control point {int(bc)}; RMS {w.n(rp, 2)} m plan, "
                   f"{w.n(rz, 2)} m height.")
         w.check_note(t2)
-    w.sub("Положение гравиметрического пункта", "The gravimetric point")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Положение гравиметрического пункта", "The gravimetric point"):
         X, Y, Z, a = (t3.number(k) for k in ("X_m", "Y_m", "Z_m", "a_m"))
         pid = t3.inputs.get("point")
         if None not in (X, Y, Z, a):
@@ -193,10 +175,7 @@ def write_16(w, T: dict) -> None:
           "со структурными линиями сравнивается по контрольным точкам листа.",
           "Contours interpolated from a DEM densified by block triangulation: Lysenko's accuracy, and a regular "
           "grid against structural lines at the check points [2].")
-    w.sub("Точность сгущения высот", "The densification's accuracy")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Точность сгущения высот", "The densification's accuracy"):
         d = t1.inputs
         H, b, mz, h = (t1.number(k) for k in ("H_m", "b_mm", "mz_m", "h_m"))
         if H is not None:
@@ -213,10 +192,7 @@ def write_16(w, T: dict) -> None:
             w.par(f"Наименьшее стандартное сечение рельефа, при котором $m_z$/1,25 ≤ 0,3·h: h = {w.n(h, 1)} м.",
                   f"The smallest standard contour interval: {w.n(h, 1)} m.")
         w.check_note(t1)
-    w.sub("Точность цифровой модели по контрольным точкам", "The DEM at the check points")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Точность цифровой модели по контрольным точкам", "The DEM at the check points"):
         mg, ml, vl, sh = (t2.number(k) for k in ("m_grid_m", "m_lines_m", "v_lines_m", "share_pct"))
         n = t2.inputs.get("n", 40)
         if None not in (mg, ml, vl, sh):
@@ -247,10 +223,7 @@ def write_17(w, T: dict) -> None:
           "(формула (10)) и сравнивает итог с требованием инструкции — средняя ошибка контура не более 0,4 мм в "
           "масштабе карты.", "The error budget of map updating: seven stages added as independent errors (10) "
           "against the 0.4 mm mean error allowed [5].")
-    w.sub("Ошибка векторизации", "The vectorising error")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Ошибка векторизации", "The vectorising error"):
         d = t1.inputs
         VX, VY, VD, mD, md = (t1.number(k) for k in ("VX_m", "VY_m", "VD_m", "mD_m", "md_mm"))
         if d and d.get("X"):
@@ -273,10 +246,7 @@ def write_17(w, T: dict) -> None:
         if md is not None and mD is not None:
             w.eq('m_d = m_D/M = {m} " м"/{M} = {d} " мм"', m=w.n(mD, 3), M=w.n(w.v.M, 0), d=w.n(md, 3))
         w.check_note(t1)
-    w.sub("Фототриангуляция и сканирование", "Triangulation and scanning")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Фототриангуляция и сканирование", "Triangulation and scanning"):
         d = t2.inputs
         s, mxy, mphi, msc = (t2.number(k) for k in ("sigma_um", "mxy_m", "mphi_m", "msc_m"))
         if d and s is not None:
@@ -289,10 +259,7 @@ def write_17(w, T: dict) -> None:
         if d and msc is not None:
             w.eq('m_"ск" = 3 " мкм" dot M_c = {m} " м"', m=w.n(msc, 3))
         w.check_note(t2)
-    w.sub("Сводная оценка точности обновления", "The budget")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Сводная оценка точности обновления", "The budget"):
         mrel, mD, vd, ok, dom = (t3.get(k) for k in ("mrel_m", "mD_m", "vd_mm", "ok", "dominant"))
         if isinstance(mD, (int, float)) and isinstance(vd, (int, float)):
             w.eq('v_d = m_D/(1","25 M) = {m} " м"/(1","25 dot {M}) = {v} " мм"', m=w.n(mD, 2), M=w.n(w.v.M, 0),

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+from .prose import ru_plural as _pl
+
 __all__ = ["write_03", "write_04", "EXTRACT", "scale_table"]
 
 
@@ -122,10 +124,7 @@ def write_03(w, T: dict) -> None:
         return
     names, bases, Z, M = d["names"], [tuple(b) for b in d["bases"]], d["Z"], d["M"]
     zh, zcp = _zone_heights(names, bases, Z)
-    w.sub("Частные и средний масштабы до введения поправок", "Scales before the correction")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Частные и средний масштабы до введения поправок", "Scales before the correction"):
         _coords_table(w, t1, names, Z)
         w.par("Длины базисов на снимке вычислены по координатам точек, длины на плане измерены; знаменатель "
               "масштаба по каждому базису:", "Photo lengths from the coordinates, plan lengths measured:")
@@ -133,10 +132,7 @@ def write_03(w, T: dict) -> None:
         scale_table(w, t1, bases, zh, label="2", caption_ru="Определение частных и среднего масштабов базисов",
                     caption_en="Partial and mean scales of the bases")
         w.check_note(t1)
-    w.sub("Смещения точек за рельеф", "Relief displacements")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Смещения точек за рельеф", "Relief displacements"):
         Zs, H, xn, yn = t2.number("Zcp_m"), t2.number("H_m"), t2.number("xn_mm"), t2.number("yn_mm")
         r, dh = t2.numbers("r_mm", len(names)), t2.numbers("dh_mm", len(names))
         mcp = t1.number("m_cp") if t1 is not None else None
@@ -172,10 +168,7 @@ def write_03(w, T: dict) -> None:
                   f"при отрицательном; их число — {w.count(nc)}.",
                   f"Corrections above 0.2 mm are applied towards n (positive) or away from it; {int(nc)} in all.")
         w.check_note(t2)
-    w.sub("Масштабы по исправленным точкам", "Scales after the correction")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Масштабы по исправленным точкам", "Scales after the correction"):
         lpl = t1.numbers("lpl_mm") if t1 is not None else None
         scale_table(w, t3, bases, zh, label="4", caption_ru="Определение частных и среднего масштабов базисов по "
                     "исправленным точкам", caption_en="Scales of the bases between the corrected points",
@@ -209,15 +202,8 @@ def _conclusion_03(w, t1, t2, t3) -> None:
     if a is not None:
         parts.append(f"уклонения частных масштабов от среднего до поправок — до {w.n(a, 2)} %" +
                      (f", после — до {w.n(b, 2)} %" if b is not None else ""))
-    if parts:
-        ru = "; ".join(parts) + "."
-        w.conclusion(ru[0].upper() + ru[1:], "; ".join(parts) + ".")
+    w.conclude(parts)
 
-
-def _pl(n, one, few, many):
-    from .prose import ru_plural
-
-    return ru_plural(n, one, few, many)
 
 
 # =========================================================================== section 4: chapters 00 and 04
@@ -231,10 +217,7 @@ def write_04(w, T: dict) -> None:
           "точкам масштабы определены вновь (пособие, §5, таблицы 5–7).",
           "A tilt stretches the photo on one side of the isoline and compresses it on the other: the points o, n, "
           "c, the zones' scales, the tilt displacements and the scales after the correction (guide §5, tables 5–7).")
-    w.sub("Элементы центральной проекции снимка", "The elements of the central projection")
-    if t0 is None or not t0.attempted:
-        w.not_done(t0)
-    else:
+    if w.step(t0, "Элементы центральной проекции снимка", "The elements of the central projection"):
         on, oc = t0.number("on_mm"), t0.number("oc_mm")
         f, a = v.f_mm, v.alpha_deg
         w.par(f"Для снимка с углом наклона α = {w.n(a, 0)}° главная точка o, точка надира n и точка нулевых "
@@ -263,19 +246,13 @@ def write_04(w, T: dict) -> None:
                 w.not_done(t)
         return
     names, bases, M = d["names"], [tuple(b) for b in d["bases"]], d["M"]
-    w.sub("Частные и средний масштабы наклонного снимка", "Scales of the tilted photo")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Частные и средний масштабы наклонного снимка", "Scales of the tilted photo"):
         _coords_table(w, t2, names)
         _base_example(w, t2, names, bases, M)
         scale_table(w, t2, bases, None, label="5", caption_ru="Результаты измерений и вычислений знаменателей частных и "
                     "среднего масштабов аэроснимка", caption_en="Partial and mean scales of the photo")
         w.check_note(t2)
-    w.sub("Смещения точек за угол наклона", "Tilt displacements")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Смещения точек за угол наклона", "Tilt displacements"):
         rc, phi, da = (t3.numbers(k, len(names)) for k in ("rc_mm", "phi_deg", "da_mm"))
         if rc and phi and da:
             w.eq('delta_alpha = -(r_c^2 cos phi)/f dot sin alpha = -({r}^2 dot {c})/{f} dot sin {a}° = {d} " мм"',
@@ -295,10 +272,7 @@ def write_04(w, T: dict) -> None:
             w.par(f"Поправки больше 0,2 мм ({w.count(nc)}) вводятся по направлениям из точки c: отрицательные — от "
                   "точки c, положительные — к ней.", f"{int(nc)} corrections above 0.2 mm, along the lines from c.")
         w.check_note(t3)
-    w.sub("Масштабы по исправленным точкам", "Scales after the tilt correction")
-    if t4 is None or not t4.attempted:
-        w.not_done(t4)
-    else:
+    if w.step(t4, "Масштабы по исправленным точкам", "Scales after the tilt correction"):
         lpl = t2.numbers("lpl_mm") if t2 is not None else None
         scale_table(w, t4, bases, None, label="7", caption_ru="Определение частных и среднего масштабов аэроснимка по "
                     "точкам, положение которых исправлено за угол его наклона",
@@ -327,6 +301,4 @@ def _conclusion_04(w, t3, t2, t4) -> None:
         parts.append(f"наибольшее уклонение частного масштаба от среднего до исправления {w.n(a, 2)} %" +
                      (f", после — {w.n(b, 2)} %" + (": исправление выровняло масштаб снимка" if b < a else "")
                       if b is not None else ""))
-    if parts:
-        ru = "; ".join(parts) + "."
-        w.conclusion(ru[0].upper() + ru[1:], "; ".join(parts) + ".")
+    w.conclude(parts)

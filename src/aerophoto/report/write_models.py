@@ -7,6 +7,7 @@ import math
 import re
 
 from .prose import plain
+from .prose import ru_plural as _pl
 
 __all__ = ["write_07", "write_08", "write_09", "write_10", "write_11", "write_13", "EXTRACT", "choice_ru"]
 
@@ -130,10 +131,7 @@ def write_07(w, T: dict) -> None:
           "measured, and the model's vertical exaggeration found (guide §8).")
     w.figure("anaglyph", "Фрагмент перекрытия стереопары варианта в анаглифическом виде (красный фильтр — левый "
              "глаз)", "A piece of the pair's overlap as an anaglyph")
-    w.sub("Базис снимков и высота центров фотографирования", "The base and the stations' height")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Базис снимков и высота центров фотографирования", "The base and the stations' height"):
         d = t1.inputs
         b, pA, ZS = t1.number("b_mm"), t1.number("pA_mm"), t1.number("ZS_m")
         if d and b is not None:
@@ -150,10 +148,7 @@ def write_07(w, T: dict) -> None:
     w.figure("pair_geometry", "Стереопара в разрезе: центры фотографирования S₁ и S₂, точка A на земле и точка C "
              "выше её; продольный параллакс у более высокой точки больше",
              "The pair in section: a higher point has the larger x-parallax")
-    w.sub("Высоты объектов по разностям параллаксов", "Heights from parallax differences")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Высоты объектов по разностям параллаксов", "Heights from parallax differences"):
         d = t2.inputs
         dp = t2.numbers("dp_mm", 4)
         hs = [t2.number(f"dh{c}_m") for c in "ABCD"]
@@ -170,10 +165,7 @@ def write_07(w, T: dict) -> None:
             w.par("Здесь p — параллакс основания объекта, Δp — разность параллаксов вершины и основания.",
                   "p is the parallax of the object's foot, Δp that of its top minus its foot.", "plain")
         w.check_note(t2)
-    w.sub("Параллакс рельефа и вертикальный масштаб модели", "The relief's parallax and the vertical exaggeration")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Параллакс рельефа и вертикальный масштаб модели", "The relief's parallax and the vertical exaggeration"):
         d = t3.inputs
         dpr, V = t3.number("dp_relief_mm"), t3.number("V")
         if d and dpr is not None:
@@ -196,9 +188,7 @@ def write_07(w, T: dict) -> None:
         V = t3.number("V")
         parts.append(f"вертикальный масштаб модели V = {w.n(V, 2)}: рельеф в стереоскопе кажется " +
                      ("сглаженным (в " + w.n(1 / V, 1) + " раза ниже натурного)" if V < 1 else "преувеличенным"))
-    if parts:
-        ru = "; ".join(parts) + "."
-        w.conclusion(ru[0].upper() + ru[1:], ru)
+    w.conclude(parts)
 
 
 # =========================================================================== section 8: chapter 08
@@ -213,10 +203,7 @@ def write_08(w, T: dict) -> None:
           "the river's width on your photo (guide §9, table 10).")
     w.figure("interpretation_photo", "Снимок варианта с пронумерованными объектами 1–6, участками леса P и Q и "
              "створом A–B на реке", "Your photo with the objects 1–6, the stands P and Q and the line A–B")
-    w.sub("Опознавание объектов", "The objects")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Опознавание объектов", "The objects"):
         opts = next((a["options"] for a in t1.spec if a["name"] == "obj1"), [])
         rows = []
         for k in range(1, 7):
@@ -229,10 +216,7 @@ def write_08(w, T: dict) -> None:
                   w.L("Способ и признаки дешифрирования", "Keys")]], rows, label="10", widths=[0.5, 2, 1.8, 4.5],
                 align=["center", "left", "left", "left"], size=10)
         w.check_note(t1)
-    w.sub("Направление течения и порода леса", "The flow and the stands")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Направление течения и порода леса", "The flow and the stands"):
         flow, sp = t2.get("flow"), t2.get("spruce")
         opts = next((a["options"] for a in t2.spec if a["name"] == "flow"), [])
         w.par(f"Течение реки направлено {choice_ru(flow, opts, w.lang)}: острова сужаются вниз по течению, приток "
@@ -240,10 +224,7 @@ def write_08(w, T: dict) -> None:
               "темнее, кроны узкие, островерхие.",
               f"The river flows {plain(flow)}; the spruce stand is {plain(sp)}.")
         w.check_note(t2)
-    w.sub("Ширина реки", "The river's width")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Ширина реки", "The river's width"):
         W = t3.number("width_m")
         m = t3.inputs.get("m")
         if W is not None and m:
@@ -279,10 +260,7 @@ def write_09(w, T: dict) -> None:
                 [[{"text": w.L("Точка", "Point"), "rowspan": 2}, {"text": w.L("Снимок, мм", "Photo, mm"), "colspan": 2},
                   {"text": w.L("План, мм", "Plan, mm"), "colspan": 2}], ["x", "y", "x", "y"]], rows,
                 widths=[1, 1, 1, 1, 1], align=["center"] + ["right"] * 4)
-    w.sub("Перенос точки по клеткам сетки", "A point carried cell by cell")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Перенос точки по клеткам сетки", "A point carried cell by cell"):
         r, c, x, y = (t1.number(k) for k in ("row", "col", "x_mm", "y_mm"))
         if None not in (r, c, x, y):
             w.par(f"Первый угол хозяйственной постройки 1 попадает в клетку сетки 4 × 4 на снимке в ряду {w.count(r)} и "
@@ -290,10 +268,7 @@ def write_09(w, T: dict) -> None:
                   f"получает координаты x = {w.n(x, 2)} мм, y = {w.n(y, 2)} мм.",
                   f"The corner lies in row {int(r)}, column {int(c)}; on the plan x = {w.n(x, 2)} mm, y = {w.n(y, 2)} mm.")
         w.check_note(t1)
-    w.sub("Нанесение новой дороги", "The new road")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Нанесение новой дороги", "The new road"):
         xr, yr, L = t2.numbers("xr_mm"), t2.numbers("yr_mm"), t2.number("road_m")
         road = d.get("road", []) if d else []
         if xr and yr and len(xr) == len(road):
@@ -342,10 +317,7 @@ def write_10(w, T: dict) -> None:
         w.par(f"Измеренные углы: β₁ (A → B) = {format_dms(a['beta1'])}, β₂ (B → C) = {format_dms(a['beta2'])}, "
               f"контрольный γ (C → D) = {format_dms(a['gamma'])}.",
               f"Measured: β₁ = {format_dms(a['beta1'])}, β₂ = {format_dms(a['beta2'])}, γ = {format_dms(a['gamma'])}.")
-    w.sub("Обратная засечка", "The resection")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Обратная засечка", "The resection"):
         X, Y, aPA = (t1.number(k) for k in ("X_m", "Y_m", "alpha_PA_deg"))
         if X is not None and Y is not None:
             w.par(f"Координаты определяемого пункта P: X = {w.n(X, 2)} м, Y = {w.n(Y, 2)} м" +
@@ -355,10 +327,7 @@ def write_10(w, T: dict) -> None:
     own = {"station": [t1.number("X_m"), t1.number("Y_m")]} if t1 is not None and t1.number("X_m") is not None else {}
     w.figure("resection", "Обратная засечка: исходные пункты A–D, опасный круг через A, B, C и определяемый пункт P",
              "The resection: the known points, the danger circle and the station", own=own)
-    w.sub("Контроль по третьему углу", "The check angle")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Контроль по третьему углу", "The check angle"):
         g, dg, tol, ok = (t2.get(k) for k in ("gamma_calc_deg", "dgamma_arcsec", "tol_arcsec", "check_ok"))
         if isinstance(g, (int, float)) and isinstance(dg, (int, float)) and d:
             w.eq('Delta gamma = gamma_"изм" - gamma_"выч" = {dg}″', dg=w.n(dg, 1))
@@ -382,10 +351,7 @@ def write_11(w, T: dict) -> None:
           "отпечатку контрольной сетки определяется деформация фотобумаги и рассчитывается толщина подложки, "
           "компенсирующая её (пособие, §12, таблица 11).",
           "Paper deformation and the substrate (table 11), and a four-point rectification (guide §12).")
-    w.sub("Деформация фотобумаги и толщина подложки", "Paper deformation and the substrate")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Деформация фотобумаги и толщина подложки", "Paper deformation and the substrate"):
         d = t1.inputs
         Kd, t = t1.number("K_d"), t1.number("t_mm")
         if d:
@@ -414,10 +380,7 @@ def write_11(w, T: dict) -> None:
                       "поправку вносят подъёмом экрана, а не подкладкой).",
                       "The guide prints t = 0.4115 for −0.00095264·108·4: the minus is lost (−0.4115 mm).", "note")
         w.check_note(t1)
-    w.sub("Трансформирование по четырём точкам", "Four-point rectification")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Трансформирование по четырём точкам", "Four-point rectification"):
         d = t2.inputs
         d1, d2, ok = t2.number("d1_mm"), t2.number("d2_mm"), t2.flag("rect_ok")
         if d:
@@ -442,9 +405,7 @@ def write_11(w, T: dict) -> None:
     if t2 is not None and t2.flag("rect_ok") is not None:
         parts.append("трансформирование " + ("выполнено в допуске 0,4 мм" if t2.flag("rect_ok") else
                                              "не укладывается в допуск 0,4 мм и должно быть повторено"))
-    if parts:
-        ru = "; ".join(parts) + "."
-        w.conclusion(ru[0].upper() + ru[1:], ru)
+    w.conclude(parts)
 
 
 # =========================================================================== section 13: chapter 13
@@ -456,10 +417,7 @@ def write_13(w, T: dict) -> None:
           "прочитана кривая отражения почвы шурфа и выделены почвенные контуры по синтезированному снимку "
           "(пособие, §14).", "Soil keys from reflectance, the classes of soil maps and the contours of your patch "
           "(guide §14).")
-    w.sub("Классы почвенных карт", "Classes of soil maps")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Классы почвенных карт", "Classes of soil maps"):
         ms = t1.inputs.get("m", [])
         opts = next((a["options"] for a in t1.spec if a["name"] == "class_2m"), [])
         if len(ms) == 3:
@@ -472,10 +430,7 @@ def write_13(w, T: dict) -> None:
                   "1:50 000…1:200 000, мелкомасштабные — 1:500 000 и мельче.",
                   "Detailed ≤ 1:5000, large 1:10 000–1:25 000, medium 1:50 000–1:200 000, small ≥ 1:500 000.", "note")
         w.check_note(t1)
-    w.sub("Отражательная способность почвы шурфа", "The pit soil's reflectance")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Отражательная способность почвы шурфа", "The pit soil's reflectance"):
         d = t2.inputs
         rho, share, band = t2.number("rho_red"), t2.number("wet_dry_145_pct"), t2.get("band")
         opts = next((a["options"] for a in t2.spec if a["name"] == "band"), [])
@@ -489,10 +444,7 @@ def write_13(w, T: dict) -> None:
         w.check_note(t2)
     w.figure("soil_facts", "Отражательная способность почв по модели книги: влияние влажности, гумуса, размера "
              "частиц и глубина полос поглощения воды", "Soil reflectance: moisture, humus, particle size, water dips")
-    w.sub("Почвенные контуры участка", "The soil contours of your patch")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Почвенные контуры участка", "The soil contours of your patch"):
         k, agr = t3.number("k"), t3.number("agreement_pct")
         if k is not None and agr is not None:
             w.par(f"Синтезированный снимок участка разделён по тону на {w.count(k)} "
@@ -508,8 +460,3 @@ def write_13(w, T: dict) -> None:
                      "площади" + ("; для крупномасштабного картографирования контуры требуют полевой проверки."
                                   if agr < 90 else "."), f"{w.n(agr, 1)} % agreement.")
 
-
-def _pl(n, one, few, many):
-    from .prose import ru_plural
-
-    return ru_plural(n, one, few, many)

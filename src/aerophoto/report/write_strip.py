@@ -5,13 +5,10 @@ from __future__ import annotations
 
 import math
 
+from .prose import ru_plural as _pl
+
 __all__ = ["write_05", "write_06", "write_12", "EXTRACT"]
 
-
-def _pl(n, one, few, many):
-    from .prose import ru_plural
-
-    return ru_plural(n, one, few, many)
 
 
 def _seams(raw, v) -> dict:
@@ -53,10 +50,7 @@ def write_05(w, T: dict) -> None:
           "The single-strip mosaic is glued from the working areas of four photos; the seams are checked by the "
           "mismatches ΔI, the mean scale by four bases (guide §6, formulas 6.1 and 6.2).")
     w.figure("prints", "Контактные отпечатки снимков маршрута варианта", "The strip's prints")
-    w.sub("Качество монтажа", "The seams")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Качество монтажа", "The seams"):
         dI = t1.numbers("dI_mm")
         cuts, pts = t1.inputs.get("cut", []), t1.inputs.get("point", [])
         if dI and len(dI) == len(cuts):
@@ -90,10 +84,7 @@ def write_05(w, T: dict) -> None:
              "среднего масштаба", "Your fotoschema: cuts, check points and the points of the mean scale")
     w.figure("correction", "Корректурный лист фотосхемы: рамки снимков, порезы и точки контроля",
              "The correction sheet: frames, cuts and the check points")
-    w.sub("Средний масштаб фотосхемы", "The mean scale")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Средний масштаб фотосхемы", "The mean scale"):
         l, L, mi = (t2.numbers(k, 4) for k in ("l_mm", "L_mm", "m_i"))
         mm = t2.number("m_mean")
         labels = _labels(t2, "l_mm")
@@ -127,9 +118,7 @@ def _conclusion_05(w, t1, t2) -> None:
     if mm is not None:
         parts.append(f"средний масштаб фотосхемы {w.scale(round(mm / 100) * 100)} (масштаб съёмки {w.scale(w.v.m)}); "
                      "им подписан лист фотосхемы (приложение А)")
-    if parts:
-        ru = "; ".join(parts) + "."
-        w.conclusion(ru[0].upper() + ru[1:], ru)
+    w.conclude(parts)
 
 
 # =========================================================================== tables 8/12 and 9/13
@@ -186,10 +175,7 @@ def write_06(w, T: dict) -> None:
           "to the plan by the control points (guide §7, tables 8 and 9).")
     w.figure("strip_site", "Маршрут снимков 36–39 над участком и наколотые на снимках точки",
              "Photos 36–39 over the site and the pricked points")
-    w.sub("Треугольники погрешностей", "Error triangles")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Треугольники погрешностей", "Error triangles"):
         s = t1.numbers("triangle_mm", 4)
         if s:
             names = _labels(t1, "triangle_mm")
@@ -203,10 +189,7 @@ def write_06(w, T: dict) -> None:
         w.check_note(t1)
     w.figure("free_strip", "Восковки направлений, уложенные в свободный ряд: направления, рабочие центры и точки",
              "The templates laid into the free strip")
-    w.sub("Коэффициенты редуцирования", "Reduction coefficients")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Коэффициенты редуцирования", "Reduction coefficients"):
         lb = t2.numbers("l_base_mm")
         if lb:
             w.eq('k = l_"осн"/l_"воск" = {a}/{b} = {k}', a=w.n(lb[0], 1), b=w.n(t2.numbers("l_template_mm")[0], 1),
@@ -218,10 +201,7 @@ def write_06(w, T: dict) -> None:
             w.par(f"Средний коэффициент редуцирования k = {w.n(km, 4)}; колебания коэффициентов не должны превышать "
                   "0,003.", f"The mean coefficient is {w.n(km, 4)}; the spread must stay within 0.003.")
         w.check_note(t2)
-    w.sub("Поправки за редуцирование", "Corrections for the reduction")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Поправки за редуцирование", "Corrections for the reduction"):
         r, vv = t3.numbers("r_mm"), t3.numbers("v_mm")
         km = t2.number("k_mean") if t2 is not None else None
         if r and vv and km is not None:
@@ -247,9 +227,7 @@ def _conclusion_strip(w, t1, t2, tol) -> None:
                      ("" if ok is None else (" — в допуске" if ok else
                                              f" — больше допуска {w.n(tol, 3)}: следует проверить опознаки и "
                                              "укладку восковок")))
-    if parts:
-        ru = "; ".join(parts) + "."
-        w.conclusion(ru[0].upper() + ru[1:], ru)
+    w.conclude(parts)
 
 
 # =========================================================================== section 12: chapter 12
@@ -261,10 +239,7 @@ def write_12(w, T: dict) -> None:
           "(таблица 12) и вычислены поправки в расстояния от рабочего центра 38 (таблица 13) (пособие, §13).",
           "Zhukov's formula gives the control spacing; the strip is reduced on six bases (table 12) and corrected "
           "from centre 38 (table 13) (guide §13).")
-    w.sub("Расстояние между опорными точками", "The control spacing")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Расстояние между опорными точками", "The control spacing"):
         m3, nmax = t1.number("m3_mm"), t1.number("n_max")
         z = t1.inputs
         if m3 is not None and z:
@@ -286,10 +261,7 @@ def write_12(w, T: dict) -> None:
     w.figure("zhukov", "Погрешность ориентирующей точки в зависимости от числа базисов между опознаками: формула "
              "(13.1) и моделирование свободных рядов для камеры варианта",
              "The orienting point's error against the number of bases: (13.1) and simulated strips")
-    w.sub("Коэффициент редуцирования", "The reduction coefficient")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Коэффициент редуцирования", "The reduction coefficient"):
         labels = _labels(t2, "k_bases")
         k, km = _coefficients(w, t2, labels, t2.inputs.get("control", {}), t2.inputs.get("M", 1e4), label="12",
                               caption_ru="Вычисление коэффициента редуцирования",
@@ -301,10 +273,7 @@ def write_12(w, T: dict) -> None:
                   f"The mean k is {w.n(km, 4)}; tolerance 0.003 (0.006 for short bases).")
         w.check_note(t2)
     w.figure("free_strip", "Общая восковка направлений ряда снимков 36–39", "The common tracing of photos 36–39")
-    w.sub("Поправки в расстояния до точек", "Corrections of the distances")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Поправки в расстояния до точек", "Corrections of the distances"):
         _corrections(w, t3, label="13", caption_ru="Вычисление поправок в расстояния до точек",
                      caption_en="Corrections of the distances", centre="38")
         w.par("Поправки откладываются на общей восковке от центра 38 при положительных значениях и к центру при "
@@ -319,6 +288,4 @@ def write_12(w, T: dict) -> None:
     if t2 is not None and t2.flag("spread_ok") is not None:
         parts.append("колебания коэффициентов редуцирования " + ("в допуске" if t2.flag("spread_ok") else
                                                                  "превышают допуск — редуцирование следует повторить"))
-    if parts:
-        ru = "; ".join(parts) + "."
-        w.conclusion(ru[0].upper() + ru[1:], ru)
+    w.conclude(parts)

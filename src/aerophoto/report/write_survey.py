@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+from .prose import ru_plural as _pl
+
 __all__ = ["write_01", "write_02", "EXTRACT"]
 
 #: the guide's shutter speeds, s (§3: "1/125, 1/250, 1/500", from 1/40 to 1/1000)
@@ -37,10 +39,7 @@ def write_01(w, T: dict) -> None:
           "overlaps with the relief allowance, photo base and strip spacing, the numbers of strips and photos, the "
           "route length and flying time, the longest exposure and the interval between exposures (guide §2).")
     S = v.Lx_km * v.Ly_km
-    w.sub("Высота фотографирования и перекрытия", "Flying height and overlaps")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Высота фотографирования и перекрытия", "Flying height and overlaps"):
         H, Px = t1.number("H_m"), t1.number("Px_percent")
         w.par("Площадь участка съёмки равна произведению его размеров по параллели и меридиану:",
               "The area is the product of its sides along the parallel and the meridian:")
@@ -75,10 +74,7 @@ def write_01(w, T: dict) -> None:
             w.eq('B_x = b_x dot m = {bx} " см" dot {m} = {Bx} " км"', bx=w.n(bx, 2), m=w.n(v.m, 0), Bx=w.n(Bx, 3))
             w.eq('B_y = b_y dot m = {by} " см" dot {m} = {By} " км"', by=w.n(by, 2), m=w.n(v.m, 0), By=w.n(By, 3))
         w.check_note(t1)
-    w.sub("Число маршрутов и снимков", "Strips and photos")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Число маршрутов и снимков", "Strips and photos"):
         K, n, N = t2.number("K"), t2.number("n"), t2.number("N")
         By = t1.number("By_km") if t1 is not None else None
         Bx = t1.number("Bx_km") if t1 is not None else None
@@ -93,10 +89,7 @@ def write_01(w, T: dict) -> None:
         if N is not None and K is not None and n is not None:
             w.eq('N = n dot K = {n} dot {K} = {N}', n=w.count(n), K=w.count(K), N=w.count(N))
         w.check_note(t2)
-    w.sub("Длина маршрутов, время съёмки, выдержка и интервал", "Route, time, exposure and interval")
-    if t3 is None or not t3.attempted:
-        w.not_done(t3)
-    else:
+    if w.step(t3, "Длина маршрутов, время съёмки, выдержка и интервал", "Route, time, exposure and interval"):
         LS, TS, tmax, tau = (t3.number(k) for k in ("LS_km", "TS_h", "tmax_s", "tau_s"))
         By = t1.number("By_km") if t1 is not None else None
         Bx = t1.number("Bx_km") if t1 is not None else None
@@ -156,11 +149,6 @@ def _conclusion_01(w, t1, t2, t3, S) -> None:
     w.conclusion(ru[0].upper() + ru[1:], "; ".join(parts_en) + ".")
 
 
-def _pl(n, one, few, many):
-    from .prose import ru_plural
-
-    return ru_plural(n, one, few, many)
-
 
 # =========================================================================== section 2: chapter 02
 def write_02(w, T: dict) -> None:
@@ -191,10 +179,7 @@ def write_02(w, T: dict) -> None:
         w.table("Измерения на накидном монтаже маршрута, мм", "Measurements on the rough mosaic, mm",
                 [[w.L("Обозначение", "Symbol"), w.L("Что измерено", "What"), w.L("Значение, мм", "Value, mm")]],
                 rows, widths=[1.2, 5, 1.6], align=["center", "left", "right"])
-    w.sub("Перекрытие, разномасштабность и прямолинейность", "Overlap, scale difference and straightness")
-    if t1 is None or not t1.attempted:
-        w.not_done(t1)
-    else:
+    if w.step(t1, "Перекрытие, разномасштабность и прямолинейность", "Overlap, scale difference and straightness"):
         Px, dm, n = (t1.number(k) for k in ("Px_percent", "dm_percent", "n_percent"))
         if Px is not None and d:
             w.eq('P_x = a/b dot 100 " %" = {a}/{b} dot 100 = {Px} " %"', a=w.n(d["a_mm"], 1), b=w.n(d["b_mm"], 0),
@@ -206,10 +191,7 @@ def write_02(w, T: dict) -> None:
             w.eq('n = l/L dot 100 " %" = {l}/{L} dot 100 = {n} " %"', l=w.n(d["l_mm"], 1), L=w.n(d["L_mm"], 1),
                  n=w.n(n, 2))
         w.check_note(t1)
-    w.sub("Отклонение от направления маршрута и наклон снимков", "Crab and tilt")
-    if t2 is None or not t2.attempted:
-        w.not_done(t2)
-    else:
+    if w.step(t2, "Отклонение от направления маршрута и наклон снимков", "Crab and tilt"):
         lim, alpha = t2.number("crab_limit_deg"), t2.number("alpha_read_deg")
         if d:
             w.par(f"Угол отклонения базиса от направления маршрута, измеренный транспортиром на снимке 2, φ = "

@@ -22,8 +22,10 @@ left on disk.  Code that wants a cached value asks :func:`active` and computes i
         c = diskcache.active()
         arrays = c.arrays("site", {"i": 57}, lambda: build_site_arrays(57))
 
-Where: ``$AEROPHOTO_CACHE`` if set, else ``<state dir>/cache`` (``$AEROPHOTO_HOME`` or ``~/.aerophoto``, the
-folder that already holds ``student.json``).  Layer 1 (foundation): the standard library and numpy only.
+Where: ``$AEROPHOTO_CACHE_DIR`` if set, else ``<state dir>/cache`` (``$AEROPHOTO_HOME`` or ``~/.aerophoto``, the
+folder that already holds ``student.json``).  ``AEROPHOTO_CACHE=0`` (or off, no, false) and a grading kernel
+(``AEROPHOTO_GRADING`` set) keep it off even inside :func:`enabled`.  Layer 1 (foundation): the standard library
+and numpy only.
 """
 
 from __future__ import annotations
@@ -50,8 +52,8 @@ _FINGERPRINT: list = []
 
 
 def default_folder() -> Path:
-    """``$AEROPHOTO_CACHE``, else ``$AEROPHOTO_HOME/cache``, else ``~/.aerophoto/cache``."""
-    env = os.environ.get("AEROPHOTO_CACHE", "").strip()
+    """``$AEROPHOTO_CACHE_DIR``, else ``$AEROPHOTO_HOME/cache``, else ``~/.aerophoto/cache``."""
+    env = os.environ.get("AEROPHOTO_CACHE_DIR", "").strip()
     if env:
         return Path(env).expanduser()
     home = os.environ.get("AEROPHOTO_HOME", "").strip()
@@ -59,12 +61,17 @@ def default_folder() -> Path:
 
 
 def code_fingerprint() -> str:
-    """The package version and a hash of (path, size, mtime) of every ``.py`` file of the package (once per process)."""
+    """The package version, Python's and numpy's versions, the machine, and a hash of (path, size, mtime) of every
+    ``.py`` file of the package (once per process): an entry is read only by the code and the machine that wrote it."""
     if not _FINGERPRINT:
+        import platform
+
+        import numpy as np
+
         from . import __version__
 
         root = Path(__file__).resolve().parent
-        h = hashlib.sha256(__version__.encode())
+        h = hashlib.sha256(f"{__version__}|{platform.python_version()}|{np.__version__}|{platform.machine()}".encode())
         for p in sorted(root.rglob("*.py")):
             if "__pycache__" in p.parts:
                 continue
@@ -217,13 +224,17 @@ def enabled(folder=None):
     """Open the cache for this context (the student's machine): :func:`active` returns it inside the block.
 
     ``folder``: default :func:`default_folder`.  A folder that cannot be used (read-only, a key with the wrong
-    owner or mode) leaves the cache off, so the caller computes everything as without it.
+    owner or mode) leaves the cache off, so the caller computes everything as without it; so do
+    ``AEROPHOTO_CACHE=0`` and a grading kernel.
     """
-    cache = Cache(Path(folder) if folder is not None else default_folder())
-    try:
-        cache._key()
-    except OSError:
-        cache = None
+    off = os.environ.get("AEROPHOTO_CACHE", "").strip().lower() in ("0", "off", "no", "false") \
+        or bool(os.environ.get("AEROPHOTO_GRADING"))
+    cache = None if off else Cache(Path(folder) if folder is not None else default_folder())
+    if cache is not None:
+        try:
+            cache._key()
+        except OSError:
+            cache = None
     token = _ACTIVE.set(cache)
     try:
         yield cache

@@ -158,11 +158,8 @@ def prints(v, own):
 def fotoschema_cuts(v, own):
     from ..demos.fotoschema import own_sheet_figure
 
-    fig = new_figure((10.0, 5.2))
-    ax = fig.add_subplot()
-    own_sheet_figure(v, ax=ax)
-    ax.set_title("")
-    ax.images[0].set_interpolation("none")
+    fig = _one_axes(own_sheet_figure, v, (10.0, 5.2))
+    fig.axes[0].images[0].set_interpolation("none")
     return fig
 
 
@@ -180,24 +177,25 @@ def correction(v, own):
 
 
 # =========================================================================== §7 (chapter 06) and §13 (chapter 12)
+def _one_axes(draw, v, figsize):
+    """``draw(v, ax=…)`` of the demos on a figure of one axes, its title left to the note's caption."""
+    fig = new_figure(figsize)
+    ax = fig.add_subplot()
+    draw(v, ax=ax)
+    ax.set_title("")
+    return fig
+
+
 def strip_site(v, own):
     from ..demos.reduction import own_site_figure
 
-    fig = new_figure((9.0, 4.6))
-    ax = fig.add_subplot()
-    own_site_figure(v, ax=ax)
-    ax.set_title("")
-    return fig
+    return _one_axes(own_site_figure, v, (9.0, 4.6))
 
 
 def free_strip(v, own):
     from ..demos.reduction import own_strip_figure
 
-    fig = new_figure((9.0, 4.8))
-    ax = fig.add_subplot()
-    own_strip_figure(v, ax=ax)
-    ax.set_title("")
-    return fig
+    return _one_axes(own_strip_figure, v, (9.0, 4.8))
 
 
 def zhukov(v, own):

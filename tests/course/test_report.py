@@ -483,10 +483,17 @@ def test_a_workbook_of_one_chapter_marks_every_other_section_not_done(tmp_path):
     wb.mkdir()
     src = ROOT / "notebooks" / "00_start_here.ipynb"
     shutil.copy(src, wb / src.name)
-    _edit(wb / src.name, lambda nb: nbtools.find_cell(nb, "setup")[1].__setitem__(
-        "source", nbtools.find_cell(nb, "setup")[1].source.replace("RECORD_BOOK = None", "RECORD_BOOK = '19-0457'")))
+    def answer(nb):
+        _, setup = nbtools.find_cell(nb, "setup")
+        setup.source = setup.source.replace("RECORD_BOOK = None", "RECORD_BOOK = '19-0457'")
+        nbtools.set_cell(nb, "task-00-1-answer", "from aerophoto import flight\nH_m = flight.plan(v).H_m\n"
+                                                 "on_mm = 35.11\noc_mm = -17.54\n")
+
+    _edit(wb / src.name, answer)
     r = report.build(wb, tmp_path / "o", date=DATE, formats=("html",), sheet=False, figures=False, cache=False)
     html = r.html.read_text(encoding="utf-8")
-    assert html.count("Раздел не выполнен") >= 13
+    assert r.task("task-00-1").state == "unreadable"
+    assert "Задача 00.1 не может быть прочитана без запуска тетради" in html and "H_m" not in html
+    assert html.count("Раздел не выполнен") >= 12
     assert html.index("Расчет параметров") < html.index("Фототриангуляция") < html.index("почвенном картографировании")
     assert math.isfinite(r.variant.f_mm)

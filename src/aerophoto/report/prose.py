@@ -164,7 +164,7 @@ class Writer:
     def step(self, t: TaskView | None, ru: str, en: str) -> bool:
         """A subsection for task ``t``; True when the student did it (else its "not done" notice is written)."""
         self.sub(ru, en)
-        if t is None or not t.attempted:
+        if t is None or not t.attempted or t.state == "unreadable":
             self.not_done(t)
             return False
         return True
@@ -231,7 +231,7 @@ class Writer:
 
     def check_note(self, t: TaskView) -> None:
         """For a task whose visible check fails: what the check says (never the expected value)."""
-        if t.state == "passed" or not t.attempted:
+        if t.state in ("passed", "unreadable") or not t.attempted:
             return
         if t.state == "partial":
             self.par(f"Задача {t.label} выполнена не полностью: не все величины указаны в рабочей тетради.",

@@ -84,6 +84,7 @@ def _base_source(top: Path) -> Path | None:
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", base, "src"], capture_output=True, check=True)
     except (OSError, subprocess.CalledProcessError):
         return None
+    top.mkdir(parents=True, exist_ok=True)
     subprocess.run(["tar", "-x", "-C", str(top)], input=archive.stdout, check=True)
     return top / "src"
 

@@ -73,6 +73,10 @@ def formula(template: str, **numbers: str) -> str:
         s = str(numbers[name])
         if not NUMBER_RE.match(s):
             raise ValueError(f"{name} = {s!r} is not a formatted number")
+        before = template[:m.start()].rstrip()
+        after = template[m.end():].lstrip()
+        if s.startswith("\u2212") and (before.endswith(("-", "+", "dot", "times", "/")) or after.startswith("^")):
+            return '("' + s + '")'  # a negative number after an operator, or raised to a power, in brackets
         return '"' + s + '"'
     return _PLACEHOLDER.sub(sub, template)
 

@@ -88,7 +88,8 @@ def _base_example(w, t, names, bases, M, lsn="lsn_mm") -> None:
     a, b = bases[0]
     if x is not None and y is not None and lsn == "lsn_mm" and ls:
         i, j = names.index(a), names.index(b)
-        w.eq('l_"сн" = sqrt((x_2 - x_1)^2 + (y_2 - y_1)^2) = sqrt(({x2} - {x1})^2 + ({y2} - {y1})^2) = {l} " мм"',
+        w.eq('l_"сн" = sqrt((x_2 - x_1)^2 + (y_2 - y_1)^2)')
+        w.eq('l_"сн" = sqrt(({x2} - {x1})^2 + ({y2} - {y1})^2) = {l} " мм"', numbered=False,
              x1=w.n(x[i], 1), x2=w.n(x[j], 1), y1=w.n(y[i], 1), y2=w.n(y[j], 1), l=w.n(ls[0], 1))
     if lpl and ls and mi:
         w.eq('m_i = (l_"пл" dot M)/l_"сн" = ({lpl} dot {M})/{ls} = {m}', lpl=w.n(lpl[0], 1), M=w.n(M, 0),

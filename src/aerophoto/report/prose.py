@@ -15,12 +15,13 @@ with no number (:meth:`Writer.not_done`).
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 from ..i18n import numfmt
 from .document import Document, formula
 
-__all__ = ["TaskView", "Writer", "ru_plural", "plain"]
+__all__ = ["TaskView", "Writer", "ru_plural", "plain", "symbol"]
 
 
 @dataclass(frozen=True)
@@ -84,6 +85,41 @@ class TaskView:
     def flag(self, name: str) -> bool | None:
         x = self.get(name)
         return x if isinstance(x, bool) else None
+
+
+_UNIT_SUFFIX = re.compile(r"_(mm|km|m|s|h|deg|percent|pct|arcsec|um|cm)$")
+_GREEK = {"alpha": "alpha", "phi": "phi", "tau": "tau", "sigma": "sigma", "gamma": "gamma", "rho": "rho",
+          "lambda": "lambda", "kappa": "kappa", "beta": "beta"}
+
+
+_SPECIAL = {"da": 'delta_alpha', "dh": "delta_h", "m_rms": "m", "dm": "Delta m", "rc": "r_c", "K_d": "K_d"}
+
+
+def symbol(name: str, position: int | None = None) -> str | None:
+    """A task's answer variable as a symbol to print (Typst math, never the Python name): ``TS_h`` → $T_"S"$,
+    ``Px_percent`` → $P_"x"$, ``dgamma_arcsec`` → $Delta gamma$; the subscript always a quoted string.  None when
+    the name makes no clean symbol (a subscript that is a word): the caller names the answer by its place instead."""
+    base = _UNIT_SUFFIX.sub("", str(name))
+    if base in _SPECIAL:
+        return _SPECIAL[base]
+    delta = ""
+    if len(base) > 1 and base[0] == "d" and (base[1].isupper() or base[1:].split("_")[0] in _GREEK or
+                                             base[1:2] in ("a", "h", "p", "k", "m")):
+        delta, base = "Delta ", base[1:]
+    head, _, tail = base.partition("_")
+    for word, g in _GREEK.items():
+        if head.startswith(word):
+            head, tail = g, (head[len(word):] + tail)
+            break
+    else:
+        head, tail = (head[:1], head[1:] + tail) if len(head) > 1 else (head, tail)
+    if not re.fullmatch(r"[A-Za-z]+", head):
+        head = '"' + re.sub(r"[^0-9A-Za-z]", "", head) + '"'
+    tail = re.sub(r"[^0-9A-Za-z]", "", tail)
+    if tail and not (len(tail) <= 2 and (tail.isalpha() or tail.isdigit()) or tail in ("max", "min")
+                     or tail.isdigit()):
+        return None  # a word (rms, corr, red…) or letters and digits: not a symbol of the guide
+    return delta + head + (f'_"{tail}"' if tail else "")
 
 
 def plain(text) -> str:
@@ -237,9 +273,19 @@ class Writer:
             self.par(f"Задача {t.label} выполнена не полностью: не все величины указаны в рабочей тетради.",
                      f"Task {t.label} is only partly answered.", "bad")
             return
-        msg = t.message.strip()
-        self.par(f"Проверка рабочей тетради не подтверждает результат задачи {t.label}" + (f": {msg}" if msg else "."),
-                 f"The workbook's check does not confirm task {t.label}" + (f": {msg}" if msg else "."), "bad")
+        bad = [(n, m) for n, (ok, m) in t.checks.items() if not ok]
+        segs = [{"text": self.L(f"Проверка рабочей тетради не подтверждает результат задачи {t.label}",
+                                f"The workbook's check does not confirm task {t.label}")}]
+        order = [a["name"] for a in t.spec]
+        for k, (name, msg) in enumerate(bad[:3]):
+            sym = symbol(name)
+            what = {"math": sym} if sym else {"text": self.L(f"ответ {order.index(name) + 1 if name in order else k + 1}",
+                                                              f"answer {order.index(name) + 1 if name in order else k + 1}")}
+            segs += [{"text": ": " if k == 0 else "; "}, what]
+            if msg.strip():
+                segs.append({"text": " — " + plain(msg.strip().rstrip("."))})
+        segs.append({"text": "."})
+        self.par(segs, None, "bad")
 
     def recorded_note(self, t: TaskView) -> None:
         if t.recorded:

@@ -14,8 +14,8 @@ from .prose import ru_plural as _pl
 
 __all__ = ["write_01", "write_02", "EXTRACT"]
 
-#: the guide's shutter speeds, s (§3: "1/125, 1/250, 1/500", from 1/40 to 1/1000)
-_SHUTTER = (1 / 40, 1 / 60, 1 / 125, 1 / 250, 1 / 500, 1 / 1000)
+#: the guide's shutter speeds, s (§3: from 1/40 to 1/1000, in steps of two: "1/125, 1/250, 1/500")
+_SHUTTER = (1 / 40, 1 / 125, 1 / 250, 1 / 500, 1 / 1000)
 
 
 def _strip_measurements(raw, v) -> dict:

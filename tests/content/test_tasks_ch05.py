@@ -228,7 +228,9 @@ def test_the_measuring_figure_shows_the_work_not_the_answers():
     ax = fig.axes[0]
     texts = [t.get_text() for t in ax.texts] + [ax.get_title()]
     assert {"36a", "36b", "39a", "39b", "cut 36/37"} <= set(texts)
-    assert "17 700" in ax.get_title()  # the design scale: an input
+    from aerophoto.i18n.numfmt import numbers_in
+
+    assert 17700 in numbers_in(ax.get_title())  # the design scale: an input (1:17 700, the book's format)
     a = lab05.answers_of(V57)
     shown = " ".join(texts)
     assert f"{a['m_mean']:.0f}" not in shown and "ΔI" not in shown and "m =" not in shown

@@ -342,10 +342,12 @@ def test_demo_renders_full_resolution_from_code_and_preview_on_request():
     fs = d.result.fs
     assert d.view.points.get_offsets().shape == (fs.dI_mm.size, 2)
     assert np.allclose(d.view.tops.get_offsets()[:, 1], fs.dI_mm)
-    assert "preview" in d.view.title.get_text()
+    preview_title = d.view.title.get_text()
     assert d.view.image.get_array().shape == d.result.image.shape
     d.set(relief_m=80.0)
-    assert not d.result.preview and "full resolution" in d.view.title.get_text()
+    # the resolution is never in the title (issue 33: calm while sliding): the same title for both pictures
+    assert not d.result.preview and d.view.title.get_text() == preview_title
+    assert "preview" not in preview_title and "resolution" not in preview_title
     assert "Mismatches by cut" in d.table.value
     with pytest.raises(ValueError, match="relief_m"):
         d.set(relief_m=500)
@@ -508,9 +510,12 @@ def test_correction_sheet_writes_every_mismatch():
     fs, _ = _fotoschema(relief_m=120.0)
     ax = correction_sheet(fs)
     texts = [t.get_text() for t in ax.texts]
+    from aerophoto.i18n.numfmt import fmt_number, fmt_signed, numbers_in
+
     for d in fs.dI_mm:
-        assert f"{d:+.2f}" in texts
-    assert f"m = {fs.rms_mm:.2f} mm" in ax.get_title()
+        assert fmt_signed(d, 2) in texts  # the book's format: +0.12, −0.25 (a true minus)
+    assert f"m = {fmt_number(fs.rms_mm, 2)} mm" in ax.get_title()
+    assert round(fs.rms_mm, 2) in numbers_in(ax.get_title())
 
 
 def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):

@@ -34,6 +34,7 @@ _SUBMODULES = (
     "geometry",
     "plane",
     "variants",
+    "diskcache",
     "flight",
     "site",
     "render",

@@ -622,7 +622,8 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     "ФОТОСХЕМА" (and "Photo mosaic" if ``english``) and the mean scale
     "М 1:m" rounded to hundreds as in the guide's appendix ("M 1: 13000"); under
     it a scale bar, the year it was made and "Выполнил / made by",
-    "Проверил / checked by".
+    "Проверил / checked by".  With ``english=False`` every text is Russian (the scale bar in "м", no footer),
+    as the guide's sample.
 
     Parameters
     ----------
@@ -708,8 +709,9 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
              fontsize=11, ha="right", va="center")
     fig.text(fx(rx), fy(by - 12), f"Проверил{' (checked by)' if english else ''}: {checked_by or '________________'}",
              fontsize=11, ha="right", va="center")
-    fig.text(1 - fx(6), fy(5), f"{name}, mosaic drawn at 1:{m_txt}", fontsize=7, ha="right", va="bottom",
-             color="#777777")
+    if english:  # the guide's sample (appendix) has no such line: the Russian sheet leaves it out
+        fig.text(1 - fx(6), fy(5), f"{name}, mosaic drawn at 1:{m_txt}", fontsize=7, ha="right", va="bottom",
+                 color="#777777")
     fig.aerophoto_paper = name
     return fig
 

@@ -532,7 +532,9 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     fig = sheet_figure(fs, img, ext, made_by="Student S.", checked_by="Teacher T.", year=2025)
     texts = " ".join(t.get_text() for t in fig.texts)
     assert "ФОТОСХЕМА" in texts and "Photo mosaic" in texts
-    assert f"М 1:{fs.scale.m_rounded:,}".replace(",", " ") in texts
+    from aerophoto.i18n.numfmt import fmt_count
+
+    assert f"М 1:{fmt_count(fs.scale.m_rounded, lang='ru')}" in texts  # the book's format: 1:12 000, narrow space
     assert "2025" in texts and "Student S." in texts and "Teacher T." in texts
     paper = fig.aerophoto_paper
     w_mm, h_mm = PAPER_MM[paper]
@@ -559,7 +561,7 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     assert len(inked) == 2 and all(np.all(np.abs(np.abs(y) - 63.0) < 1.0) for y in inked)
     # signed with the scale the student computed, when given
     fig2 = sheet_figure(fs, img, ext, scale_m=12345.0)
-    assert "М 1:12 300" in " ".join(t.get_text() for t in fig2.texts)
+    assert "М 1:12\u202f300" in " ".join(t.get_text() for t in fig2.texts)
     # never overwrite silently
     with pytest.raises(FileExistsError, match="sheet.png"):
         export_sheet(fig, tmp_path / "out", "sheet")

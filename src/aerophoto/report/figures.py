@@ -9,10 +9,10 @@ style, and saved as PDF: lines, text and shading stay vector; only photos are ra
 photos and nothing else.
 
 :func:`russify` puts a drawn figure into Russian: the i18n catalogue first (:func:`aerophoto.i18n.translate_figure`),
-then the report's own table of the figures' texts (:data:`TEXTS`) and patterns for texts that carry numbers
-("1.27 km" → "1,27 км"), numbers in the book's format (decimal comma, narrow no-break space from five digits)
-on the ticks too; whatever Latin text is left is listed (:attr:`Drawn.leftover`) so the tests can insist on
-none.
+with the book's tick format and subscripts (:func:`aerophoto.plots.finish_figure`), then the report's own table
+of the figures' texts the catalogue does not hold (:data:`TEXTS`) and patterns for texts that carry numbers
+("1.27 km" → "1,27 км"), numbers in the book's format (:func:`aerophoto.i18n.numfmt.fmt_text`), the demos' own
+tick labels too; whatever Latin text is left is listed (:attr:`Drawn.leftover`) so the tests can insist on none.
 
 A figure depends on the variant and on the few values of the student it draws over its base, so it is cached as its
 PDF bytes on the student's machine (:mod:`aerophoto.diskcache`); a figure that shows a graded value is drawn only once the
@@ -36,6 +36,8 @@ __all__ = ["FigureSpec", "Drawn", "render", "russify", "latin_words", "TEXTS", "
 PDF_META = {"CreationDate": None, "Creator": "aerophoto", "Producer": "aerophoto (matplotlib)"}
 #: a figure's photos are written at this resolution (the sheet's at 300 dpi, :mod:`aerophoto.report.sheet`)
 PHOTO_DPI = 200
+#: the figures' format: a change of how they are finished makes every cached figure a miss
+FIGURE_FORMAT = 3
 
 
 @dataclass(frozen=True)
@@ -155,19 +157,12 @@ _SYMBOLS = {"px", "py", "Px", "Py", "Bx", "By", "Lx", "Ly", "LS", "TS", "tg", "s
             "RMS", "II", "III", "IV", "VI", "VII", "VIII", "IX", "XI", "XII"}
 _MATH = re.compile(r"\$[^$]*\$")
 _STAGES: dict = {}
-_NUMBER = re.compile(r"(?<![\w.,])(−|-)?(\d+)(?:\.(\d+))?(?![\w])")
 
 
-def _number_ru(text: str) -> str:
-    """Numbers in a text in the book's Russian format (decimal comma, grouping from five digits, true minus)."""
-    def one(m):
-        sign, whole, frac = m.group(1), m.group(2), m.group(3)
-        body = numfmt._group(whole) if len(whole) >= 5 else whole
-        if frac is not None:
-            body += "," + frac
-        return ("−" if sign else "") + body
+def _numbers(text: str, lang: str) -> str:
+    """Numbers in a figure's text in the book's format (:func:`aerophoto.i18n.numfmt.fmt_text`), mathtext left alone."""
     parts = re.split(r"(\$[^$]*\$)", text)
-    return "".join(p if p.startswith("$") else _NUMBER.sub(one, p) for p in parts)
+    return "".join(p if p.startswith("$") else numfmt.fmt_text(p, lang=lang) for p in parts)
 
 
 def _stage_texts() -> dict:
@@ -195,43 +190,54 @@ def latin_words(text: str) -> list:
     return [w for w in re.findall(r"[A-Za-z]{2,}", bare) if w not in _SYMBOLS]
 
 
-def _ru_ticks(axis) -> None:
-    from matplotlib.ticker import FuncFormatter
+def _custom_ticks(axis, lang: str) -> None:
+    """A tick formatter the book's :func:`~aerophoto.i18n.numfmt.localise_ticks` leaves alone (a function of the
+    demo's own, fixed labels) wrapped so that its words are translated and its numbers in the book's format."""
+    from matplotlib.ticker import FuncFormatter, ScalarFormatter
 
     fmt = axis.get_major_formatter()
-    if getattr(fmt, "_aerophoto_ru", False):
+    if getattr(fmt, "_aerophoto_numfmt", None) or getattr(fmt, "_aerophoto_report", False) \
+            or type(fmt) is ScalarFormatter or axis.get_scale() != "linear":
         return
 
     def func(x, pos=None, _inner=fmt):
-        return _number_ru(_translate(_inner(x, pos)))
-    func_fmt = FuncFormatter(func)
-    func_fmt._aerophoto_ru = True
+        text = _inner(x, pos)
+        return _numbers(_translate(text) if lang == "ru" else text, lang)
+    wrapped = FuncFormatter(func)
+    wrapped._aerophoto_report = True
     if hasattr(fmt, "set_locs"):
-        func_fmt.set_locs = fmt.set_locs  # a ScalarFormatter needs its tick positions before formatting
-    axis.set_major_formatter(func_fmt)
+        wrapped.set_locs = fmt.set_locs  # a formatter that needs its tick positions before formatting
+    axis.set_major_formatter(wrapped)
 
 
 def russify(fig, lang: str) -> list:
-    """Put the drawn ``fig`` into ``lang``; returns the texts with Latin words left (for ``"ru"``)."""
-    if lang != "ru":
-        return []
+    """Finish the drawn ``fig`` in ``lang`` (:func:`aerophoto.plots.finish_figure`: the catalogue's texts, the
+    book's tick format, subscripts), then the report's own texts; returns the texts with Latin words left (Russian)."""
     from ..i18n import language, translate_figure
+    from ..plots import finish_figure
 
-    with language("ru"):
-        translate_figure(fig)
+    texts = lambda: fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "set_text"))  # noqa: E731
+    with language(lang):
+        translate_figure(fig)  # the catalogue first, on the demos' own English texts
+        if lang == "ru":
+            for art in texts():
+                s = art.get_text()
+                if s and _translate(s) != s:
+                    art.set_text(_translate(s))
+        finish_figure(fig)  # then ticks in the book's format and subscripts
     left = []
-    for art in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "set_text")):
+    for art in texts():
         s = art.get_text()
         if not s:
             continue
-        new = _number_ru(_translate(s))
+        new = _numbers(s, lang)
         if new != s:
             art.set_text(new)
-        if latin_words(new) and art.get_visible():
+        if lang == "ru" and latin_words(new) and art.get_visible():
             left.append(new)
     for ax in fig.axes:
         for axis in (ax.xaxis, ax.yaxis):
-            _ru_ticks(axis)
+            _custom_ticks(axis, lang)
     return left
 
 
@@ -272,7 +278,7 @@ def render(spec: FigureSpec, v, lang: str, folder: Path, own: dict | None = None
     own = plain(dict(own or {}))
     cache = diskcache.active()
     key = {"chapter": spec.chapter, "name": spec.name, "variant": variant_key(v), "lang": lang, "own": own,
-           "dpi": PHOTO_DPI}
+           "dpi": PHOTO_DPI, "format": FIGURE_FORMAT}
     drawn = None
     if cache is not None:
         meta = cache.get_bytes("figure-meta", key)

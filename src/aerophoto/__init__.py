@@ -35,6 +35,7 @@ _SUBMODULES = (
     "geometry",
     "plane",
     "variants",
+    "diskcache",
     "flight",
     "site",
     "render",
@@ -61,6 +62,7 @@ _SUBMODULES = (
     "plots",
     "blit",
     "widgets",
+    "fit",
     "demos",
     "i18n",
     "checks",
@@ -70,6 +72,7 @@ _SUBMODULES = (
     "course",
     "report",
     "lite",
+    "website",
 )
 """Every public module and subpackage, once (tests/course/test_chapter_key.py checks it against the files on disk)."""
 

@@ -28,7 +28,7 @@ from importlib import metadata
 from pathlib import Path
 
 from . import __version__
-from .plots import use_style
+from .plots import register_table_display, use_style
 from .variants import Variant, variant, variant_for_index
 
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
@@ -203,7 +203,8 @@ CHAPTERS = (
             section=4, views=("measure",), demos=(
         Demo("demo-relief", "aerophoto.demos.displacement.ReliefDemo", "Displacement explorer, relief", "relief ±h, then α and f",
              "arrows radiate from the nadir n — outwards for hills, inwards for the valley; a longer lens at the "
-             "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "ArrowRight")),
+             # relief by PageUp (25 m): with the arrows at a fixed ×2 one 5 m step is a sub-pixel change at f = 150 mm
+             "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "PageUp")),
              timed="relief ±h, m"),
     )),
     Chapter("04", "tilt_displacement", "tilt displacement", "смещения за угол наклона",
@@ -255,6 +256,13 @@ CHAPTERS = (
                      "each row of table 10 shows the place on the site where its key applies: islands and the "
                      "tributary give the flow, tone and crowns tell pine from spruce, curvature a railway from a road",
                      (("table 10 row", "ArrowRight"),), timed="table 10 row"),
+                Demo("demo-loupe", "aerophoto.demos.loupe.LoupeDemo", "A magnifier on the photo",
+                     "the mark to centre on, then the power, then x and y (or a click on the photo)",
+                     "under the glass the marks of table 10 come out: pine's round crowns of one height against "
+                     "spruce's small dark ones, a field's rows and tramlines, a road's shoulders and ditches, the "
+                     "rails on the ballast",
+                     (("power, ×", "ArrowLeft"), ("x (glass centre), mm", "PageUp")),
+                     timed="x (glass centre), mm"),
             )),
     Chapter("09", "plan_correction", "correcting a plan by mutual projective grids",
             "корректировка плана методом взаимно-проектных сеток", section=10, demos=(
@@ -742,6 +750,7 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
         if saved:
             set_language(saved)
     use_style()
+    register_table_display()  # the package's tables and the guide's audits in the book's number format
     problems = check_installation()
     if problems:
         raise RuntimeError("aerophoto cannot run in this environment:\n- " + "\n- ".join(problems))

@@ -372,7 +372,7 @@ def launch_chromium(playwright, *, headless: bool = True):
 INSTRUMENT_JS = r"""
 (() => {
   if (window.__aero) return;
-  const A = window.__aero = {keys: [], paints: [], draws: 0, msgs: []};
+  const A = window.__aero = {keys: [], paints: [], draws: 0, msgs: [], frames: new Set()};
   document.addEventListener('keydown', (e) => { A.keys.push(performance.now()); }, true);
   // every message arriving on a WebSocket (the kernel's channels): its time and size, for the benchmarks'
   // split of a move into kernel + transport, decode, paint (Jupyter's services assign ws.onmessage)
@@ -401,6 +401,8 @@ INSTRUMENT_JS = r"""
     try {
       const c = this.canvas;
       if (c && c.isConnected && c.closest('.jupyter-matplotlib-canvas-div')) { A.draws++; markPaint('canvas'); }
+      // ipympl's offscreen canvas takes each frame from the kernel as an image: remember the frame's width
+      else if (c && !c.isConnected && args[0] instanceof HTMLImageElement) { c.__aeroFrameW = args[0].naturalWidth; A.frames.add(c); }
     } catch (e) { /* never break the page */ }
     return r;
   };
@@ -472,6 +474,11 @@ def new_page(browser, *, instrument: bool = True):
 def open_lab_notebook(page, server: LabServer, notebook: str) -> None:
     """Open ``notebook`` in a fresh workspace and wait until its kernel is ready."""
     page.goto(server.lab_url(notebook), wait_until="domcontentloaded")
+    wait_lab_notebook(page, notebook)
+
+
+def wait_lab_notebook(page, notebook: str) -> None:
+    """Wait until the page's JupyterLab shows ``notebook`` with its kernel idle; tag its cells with their ids."""
     page.wait_for_function(
         """(name) => {
           const app = window.jupyterapp; if (!app || !app.shell) return false;
@@ -605,8 +612,28 @@ class DemoProbe:
         self.page.wait_for_function("() => window.__aero && window.__aero.draws > 0", timeout=T_RUN, polling=250)
         # the demo's top at the top of the screen, as a lecturer would scroll it
         self.root.evaluate("(el) => el.scrollIntoView({block: 'start'})")
-        # ipympl may resize the canvas (which blanks it) and redraw after the first image: let it finish
-        settle(self.page, 500)
+        self.wait_fitted(0)
+
+    def fit_count(self) -> int:
+        """How many times the kernel has sized this demo's figure for the page (its class ``aerophoto-fit-N``)."""
+        return int(self.root.evaluate(
+            "(el) => Math.max(0, ...Array.from(el.classList).map((c) => /^aerophoto-fit-(\\d+)$/.exec(c))"
+            ".filter((m) => m).map((m) => +m[1]))"))
+
+    def wait_fitted(self, after: int) -> None:
+        """Wait until the kernel has sized the figure for the page more than ``after`` times (the page reports
+        its size, :mod:`aerophoto.fit`) and a frame of that size has reached the canvas (ipympl blanks a resized
+        canvas until its next frame), then until the figure is quiet."""
+        self.page.wait_for_function(
+            """([el, n]) => Array.from(el.classList).some((c) => { const m = /^aerophoto-fit-(\\d+)$/.exec(c);
+                                                                   return m && +m[1] > n; })""",
+            arg=[self.root.element_handle(), after], timeout=T_RUN, polling=100)
+        self.page.wait_for_function(
+            """(el) => { const c = el.querySelector('.jupyter-matplotlib-canvas-div canvas');
+                         return !!c && [...window.__aero.frames].some((f) => f.width === c.width
+                                                                            && f.__aeroFrameW === c.width); }""",
+            arg=self.root.element_handle(), timeout=T_RUN, polling=100)
+        settle(self.page, 400)
 
     def slider(self, label: str):
         return slider_in(self.page, self.root, label)

@@ -31,6 +31,9 @@ DEMOS = [
     ("reduction", "ReductionDemo", [({"f_mm": 150}, True), ({"max_tilt_deg": 0.5}, True), ({"m": 14000}, False),
                                     ({"f_mm": 160}, True), ({"pricking_mm": 0.3}, None), ({"seed": 3}, None)]),
     ("interpretation", "KeyDemo", [({"row": 1}, True), ({"row": 5}, True), ({"camera": "colour-infrared film"}, True)]),
+    # the glass: its field's outline over the photo and its picture move; another film redraws the whole photo
+    ("loupe", "LoupeDemo", [({"x_mm": 20}, True), ({"power": 6}, True), ({"mark": "P"}, True),
+                            ({"camera": "colour-infrared film"}, False), ({"y_mm": -10, "mark": "free"}, True)]),
     ("displacement", "ReliefDemo", [({"relief_m": 80}, None), ({"f_mm": 150}, None), ({"alpha_deg": 5}, None),
                                     ({"show": "relief"}, None)]),
     ("displacement", "TiltDemo", [({"alpha_deg": 4}, None), ({"lambda_deg": -30}, None), ({"f_mm": 200}, None)]),

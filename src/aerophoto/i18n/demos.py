@@ -180,12 +180,12 @@ _HINTS = {
     "A longer base B or a lower flight H makes every height give more parallax and the stereo model taller (V); a longer lens at the same scale needs a higher flight and flattens it.":
         "Длиннее базис B или ниже полёт H — каждая высота даёт больший параллакс, и стереомодель выше (V); "
         "более длиннофокусный объектив при том же масштабе требует более высокого полёта и уплощает её.",
-    "Blue: contours drawn from the DEM; dashed grey: where they should be. Coarsen the grid until the interpolation shows, then switch the structural lines on; raise m_z and watch the contours wriggle.":
-        "Синие — горизонтали по ЦМР; серые штриховые — где они должны быть. Огрубляйте сетку, пока не проявится "
+    "Black: contours drawn from the DEM; dashed grey: where they should be. Coarsen the grid until the interpolation shows, then switch the structural lines on; raise m_z and watch the contours wriggle.":
+        "Чёрные — горизонтали по ЦМР; серые штриховые — где они должны быть. Огрубляйте сетку, пока не проявится "
         "интерполяция, затем включите структурные линии; увеличьте m_z и посмотрите, как горизонтали извиваются.",
-    "Blue: the exact displacement (tilted photo vs the vertical one turned about the isoline); orange: the guide's δα = −(r_c²·cos φ/f)·sin α. Points on the isoline h_c h_c do not move.":
+    "Blue: the exact displacement (tilted photo vs the vertical one turned about the isoline); orange: the guide's δα = −(r<sub>c</sub>²·cos φ/f)·sin α. Points on the isoline h<sub>c</sub>–h<sub>c</sub> do not move.":
         "Синие — точное смещение (наклонный снимок против горизонтального, повёрнутого вокруг линии неискажённых "
-        "масштабов); оранжевые — формула пособия δα = −(r_c²·cos φ/f)·sin α. Точки на линии h_c h_c не смещаются.",
+        "масштабов); оранжевые — формула пособия δα = −(r<sub>c</sub>²·cos φ/f)·sin α. Точки на линии h<sub>c</sub>–h<sub>c</sub> не смещаются.",
     "Change the free strip's scale: k follows 1/q and the arrows v = r(k − 1) grow, but the control residuals do not change. Raise the pricking error: the triangles and the spread of k grow. Move the centre: the corrections change, the result does not.":
         "Измените масштаб свободного маршрута: k следует за 1/q и стрелки v = r(k − 1) растут, но остатки на опорных "
         "точках не меняются. Увеличьте ошибку накола: растут треугольники и разброс k. Сместите центр: поправки "
@@ -383,6 +383,10 @@ _WIDGETS = {
     # aerophoto.widgets.LiveDemo
     "Reset": "Сброс",
     "Back to the starting values": "Вернуть начальные значения",
+    # aerophoto.demos.lecture.lecture_view: the projector mode
+    "Projector": "Проектор",
+    "Larger text, lines and markers for the back row (remembered)":
+        "Крупнее текст, линии и маркеры для задних рядов (запоминается)",
     # aerophoto.widgets.pending_html: the status line while the full picture waits for the slider to rest
     "preview — full resolution when the slider rests": "предпросмотр — полное разрешение, когда ползунок остановится",
     "preview (10 m raster) — full resolution when the slider rests":
@@ -465,3 +469,29 @@ _RAY = {
     "θ = arctan(x/f) from the vertical": "θ = arctg(x/f) от отвесной линии",
 }
 MESSAGES = {**MESSAGES, **{k: v for k, v in _RAY.items() if k not in MESSAGES}}
+# aerophoto.demos.loupe and the table-10 key's close-ups (chapter 08)
+_LOUPE = {
+    "A magnifier on the photo (лупа)": "Лупа на снимке",
+    "Put the glass on a mark or click on the photo; at ×5–×6 you see the crowns of a stand, the rows and wheel "
+    "tracks of a field, a road's shoulders and ditches, the rails.":
+        "Наведите лупу на метку или щёлкните по снимку; при ×5–×6 видны кроны деревьев, рядки и колеи на поле, "
+        "обочины и кюветы дороги, рельсы.",
+    "x (glass centre), mm": "x (центр лупы), мм",
+    "y (glass centre), mm": "y (центр лупы), мм",
+    "centre on": "навести на",
+    "power, ×": "увеличение, ×",
+    "Where the glass is": "Где лупа",
+    "Glass": "Лупа",
+    "photo x of the glass's centre": "координата x центра лупы на снимке",
+    "photo y of the glass's centre": "координата y центра лупы на снимке",
+    "put the glass over one of the photo's marks": "навести лупу на одну из меток снимка",
+    "how many times larger than the print": "во сколько раз крупнее отпечатка",
+    "— (use x, y)": "— (по x, y)",
+    "mark 1": "метка 1", "mark 2": "метка 2", "mark 3": "метка 3", "mark 4": "метка 4", "mark 5": "метка 5",
+    "mark 6": "метка 6",
+    "stand P": "насаждение P", "stand Q": "насаждение Q",
+    "bank point A": "точка берега A", "bank point B": "точка берега B",
+    "the glass: full detail when the slider rests": "лупа: все подробности, когда ползунок остановится",
+    "the close-up: full detail when the slider rests": "участок: все подробности, когда ползунок остановится",
+}
+MESSAGES = {**MESSAGES, **_LOUPE}

@@ -367,13 +367,32 @@ def _title(c: Chapter) -> str:
     return c.title[0].upper() + c.title[1:]
 
 
-def chapter_table_markdown(*, prefix: str = "") -> str:
-    """The chapter table of the README (``prefix="notebooks/"``) and of chapter 00 (generated; a test keeps both current)."""
-    lines = ["| notebook | source | topic | live demos |", "|---|---|---|---|"]
-    for c in CHAPTERS:
-        demos = "; ".join(d.name for d in c.demos) or "—"
-        lines.append(f"| [`{c.name}`]({prefix}{c.notebook}) | {c.source} | {c.title} ({c.title_ru}) | {demos} |")
+def chapter_table_markdown(*, prefix: str = "", lang: str = "en") -> str:
+    """The chapter table of the README (``prefix="notebooks/"``) and of chapter 00 (generated; a test keeps both current).
+
+    ``lang="ru"``: the Russian table of chapter 00's Russian text (``notebooks/ru/00_start_here.md``), its topics,
+    demo names and sources from the catalogue (:mod:`aerophoto.i18n.chapters`; a text without Russian stays English).
+    """
+    from .i18n import language, t
+
+    head = {"en": "| notebook | source | topic | live demos |",
+            "ru": "| тетрадь | источник | тема | интерактивные демонстрации |"}
+    lines = [head[lang], "|---|---|---|---|"]
+    with language(lang):
+        for c in CHAPTERS:
+            demos = "; ".join(t(d.name) for d in c.demos) or "—"
+            if lang == "en":
+                topic, source = f"{c.title} ({c.title_ru})", c.source
+            else:
+                topic = t(c.title)
+                source = (t("guide §{section}", section=c.section) if c.section is not None
+                          else t("article {article}", article=c.article))
+            lines.append(f"| [`{c.name}`]({prefix}{c.notebook}) | {source} | {topic} | {demos} |")
     return "\n".join(lines)
+
+
+#: the heading of chapter 00's generated ``chapters`` cell, per language
+_CHAPTERS_HEADING = {"en": "## The chapters", "ru": "## Главы"}
 
 
 def lecture_table_markdown() -> str:
@@ -525,13 +544,17 @@ _README_MARK = ("<!-- BEGIN chapters (generated from aerophoto.book.CHAPTERS: py
 
 def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     """[(file, kind, place, content)]: kind "markdown-section" (between markers), "cell" (a notebook cell by
-    id) or "notebook" (a whole generated notebook: a lecture page)."""
+    id), "translation" (a generated cell's block in a Russian text: content (English, Russian)) or "notebook" (a
+    whole generated notebook: a lecture page)."""
     out = [
         (root / "README.md", "markdown-section", "chapters", chapter_table_markdown(prefix="notebooks/")),
         (root / "notebooks" / LECTURE_INDEX, "cell", "demos",
          "## The demonstrations\n\n" + lecture_table_markdown()),
         (root / "notebooks" / CHAPTERS[0].notebook, "cell", "chapters",
-         "## The chapters\n\n" + chapter_table_markdown()),
+         _CHAPTERS_HEADING["en"] + "\n\n" + chapter_table_markdown()),
+        (root / "notebooks" / "ru" / f"{CHAPTERS[0].name}.md", "translation", "chapters",
+         (_CHAPTERS_HEADING["en"] + "\n\n" + chapter_table_markdown(),
+          _CHAPTERS_HEADING["ru"] + "\n\n" + chapter_table_markdown(lang="ru"))),
     ]
     for c in CHAPTERS:
         if c.demos:
@@ -540,11 +563,30 @@ def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     return out
 
 
+def _sync_translation(path: Path, cell: str, english: str, russian: str, *, write: bool) -> bool:
+    """Whether block ``cell`` of the translation file ``path`` differs from ``russian`` keyed to ``english``
+    (:func:`aerophoto.i18n.prose.cell_key`); with ``write``, put it there (in place, or last if missing)."""
+    from .i18n import prose
+
+    blocks = prose.read_translations(path)
+    want = prose.Block(cell, prose.cell_key(english), russian)
+    if any(b == want for b in blocks):
+        return False
+    if write:
+        if any(b.cell == cell for b in blocks):
+            blocks = [want if b.cell == cell else b for b in blocks]
+        else:
+            blocks.append(want)
+        prose.write_translations(path, blocks)
+    return True
+
+
 def sync_generated(root=None, *, write: bool = False) -> list[str]:
     """Check (or with ``write=True`` rewrite) what is generated from :data:`CHAPTERS`; returns the stale places.
 
     README.md's chapter table (between the ``BEGIN chapters``/``END chapters`` markers), the lecture index's
-    ``demos`` cell, chapter 00's ``chapters`` cell, and the lecture pages ``notebooks/lectures/NN_slug.ipynb``
+    ``demos`` cell, chapter 00's ``chapters`` cell and its Russian block (``notebooks/ru/00_start_here.md``), and
+    the lecture pages ``notebooks/lectures/NN_slug.ipynb``
     (:func:`lecture_notebook`, one per chapter with demos; a page without its chapter is stale and removed).
     Safe to re-run: cells are found by id.
     """
@@ -575,6 +617,9 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
                 if write:
                     path.parent.mkdir(parents=True, exist_ok=True)
                     nbtools.write(lecture_notebook(content, root), path)
+        elif kind == "translation":  # a generated cell's block in a chapter's Russian text
+            if _sync_translation(path, place, *content, write=write):
+                stale.append(f"{path.relative_to(root / 'notebooks')} [{place}]")
         elif kind == "page":  # a whole generated page (the glossary)
             text = _notebook_text(content)
             old = path.read_text(encoding="utf-8") if path.is_file() else None

@@ -364,7 +364,32 @@ def chapter(name_or_number: str | int) -> Chapter:
 
 
 def _title(c: Chapter) -> str:
-    return c.title[0].upper() + c.title[1:]
+    """The chapter's topic with a capital, in the language in use (:mod:`aerophoto.i18n.chapters`)."""
+    from .i18n import t
+
+    title = t(c.title)
+    return title[0].upper() + title[1:]
+
+
+def _source(c: Chapter) -> str:
+    """:attr:`Chapter.source` in the language in use: ``"guide §4"``, ``"руководство, §4"``."""
+    from .i18n import t
+
+    if c.section is not None:
+        return t("guide §{section}", section=c.section)
+    return t("article {article}", article=c.article)
+
+
+#: the generated tables' header rows, per language
+_HEADS = {
+    "chapters": {"en": "| notebook | source | topic | live demos |",
+                 "ru": "| тетрадь | источник | тема | интерактивные демонстрации |"},
+    "demos": {"en": "| lecture page | demo | move | what the class sees |",
+              "ru": "| лекционная страница | демонстрация | что двигать | что видит аудитория |"},
+}
+#: the headings of the generated cells (chapter 00's ``chapters``, the lecture index's ``demos``), per language
+_HEADINGS = {"chapters": {"en": "## The chapters", "ru": "## Главы"},
+             "demos": {"en": "## The demonstrations", "ru": "## Демонстрации"}}
 
 
 def chapter_table_markdown(*, prefix: str = "", lang: str = "en") -> str:
@@ -375,37 +400,29 @@ def chapter_table_markdown(*, prefix: str = "", lang: str = "en") -> str:
     """
     from .i18n import language, t
 
-    head = {"en": "| notebook | source | topic | live demos |",
-            "ru": "| тетрадь | источник | тема | интерактивные демонстрации |"}
-    lines = [head[lang], "|---|---|---|---|"]
+    lines = [_HEADS["chapters"][lang], "|---|---|---|---|"]
     with language(lang):
         for c in CHAPTERS:
             demos = "; ".join(t(d.name) for d in c.demos) or "—"
-            if lang == "en":
-                topic, source = f"{c.title} ({c.title_ru})", c.source
-            else:
-                topic = t(c.title)
-                source = (t("guide §{section}", section=c.section) if c.section is not None
-                          else t("article {article}", article=c.article))
-            lines.append(f"| [`{c.name}`]({prefix}{c.notebook}) | {source} | {topic} | {demos} |")
+            topic = f"{c.title} ({c.title_ru})" if lang == "en" else t(c.title)
+            lines.append(f"| [`{c.name}`]({prefix}{c.notebook}) | {_source(c)} | {topic} | {demos} |")
     return "\n".join(lines)
 
 
-#: the heading of chapter 00's generated ``chapters`` cell, per language
-_CHAPTERS_HEADING = {"en": "## The chapters", "ru": "## Главы"}
-
-
-def lecture_table_markdown() -> str:
+def lecture_table_markdown(*, lang: str = "en") -> str:
     """The lecture index's table of demos (generated; a test keeps ``notebooks/lectures.ipynb`` current).
 
     Each chapter links its lecture page (``lectures/NN_slug.ipynb``: the demos only, the guide's example) and,
-    beside it, the whole chapter.
+    beside it, the whole chapter.  ``lang="ru"``: the Russian table of ``notebooks/ru/lectures.md``.
     """
-    lines = ["| lecture page | demo | move | what the class sees |", "|---|---|---|---|"]
-    for c in CHAPTERS:
-        for d in c.demos:
-            lines.append(f"| [{c.number} · {_title(c)} ({c.source})]({lecture_page(c)}) "
-                         f"<br>([whole chapter]({c.notebook})) | {d.name} | {d.move} | {d.sees} |")
+    from .i18n import language, t
+
+    lines = [_HEADS["demos"][lang], "|---|---|---|---|"]
+    with language(lang):
+        for c in CHAPTERS:
+            for d in c.demos:
+                lines.append(f"| [{c.number} · {_title(c)} ({_source(c)})]({lecture_page(c)}) "
+                             f"<br>([{t('whole chapter')}]({c.notebook})) | {t(d.name)} | {t(d.move)} | {t(d.sees)} |")
     return "\n".join(lines)
 
 
@@ -446,7 +463,7 @@ def _lecture_demo(source: str, c: Chapter, d: Demo, where: str) -> str:
     if not (isinstance(last, ast.Expr) and isinstance(last.value, ast.Name) and last.lineno == len(body)):
         raise ValueError(f"{where}: the demo cell must end with the demo's name on a line of its own (e.g. `demo`)")
     name = last.value.id
-    title = f"{c.number} · {_title(c)} ({c.source})"
+    title = f"{c.number} · {c.title[0].upper() + c.title[1:]} ({c.source})"
     subtitle = f"{d.name} · the guide's example (variant 00)"
     screen = ", full_screen=True" if len(c.demos) > 1 else ""   # several demos: each fills a screen
     return "\n".join([*body[:-1], f"lecture_view({name}, {title!r}, {subtitle!r}{screen})"])
@@ -479,7 +496,7 @@ def lecture_notebook(c: Chapter, root=None):
         f"{_GENERATED_NOTE}\n[← every lecture page](../{LECTURE_INDEX}) · "
         f"[the whole chapter {c.number}, with the theory and the tasks](../{c.notebook}) · {c.source} · "
         "the demos open on the guide's worked example (variant 00); **Reset** returns there.", id="links"))
-    return nbtools.notebook(out, title=f"{c.number} · {_title(c)} — lecture")
+    return nbtools.notebook(out, title=f"{c.number} · {c.title[0].upper() + c.title[1:]} — lecture")
 
 
 # =========================================================================== the glossary page
@@ -542,19 +559,24 @@ _README_MARK = ("<!-- BEGIN chapters (generated from aerophoto.book.CHAPTERS: py
                 "<!-- END chapters -->")
 
 
+def _table_cell(cell: str, lang: str = "en") -> str:
+    """The source of a generated table's cell (chapter 00's ``chapters``, the lecture index's ``demos``)."""
+    table = chapter_table_markdown(lang=lang) if cell == "chapters" else lecture_table_markdown(lang=lang)
+    return _HEADINGS[cell][lang] + "\n\n" + table
+
+
 def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     """[(file, kind, place, content)]: kind "markdown-section" (between markers), "cell" (a notebook cell by
     id), "translation" (a generated cell's block in a Russian text: content (English, Russian)) or "notebook" (a
     whole generated notebook: a lecture page)."""
     out = [
         (root / "README.md", "markdown-section", "chapters", chapter_table_markdown(prefix="notebooks/")),
-        (root / "notebooks" / LECTURE_INDEX, "cell", "demos",
-         "## The demonstrations\n\n" + lecture_table_markdown()),
-        (root / "notebooks" / CHAPTERS[0].notebook, "cell", "chapters",
-         _CHAPTERS_HEADING["en"] + "\n\n" + chapter_table_markdown()),
+        (root / "notebooks" / LECTURE_INDEX, "cell", "demos", _table_cell("demos")),
+        (root / "notebooks" / CHAPTERS[0].notebook, "cell", "chapters", _table_cell("chapters")),
         (root / "notebooks" / "ru" / f"{CHAPTERS[0].name}.md", "translation", "chapters",
-         (_CHAPTERS_HEADING["en"] + "\n\n" + chapter_table_markdown(),
-          _CHAPTERS_HEADING["ru"] + "\n\n" + chapter_table_markdown(lang="ru"))),
+         (_table_cell("chapters"), _table_cell("chapters", "ru"))),
+        (root / "notebooks" / "ru" / LECTURE_INDEX.replace(".ipynb", ".md"), "translation", "demos",
+         (_table_cell("demos"), _table_cell("demos", "ru"))),
     ]
     for c in CHAPTERS:
         if c.demos:

@@ -56,26 +56,29 @@ def test_key_ignores_surrounding_blank_lines_only():
 
 
 def test_every_chapter_has_its_russian_text_complete():
-    """Every chapter of the registry: a Russian block for each Markdown cell, translated and keyed to the English
-    text as it reads now (``python -m aerophoto.i18n.prose status`` says which; ``skeleton NN`` marks them)."""
+    """Every chapter of the registry (and the lecture index): a Russian block for each Markdown cell, translated and
+    keyed to the English text as it reads now (``python -m aerophoto.i18n.prose status`` says which; ``skeleton NN`` marks them)."""
     from aerophoto import book
     from conftest import NOTEBOOKS
 
     found = {p.name for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb")}
     assert found == {c.notebook for c in book.CHAPTERS}      # the registry names every chapter notebook
-    incomplete = [st.line() for st in (prose.status(NOTEBOOKS / c.notebook) for c in book.CHAPTERS)
-                  if not st.complete]
+    pages = [NOTEBOOKS / c.notebook for c in book.CHAPTERS] + [NOTEBOOKS / book.LECTURE_INDEX]
+    incomplete = [st.line() for st in map(prose.status, pages) if not st.complete]
     assert incomplete == []
 
 
 def test_the_registry_speaks_russian():
-    """Chapter 00's Russian table of chapters is built from these: every chapter's topic and source and every
-    live demo's name has its Russian (aerophoto.i18n.chapters)."""
+    """Chapter 00's Russian table of chapters and the lecture index's table of demos are built from these: every
+    chapter's topic and every live demo's name, move and what the class sees has its Russian (aerophoto.i18n.chapters)."""
     from aerophoto import book
     from aerophoto.i18n import has
 
-    missing = [s for c in book.CHAPTERS for s in (c.title, *(d.name for d in c.demos)) if not has(s)]
-    assert missing == []
+    texts = [s for c in book.CHAPTERS for s in (c.title, *(x for d in c.demos for x in (d.name, d.move, d.sees)))]
+    assert [s for s in texts if not has(s)] == []
+    demos = book.lecture_table_markdown(lang="ru")
+    assert "| Лупа на снимке | метка, на которую навести лупу" in demos and "([вся глава](08_interpretation.ipynb))" in demos
+    assert "[08 · Дешифрирование аэроснимков: условия фотографирования" in demos and "(руководство, §9)]" in demos
     table = book.chapter_table_markdown(lang="ru")
     assert table.splitlines()[0] == "| тетрадь | источник | тема | интерактивные демонстрации |"
     assert "| руководство, §9 | дешифрирование аэроснимков" in table and "| статья 003 |" in table
@@ -96,7 +99,8 @@ def test_the_russian_chapter_table_follows_the_registry(tmp_path, monkeypatch):
     extra = book.Chapter("18", "test_extra", "relief displacement", "смещение точек за рельеф", section=4, demos=(
         book.Demo("demo-x", "aerophoto.demos.ray.RayDemo", "One ray of a vertical photo", "x", "the ray", ()),))
     monkeypatch.setattr(book, "CHAPTERS", (*book.CHAPTERS, extra))
-    english, russian = next(c for p, kind, _, c in book._generated(tmp_path) if kind == "translation")
+    english, russian = next(c for _, kind, place, c in book._generated(tmp_path)
+                            if kind == "translation" and place == "chapters")
     assert book._sync_translation(ru, "chapters", english, russian, write=False)
     assert book._sync_translation(ru, "chapters", english, russian, write=True)
     assert not book._sync_translation(ru, "chapters", english, russian, write=False)

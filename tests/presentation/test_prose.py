@@ -1,6 +1,7 @@
 """The chapters' Russian text (aerophoto.i18n.prose): blocks keyed by cell id and the English text's hash."""
 
 import json
+import re
 
 from aerophoto.i18n import prose
 
@@ -75,7 +76,8 @@ def test_the_registry_speaks_russian():
     from aerophoto.i18n import has
 
     texts = [s for c in book.CHAPTERS for s in (c.title, *(x for d in c.demos for x in (d.name, d.move, d.sees)))]
-    assert [s for s in texts if not has(s)] == []
+    words = re.compile(r"[A-Za-z]{2,}")   # a text of symbols alone ("x") reads the same in Russian
+    assert [s for s in texts if words.search(s) and not has(s)] == []
     demos = book.lecture_table_markdown(lang="ru")
     assert "| Лупа на снимке | метка, на которую навести лупу" in demos and "([вся глава](08_interpretation.ipynb))" in demos
     assert "[08 · Дешифрирование аэроснимков: условия фотографирования" in demos and "(руководство, §9)]" in demos

@@ -72,7 +72,6 @@ DEMO_NAMES = {
 
 #: a live demo's ``Demo.move`` (what the lecturer moves) → Russian
 MOVES = {
-    'x': 'x',
     'α (tilt), then f and m (scale 1:m)': 'α (наклон), затем f и m (масштаб 1:m)',
     'm, relief h, then f and W': 'm, рельеф h, затем f и W',
     'crab φ, α max, ΔH, bend, overlaps': 'непараллельность φ, α макс, ΔH, изгиб, перекрытия',

@@ -491,12 +491,24 @@ def lecture_notebook(c: Chapter, root=None):
         if d.cell not in cells:
             raise ValueError(f"{where} has no cell {d.cell!r} (aerophoto.book.CHAPTERS names it)")
         out.append(nbtools.code(_lecture_demo(cells[d.cell].source, c, d, f"{where} [{d.cell}]"), id=d.cell))
-        out.append(nbtools.md(f"**{d.name}.** Move: {d.move}. The class sees: {d.sees}.", id=f"{d.cell}-notes"))
-    out.append(nbtools.md(
-        f"{_GENERATED_NOTE}\n[← every lecture page](../{LECTURE_INDEX}) · "
-        f"[the whole chapter {c.number}, with the theory and the tasks](../{c.notebook}) · {c.source} · "
-        "the demos open on the guide's worked example (variant 00); **Reset** returns there.", id="links"))
+        out.append(nbtools.md(_lecture_texts(c)[f"{d.cell}-notes"], id=f"{d.cell}-notes"))
+    out.append(nbtools.md(_lecture_texts(c)["links"], id="links"))
     return nbtools.notebook(out, title=f"{c.number} · {c.title[0].upper() + c.title[1:]} — lecture")
+
+
+def _lecture_texts(c: Chapter, lang: str = "en") -> dict:
+    """The Markdown cells of chapter ``c``'s lecture page by id (``<demo cell>-notes``, ``links``) in ``lang``;
+    in Russian they are the page's translation, ``notebooks/lectures/ru/NN_slug.md`` (written by :func:`sync_generated`)."""
+    from .i18n import language, t
+
+    with language(lang):
+        out = {f"{d.cell}-notes": t("**{name}.** Move: {move}. The class sees: {sees}.", name=t(d.name), move=t(d.move),
+                                    sees=t(d.sees)) for d in c.demos}
+        out["links"] = _GENERATED_NOTE + "\n" + t(
+            "[← every lecture page](../{index}) · [the whole chapter {number}, with the theory and the tasks](../{notebook})"
+            " · {source} · the demos open on the guide's worked example (variant 00); **Reset** returns there.",
+            index=LECTURE_INDEX, number=c.number, notebook=c.notebook, source=_source(c))
+    return out
 
 
 # =========================================================================== the glossary page
@@ -567,8 +579,8 @@ def _table_cell(cell: str, lang: str = "en") -> str:
 
 def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     """[(file, kind, place, content)]: kind "markdown-section" (between markers), "cell" (a notebook cell by
-    id), "translation" (a generated cell's block in a Russian text: content (English, Russian)) or "notebook" (a
-    whole generated notebook: a lecture page)."""
+    id), "translation" (a generated cell's block in a Russian text: content (English, Russian)), "translation-file"
+    (a lecture page's whole Russian text) or "notebook" (a whole generated notebook: a lecture page)."""
     out = [
         (root / "README.md", "markdown-section", "chapters", chapter_table_markdown(prefix="notebooks/")),
         (root / "notebooks" / LECTURE_INDEX, "cell", "demos", _table_cell("demos")),
@@ -581,38 +593,23 @@ def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     for c in CHAPTERS:
         if c.demos:
             out.append((root / "notebooks" / lecture_page(c), "notebook", "lecture page", c))
+            out.append((root / "notebooks" / LECTURES_DIR / "ru" / f"{c.name}.md", "translation-file", "lecture page",
+                        c))
     out.append((root / "notebooks" / GLOSSARY_PAGE, "page", "glossary", glossary_notebook()))
     return out
-
-
-def _sync_translation(path: Path, cell: str, english: str, russian: str, *, write: bool) -> bool:
-    """Whether block ``cell`` of the translation file ``path`` differs from ``russian`` keyed to ``english``
-    (:func:`aerophoto.i18n.prose.cell_key`); with ``write``, put it there (in place, or last if missing)."""
-    from .i18n import prose
-
-    blocks = prose.read_translations(path)
-    want = prose.Block(cell, prose.cell_key(english), russian)
-    if any(b == want for b in blocks):
-        return False
-    if write:
-        if any(b.cell == cell for b in blocks):
-            blocks = [want if b.cell == cell else b for b in blocks]
-        else:
-            blocks.append(want)
-        prose.write_translations(path, blocks)
-    return True
 
 
 def sync_generated(root=None, *, write: bool = False) -> list[str]:
     """Check (or with ``write=True`` rewrite) what is generated from :data:`CHAPTERS`; returns the stale places.
 
     README.md's chapter table (between the ``BEGIN chapters``/``END chapters`` markers), the lecture index's
-    ``demos`` cell, chapter 00's ``chapters`` cell and its Russian block (``notebooks/ru/00_start_here.md``), and
-    the lecture pages ``notebooks/lectures/NN_slug.ipynb``
+    ``demos`` cell, chapter 00's ``chapters`` cell, their Russian blocks (``notebooks/ru/``), the lecture pages' Russian
+    text (``notebooks/lectures/ru/NN_slug.md``) and the lecture pages ``notebooks/lectures/NN_slug.ipynb``
     (:func:`lecture_notebook`, one per chapter with demos; a page without its chapter is stale and removed).
     Safe to re-run: cells are found by id.
     """
     from . import nbtools
+    from .i18n import prose
 
     root = Path(root) if root is not None else Path(__file__).resolve().parents[2]
     stale = []
@@ -640,8 +637,14 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
                     path.parent.mkdir(parents=True, exist_ok=True)
                     nbtools.write(lecture_notebook(content, root), path)
         elif kind == "translation":  # a generated cell's block in a chapter's Russian text
-            if _sync_translation(path, place, *content, write=write):
+            if prose.sync_block(path, place, *content, write=write):
                 stale.append(f"{path.relative_to(root / 'notebooks')} [{place}]")
+        elif kind == "translation-file":  # a lecture page's Russian text: every block generated
+            pages.add(path)
+            en, ru = _lecture_texts(content), _lecture_texts(content, "ru")
+            blocks = [prose.Block(cell, prose.cell_key(en[cell]), ru[cell]) for cell in en]
+            if prose.sync_file(path, blocks, write=write):
+                stale.append(f"{path.relative_to(root / 'notebooks')} [{place}, Russian]")
         elif kind == "page":  # a whole generated page (the glossary)
             text = _notebook_text(content)
             old = path.read_text(encoding="utf-8") if path.is_file() else None
@@ -657,7 +660,8 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
                 if write:
                     nbtools.set_cell(nb, place, content)
                     nbtools.write(nb, path)
-    for extra in sorted((root / "notebooks" / LECTURES_DIR).glob("*.ipynb")):
+    lectures = root / "notebooks" / LECTURES_DIR
+    for extra in sorted([*lectures.glob("*.ipynb"), *(lectures / "ru").glob("*.md")]):
         if extra not in pages:
             stale.append(f"{extra.relative_to(root / 'notebooks')} [no such chapter with demos]")
             if write:

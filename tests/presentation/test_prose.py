@@ -57,14 +57,15 @@ def test_key_ignores_surrounding_blank_lines_only():
 
 
 def test_every_chapter_has_its_russian_text_complete():
-    """Every chapter of the registry (and the lecture index): a Russian block for each Markdown cell, translated and
+    """Every chapter of the registry (and the lecture index and pages): a Russian block for each Markdown cell, translated and
     keyed to the English text as it reads now (``python -m aerophoto.i18n.prose status`` says which; ``skeleton NN`` marks them)."""
     from aerophoto import book
     from conftest import NOTEBOOKS
 
     found = {p.name for p in NOTEBOOKS.glob("[0-9][0-9]_*.ipynb")}
     assert found == {c.notebook for c in book.CHAPTERS}      # the registry names every chapter notebook
-    pages = [NOTEBOOKS / c.notebook for c in book.CHAPTERS] + [NOTEBOOKS / book.LECTURE_INDEX]
+    pages = ([NOTEBOOKS / c.notebook for c in book.CHAPTERS] + [NOTEBOOKS / book.LECTURE_INDEX]
+             + [NOTEBOOKS / book.lecture_page(c) for c in book.CHAPTERS if c.demos])
     incomplete = [st.line() for st in map(prose.status, pages) if not st.complete]
     assert incomplete == []
 
@@ -74,6 +75,7 @@ def test_the_registry_speaks_russian():
     chapter's topic and every live demo's name, move and what the class sees has its Russian (aerophoto.i18n.chapters)."""
     from aerophoto import book
     from aerophoto.i18n import has
+    from conftest import NOTEBOOKS
 
     texts = [s for c in book.CHAPTERS for s in (c.title, *(x for d in c.demos for x in (d.name, d.move, d.sees)))]
     words = re.compile(r"[A-Za-z]{2,}")   # a text of symbols alone ("x") reads the same in Russian
@@ -81,6 +83,9 @@ def test_the_registry_speaks_russian():
     demos = book.lecture_table_markdown(lang="ru")
     assert "| Лупа на снимке | метка, на которую навести лупу" in demos and "([вся глава](08_interpretation.ipynb))" in demos
     assert "[08 · Дешифрирование аэроснимков: условия фотографирования" in demos and "(руководство, §9)]" in demos
+    page = {b.cell: b.text for b in prose.read_translations(NOTEBOOKS / "lectures" / "ru" / "08_interpretation.md")}
+    assert page["demo-loupe-notes"].startswith("**Лупа на снимке.** Что двигать: метка, на которую навести лупу")
+    assert "[вся глава 08 — с теорией и заданиями](../08_interpretation.ipynb) · руководство, §9 ·" in page["links"]
     table = book.chapter_table_markdown(lang="ru")
     assert table.splitlines()[0] == "| тетрадь | источник | тема | интерактивные демонстрации |"
     assert "| руководство, §9 | дешифрирование аэроснимков" in table and "| статья 003 |" in table
@@ -103,9 +108,9 @@ def test_the_russian_chapter_table_follows_the_registry(tmp_path, monkeypatch):
     monkeypatch.setattr(book, "CHAPTERS", (*book.CHAPTERS, extra))
     english, russian = next(c for _, kind, place, c in book._generated(tmp_path)
                             if kind == "translation" and place == "chapters")
-    assert book._sync_translation(ru, "chapters", english, russian, write=False)
-    assert book._sync_translation(ru, "chapters", english, russian, write=True)
-    assert not book._sync_translation(ru, "chapters", english, russian, write=False)
+    assert prose.sync_block(ru, "chapters", english, russian, write=False)
+    assert prose.sync_block(ru, "chapters", english, russian, write=True)
+    assert not prose.sync_block(ru, "chapters", english, russian, write=False)
     block = {b.cell: b for b in prose.read_translations(ru)}["chapters"]
     assert block.key == prose.cell_key(english) and not block.todo
     assert ("| [`18_test_extra`](18_test_extra.ipynb) | руководство, §4 | смещение точек за рельеф | "

@@ -189,8 +189,15 @@ SEES = {
         'кронами ели, рядки и технологическая колея на поле, обочины и кюветы дороги, рельсы на балласте',
 }
 
-#: the lecture index's words
-LECTURES = {"whole chapter": "вся глава"}
+#: the lecture index's and the lecture pages' words
+LECTURES = {
+    "whole chapter": "вся глава",
+    "**{name}.** Move: {move}. The class sees: {sees}.": "**{name}.** Что двигать: {move}. Что видит аудитория: {sees}.",
+    "[← every lecture page](../{index}) · [the whole chapter {number}, with the theory and the tasks](../{notebook})"
+    " · {source} · the demos open on the guide's worked example (variant 00); **Reset** returns there.":
+        "[← все лекционные страницы](../{index}) · [вся глава {number} — с теорией и заданиями](../{notebook})"
+        " · {source} · демонстрации открываются на примере из руководства (вариант 00); **Сброс** возвращает к нему.",
+}
 
 #: how the registry names a source (``Chapter.source``), as templates
 SOURCES = {

@@ -113,40 +113,23 @@ def _is_number(x) -> bool:
 
 
 def _round_answer(a, x, how: str):
-    """Answer ``x`` of spec ``a`` rounded the way ``how`` says (numbers only; counts, verdicts, names unchanged)."""
+    """Answer ``x`` of spec ``a`` rounded the way ``how`` says (numbers only; counts, verdicts, names unchanged).
+
+    "4 digits" rounds wherever four significant digits are within the answer's tolerance whatever the digits
+    (:func:`aerophoto.tasks.rounding.four_digits`, the rule the hidden checks' allowances use); elsewhere the task
+    asks for more digits and the value is left as it is."""
     if a.kind not in ("value", "values") or a.integer:
         return x
-    if a.kind == "value":
-        if not _is_number(x):
-            return x
-        r = rounding.round_sig(float(x)) if how == "4 digits" else rounding.round_to(float(x), a.printed)
-        return float(r)
+    if a.kind == "value" and not _is_number(x):
+        return x
     arr = np.asarray(x, dtype=float)
-    r = rounding.round_sig(arr) if how == "4 digits" else rounding.round_to(arr, a.printed)
-    return [float(e) for e in np.ravel(r)]
-
-
-def _visible_ok(task, a, value, ref, slips, v) -> bool:
-    from aerophoto.course.verdict import VERDICTS, answer_call
-
-    kind, args, kw = answer_call(task, a, value, ref, slips, v)
-    kw = {**kw, "of_variant": None}
-    return VERDICTS[kind](*args, **kw).ok
+    r = rounding.four_digits(arr, a) if how == "4 digits" else rounding.round_to(arr, a.printed)
+    return float(r) if a.kind == "value" else [float(e) for e in np.ravel(r)]
 
 
 def rounded(task, v, ref: dict, how: str) -> dict:
-    """The reference ``ref`` of ``task`` rounded (``how``: "4 digits" or "printed").
-
-    "4 digits" leaves an answer unrounded where four significant digits fail its visible check (its task asks
-    for more)."""
-    out = {}
-    slips = {}
-    for a in task.spec:
-        x = _round_answer(a, ref[a.name], how)
-        if how == "4 digits" and x is not ref[a.name] and not _visible_ok(task, a, x, ref[a.name], slips, v):
-            x = ref[a.name]
-        out[a.name] = x
-    return out
+    """The reference ``ref`` of ``task`` rounded (``how``: "4 digits" or "printed")."""
+    return {a.name: _round_answer(a, ref[a.name], how) for a in task.spec}
 
 
 def forms(task, v) -> list[tuple[str, dict]]:

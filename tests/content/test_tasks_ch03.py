@@ -57,33 +57,6 @@ def test_the_answers_of_variant_00_are_the_guide_procedure_on_the_true_readings(
     assert abs(a1["dm_pct"][0]) > 0.5 and abs(a3["dm_pct"][0]) < 0.1
 
 
-@pytest.mark.parametrize("task_id", IDS)
-def test_the_reference_answers_pass_for_every_variant(task_id):
-    task = tasks.get(task_id)
-    for i in range(100):
-        v = variant_for_index(i)
-        right = task.answers(v)
-        assert set(right) == set(task.names)
-        g = score.grade_task(task_id, v, right)
-        assert g.passed and g.score == g.points == task.points, (i, g.checks)
-        assert any(hidden for *_, hidden in g.checks)  # every task has a hidden check
-
-
-@pytest.mark.parametrize("i", [0, 57])
-@pytest.mark.parametrize("task_id", IDS)
-def test_a_wrong_or_missing_answer_gets_nothing(task_id, i):
-    v = variant_for_index(i)
-    task = tasks.get(task_id)
-    right = task.answers(v)
-    first = task.names[0]
-    value = right[first]
-    bad = [x * 1.5 + 7.0 for x in value] if isinstance(value, list) else value * 1.5 + 7.0
-    wrong = score.grade_task(task_id, v, {**right, first: bad})
-    assert not wrong.visible_ok and wrong.score == 0.0 and first in wrong.first_failure
-    unanswered = score.grade_task(task_id, v, {})
-    assert unanswered.score == 0.0 and "no answer yet" in unanswered.first_failure
-
-
 # --------------------------------------------------------------------------- a careful student
 def _readings(sheet, rng, sigma=0.04):
     """A student's readings of a sheet: the truth with clicking errors, read to 0.1 mm (photo and plan)."""
@@ -182,15 +155,6 @@ def test_hidden_checks_catch_columns_that_do_not_follow_from_the_students_readin
     assert "l_сн from your x, y" in _hidden_failed("task-03-1", v, {**own["task-03-1"], "x_mm": "seventy"})
 
 
-def test_hidden_checks_hold_for_every_variant():
-    for i in range(100):
-        v = variant_for_index(i)
-        for task_id in IDS_03_04:
-            task = tasks.get(task_id)
-            for h in task.hidden(v, task.answers(v)):
-                assert score.hidden_ok(h)[0], (task_id, i, h)
-
-
 # --------------------------------------------------------------------------- what the student sees
 def test_the_check_cells_name_the_mistakes(capsys):
     v = variant_for_index(3)
@@ -226,28 +190,6 @@ def test_the_check_cells_name_the_mistakes(capsys):
     checks.check_task("task-03-2", v, **a2)
     assert "✓ Task 03.2 passed" in capsys.readouterr().out
     assert checks.passed("task-03-2")
-
-
-def test_every_slip_outside_the_tolerance_is_named_by_its_hint():
-    named = 0
-    for i in (0, 23, 57, 99):
-        v = variant_for_index(i)
-        for task_id in ("task-03-2", "task-04-1"):
-            task = tasks.get(task_id)
-            right = task.answers(v)
-            for name, hints in task.slips(v).items():
-                a = task.answer(name)
-                for hint, value in hints.items():
-                    tol = max(a.tol_abs or 0.0, (a.tol_rel or 0.0) * abs(right[name]))
-                    if value is None or abs(value - right[name]) <= tol:
-                        continue  # within the tolerance the slip is accepted (e.g. the plain mean of similar heights)
-                    assert str(round(right[name], 2)) not in hint
-                    with pytest.raises(checks.WrongAnswer) as exc:
-                        checks.check_task(task_id, v, **{**right, name: value})
-                    if "sign" not in str(exc.value):  # a slip that is the answer's negative is named as a sign
-                        assert hint in str(exc.value), (i, name, hint, str(exc.value))
-                    named += 1
-    assert named >= 20
 
 
 def test_inputs_are_the_students_lab_sheets():

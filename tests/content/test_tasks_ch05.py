@@ -125,14 +125,6 @@ def test_a_students_own_computation_passes(task_id):
         assert any(hidden for *_, hidden in g_.checks)
 
 
-def test_every_variant_works():
-    for i in range(100):
-        v = variant_for_index(i)
-        for task_id in ("task-05-1", "task-05-2"):
-            g_ = score.grade_task(task_id, v, tasks.answers(task_id, v))
-            assert g_.passed and g_.score == g_.points, (i, task_id, g_.checks)
-
-
 def test_the_answers_hold_together():
     a = lab05.answers_of(V3)
     t1, t2 = tasks.get("task-05-1"), tasks.get("task-05-2")
@@ -203,15 +195,6 @@ def test_the_design_scale_typed_for_every_m_i_is_named_where_it_is_told_apart():
     assert not g_.passed and "design scale" in g_.first_failure
     with pytest.raises(checks.WrongAnswer, match="design scale"):
         checks.check_task("task-05-2", V57, **{**ref, "m_i": [V57.m] * 4, "m_mean": V57.m})
-
-
-def test_malformed_answers_never_stop_the_grader():
-    for values in ({}, {"m_i": "twelve thousand", "m_mean": None}, {"l_mm": [1, 2], "m_mean": float("nan")},
-                   {"l_mm": [0, 0, 0, 0], "L_mm": [1, 1, 1, 1], "m_i": [1, 1, 1, 1], "m_mean": 1}):
-        g_ = score.grade_task("task-05-2", V3, values)
-        assert g_.score == 0 and not g_.passed
-    g_ = score.grade_task("task-05-1", V3, {"dI_mm": "x", "m_rms_mm": "x", "n_cutouts": 0, "seams_ok": "yes"})
-    assert g_.score == 0
 
 
 def test_photo_axis_towards():

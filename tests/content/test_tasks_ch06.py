@@ -31,15 +31,6 @@ def test_the_chapters_register_their_tasks():
     assert tasks.get("task-12-2").names == ("k_bases", "k_mean", "dk_max", "spread_ok")
 
 
-def test_every_variant_works():
-    for i in range(100):
-        v = variant_for_index(i)
-        for task_id in IDS:
-            g = score.grade_task(task_id, v, tasks.answers(task_id, v))
-            assert g.passed and g.score == g.points, (i, task_id, g.checks)
-            assert any(hidden for *_, hidden in g.checks)
-
-
 # --------------------------------------------------------------------------- what the student reads
 def test_the_inputs_are_plain_tables_not_the_answers():
     r = tasks.inputs("task-06-1", V57)
@@ -215,16 +206,3 @@ def test_the_tasks_are_seeded_by_the_variant():
     assert tasks.inputs("task-06-1", V57).rays.equals(tasks.inputs("task-06-1", variant("21-1157")).rays)
 
 
-def test_every_tasks_code_lives_in_its_own_module():
-    # the grader's probe (aerophoto.course.probe) flags a task whose answers, slips or hidden checks run code from
-    # another file than the task's module (or tasks/base.py) as "replaced in the kernel"
-    import sys
-
-    from aerophoto.tasks import base
-
-    for number in ("05", "06", "12"):
-        for t in tasks.chapter_tasks(number):
-            own = sys.modules[type(t).__module__].__file__
-            for name in ("answers", "slips", "hidden"):
-                code = getattr(type(t), name).__code__
-                assert code.co_filename in (own, base.__file__), (t.id, name, code.co_filename)

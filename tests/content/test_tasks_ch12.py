@@ -3,7 +3,6 @@ the hidden checks (the tests that hold chapters 06 and 12 together are in test_t
 
 import math
 
-import numpy as np
 import pytest
 
 from aerophoto import tasks
@@ -12,7 +11,7 @@ from aerophoto import triangulation as T
 from aerophoto.tasks import ch12
 from aerophoto.variants import variant_for_index
 
-from .conftest import _by_hand, _grade
+from .conftest import _by_hand
 
 VARIANTS = [variant_for_index(i) for i in (0, 1, 2, 17, 57, 99)]
 

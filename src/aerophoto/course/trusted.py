@@ -81,7 +81,8 @@ def saved_answers(nb) -> dict[str, dict]:
     the check was given them the last time it ran — numbers, strings, booleans, lists and dicts as plain Python
     data (:func:`.wire.decode_answers`); a value that was not plain data (an object, a long list) is an opaque
     string that no check accepts, and ``...`` stands for an answer not given yet.  Tasks whose check cell never
-    ran (or ran before this book version) are absent.  Nothing is executed; a malformed record is skipped.
+    ran (or ran before this book version) are absent, and so is a record that does not name its own check cell's
+    task.  Nothing is executed; a malformed record is skipped.
     The course report (:mod:`aerophoto.report`) reads answers that needed package code from here.
     """
     out: dict[str, dict] = {}
@@ -89,12 +90,12 @@ def saved_answers(nb) -> dict[str, dict]:
         records = answer_records(nb)
     except Exception:  # a malformed notebook: nothing recorded that can be read
         return out
-    for recs in records.values():
+    for gid, recs in records.items():
         try:
             task_id, values = decode_answers(recs[0])
         except Exception:
             continue
-        if task_id and task_id not in out:
+        if task_id and gid == f"{task_id}-check" and task_id not in out:  # the record of this very check cell
             out[task_id] = values
     return out
 

@@ -44,7 +44,7 @@ from ..labs.ch06 import CENTRE, POINT_ORDER, TIE_POINTS, StripReadings, shared_r
 from .base import Answer, Hidden, Method, Task
 from .rounding import allowance, consistency, numbers, round_to, verdict_check
 
-__all__ = ["RING", "RING_LABELS", "CORRECTION_POINTS", "TOL_COEFF", "triangles_from_rays", "coefficients_from_control",
+__all__ = ["RING", "RING_LABELS", "CORRECTION_POINTS", "TOL_COEFF", "TOL_MEAN", "TOL_SPREAD", "TOL_V_REL", "triangles_from_rays", "coefficients_from_control",
            "corrections_from_points", "ErrorTriangles", "RingCoefficients", "CorrectionsForReduction",
            "CorrectionsTask", "spread_checks", "rounded_coefficients", "corrections_with_written_k", "TASKS"]
 
@@ -55,6 +55,13 @@ RING_LABELS = tuple(f"{a}–{b}" for a, b in RING)
 CORRECTION_POINTS = tuple(n for n in POINT_ORDER if n != CENTRE)
 #: the coefficient is printed to three decimals: half a unit of the last digit
 TOL_COEFF = 0.0005
+#: the mean of k written to three decimals, itself written to three decimals (guide table 8): two roundings,
+#: and what writing the lengths to 0.01 mm moves k
+TOL_MEAN = 0.0011
+#: Δk from the written k and the written mean (guide table 12): the same, once more
+TOL_SPREAD = 0.0016
+#: a correction v = r·(k − 1) with the written k_mean: r·0.0011 on |k − 1| ≥ 0.03, 3.7 % at most
+TOL_V_REL = 0.04
 # =========================================================================== the work, from the readings
 def triangles_from_rays(rays: pd.DataFrame) -> pd.DataFrame:
     """The error triangle at every tie point from the table of rays: the three sides and the largest, mm.
@@ -182,7 +189,7 @@ class RingCoefficients(Task):
                labels=RING_LABELS, printed=0.01),
         Answer("k_bases", "four reduction coefficients k = l_осн/l_воск", kind="values", tol_abs=TOL_COEFF,
                labels=RING_LABELS, printed=0.001),
-        Answer("k_mean", "their mean", tol_abs=TOL_COEFF, printed=0.001),
+        Answer("k_mean", "their mean", tol_abs=TOL_MEAN, printed=0.001),
         Answer("spread_ok", "True if every |k − mean| is within its tolerance", kind="bool",
                hint="compare every |k − mean| with 0.003 (0.006 on a base shorter than 133 mm on the plan)."),
     )
@@ -269,7 +276,7 @@ class CorrectionsForReduction(CorrectionsTask):
         Answer("r_mm", "distances from centre 37, in the table's order (37 left out), mm", unit="mm", kind="values",
                tol_abs=0.05, labels=CORRECTION_POINTS, printed=0.01),
         Answer("v_mm", "corrections v = r·(k − 1), same order, mm", unit="mm", kind="values", tol_abs=0.05,
-               tol_rel=0.02, labels=CORRECTION_POINTS, printed=0.1),
+               tol_rel=TOL_V_REL, labels=CORRECTION_POINTS, printed=0.1),
     )
     methods = (Method("r from centre 37 on the common tracing, v = r·(k − 1) with k_mean of table 8",
                       "guide §7, table 9"),

@@ -20,7 +20,7 @@ import numpy as np
 from .. import triangulation as tri
 from .base import Answer, Hidden, Method, Task
 from ..labs.ch06 import POINT_ORDER, StripReadings, shared_readings, strip_readings
-from .ch06 import (TOL_COEFF, CorrectionsTask, coefficients_from_control, corrections_with_written_k,
+from .ch06 import (TOL_COEFF, TOL_MEAN, TOL_SPREAD, TOL_V_REL, CorrectionsTask, coefficients_from_control, corrections_with_written_k,
                    rounded_coefficients, spread_checks)
 from .rounding import allowance, numbers
 
@@ -168,8 +168,8 @@ class SpreadCheck(Task):
     spec = (
         Answer("k_bases", "six reduction coefficients, in table 12's order", kind="values", tol_abs=TOL_COEFF,
                labels=TABLE12_LABELS, printed=0.001),
-        Answer("k_mean", "their mean", tol_abs=TOL_COEFF, printed=0.001),
-        Answer("dk_max", "largest |Δk| = |k − mean| over the six bases", tol_abs=TOL_COEFF, printed=0.001),
+        Answer("k_mean", "their mean", tol_abs=TOL_MEAN, printed=0.001),
+        Answer("dk_max", "largest |Δk| = |k − mean| over the six bases", tol_abs=TOL_SPREAD, printed=0.001),
         Answer("spread_ok", "True if every base is within its tolerance", kind="bool",
                hint="compare every |Δk| with 0.003, or with 0.006 on a base shorter than 133 mm on the base"),
     )
@@ -216,7 +216,7 @@ class Table13(CorrectionsTask):
         Answer("r_mm", "distances from centre 38, in the table's order (38 left out), mm", unit="mm", kind="values",
                tol_abs=0.05, labels=CORRECTION_POINTS_13, printed=0.01),
         Answer("v_mm", "corrections v = r·(k − 1) with k of table 12, same order, mm", unit="mm", kind="values",
-               tol_abs=0.05, tol_rel=0.02, labels=CORRECTION_POINTS_13, printed=0.1),
+               tol_abs=0.05, tol_rel=TOL_V_REL, labels=CORRECTION_POINTS_13, printed=0.1),
     )
     methods = (Method("r from centre 38 on the common tracing, v = r·(k − 1) with the six-base mean of table 12",
                       "guide §13, table 13"),

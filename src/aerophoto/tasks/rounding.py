@@ -24,7 +24,8 @@ import numpy as np
 
 from .base import Hidden
 
-__all__ = ["SIG_DIGITS", "sig_unit", "allowance", "width", "source", "round_to", "round_sig", "written", "numbers",
+__all__ = ["SIG_DIGITS", "sig_unit", "allowance", "width", "source", "round_to", "round_sig", "four_digits", "written",
+           "numbers",
            "propagated",
            "consistency", "holds", "either", "count_range", "verdict_check"]
 
@@ -92,6 +93,16 @@ def round_sig(x, digits: int = SIG_DIGITS):
     """``x`` rounded to ``digits`` significant digits, element by element (0 stays 0)."""
     a = np.asarray(x, dtype=float)
     r = np.array([float(f"{e:.{digits}g}") for e in np.ravel(a)], dtype=float).reshape(a.shape)
+    return float(r) if r.ndim == 0 else r
+
+
+def four_digits(x, answer):
+    """``x`` (a value of answer spec ``answer``) written to four significant digits wherever that rounding is
+    within the answer's visible tolerance whatever the digits (half a unit of the 4th digit ≤ the tolerance),
+    element by element; elsewhere unchanged — the task asks for more digits there (a coordinate of 6 061 988 m)."""
+    a = np.asarray(x, dtype=float)
+    w = np.asarray(width(answer, a), dtype=float)
+    r = np.where(0.5 * np.asarray(sig_unit(a), dtype=float) <= w, np.asarray(round_sig(a), dtype=float), a)
     return float(r) if r.ndim == 0 else r
 
 

@@ -23,7 +23,8 @@ import numpy as np
 
 from .rounding import _TOL_REL, width
 
-__all__ = ["DOC", "DEVIATIONS", "HIDDEN", "width", "deviation", "measure_variant", "merge", "measure", "hidden_names",
+__all__ = ["DOC", "DEVIATIONS", "HIDDEN", "width", "deviation", "measure_variant", "merge", "combine", "measure",
+           "hidden_names",
            "render", "write", "main"]
 
 DOC = "docs/grading_table.md"
@@ -47,14 +48,14 @@ def deviation(answer, sub, ref) -> float | None:
 
 
 def _forms(task, v, ref) -> dict:
-    from .rounding import round_sig, round_to
+    from .rounding import four_digits, round_to
 
     out = {"4 significant digits": {}, "printed unit": {}}
     for a in task.spec:
         if width(a, ref[a.name]) is None:
             continue
         x = np.asarray(ref[a.name], dtype=float)
-        out["4 significant digits"][a.name] = round_sig(x)
+        out["4 significant digits"][a.name] = four_digits(x, a)
         out["printed unit"][a.name] = round_to(x, a.printed) if a.printed else x
     return out
 
@@ -105,18 +106,57 @@ def merge(into: dict, one: dict, variant: int) -> dict:
     return into
 
 
-def measure(variants=range(100), tasks=None) -> dict:
-    """:func:`measure_variant` of every task over ``variants``, merged: ``{task id: {answer: …}}``."""
-    from . import all_tasks
+def combine(a: dict, b: dict) -> dict:
+    """Two :func:`merge` results (of disjoint variants) as one (``a`` changed and returned)."""
+    for name, parts in b.items():
+        slot = a.setdefault(name, {"rounding": {}, "methods": {}, "slips": {}})
+        for part in ("rounding", "methods"):
+            for k, (d, i) in parts[part].items():
+                if k not in slot[part] or d > slot[part][k][0]:
+                    slot[part][k] = [d, i]
+        for k, (d, i, n) in parts["slips"].items():
+            old = slot["slips"].get(k)
+            slot["slips"][k] = [d, i, n] if old is None else ([d, i, old[2] + n] if d < old[0] else
+                                                               [old[0], old[1], old[2] + n])
+    return a
+
+
+def _measure_part(args) -> dict:
+    task_ids, variants = args
+    from . import get
     from ..variants import variant_for_index
 
-    out: dict = {}
-    for t in (tasks if tasks is not None else all_tasks()):
+    out = {}
+    for tid in task_ids:
         acc: dict = {}
         for i in variants:
-            merge(acc, measure_variant(t, variant_for_index(int(i))), int(i))
-        out[t.id] = {**acc, HIDDEN: hidden_names(t)}
+            merge(acc, measure_variant(get(tid), variant_for_index(int(i))), int(i))
+        out[tid] = acc
     return out
+
+
+def measure(variants=range(100), tasks=None, jobs: int = 1) -> dict:
+    """:func:`measure_variant` of every task over ``variants``, merged: ``{task id: {answer: …}}`` (``jobs``
+    processes share the variants)."""
+    from . import all_tasks
+
+    ids = [t.id for t in (tasks if tasks is not None else all_tasks())]
+    variants = [int(i) for i in variants]
+    parts = [(ids, variants[k::jobs]) for k in range(max(1, int(jobs)))]
+    if len(parts) == 1:
+        results = [_measure_part(parts[0])]
+    else:
+        import multiprocessing
+
+        with multiprocessing.get_context("fork").Pool(len(parts)) as pool:
+            results = pool.map(_measure_part, parts)
+    out: dict = {}
+    for r in results:
+        for tid, acc in r.items():
+            combine(out.setdefault(tid, {}), acc)
+    from . import get
+
+    return {tid: {**out[tid], HIDDEN: hidden_names(get(tid))} for tid in ids}
 
 
 HIDDEN = "(hidden checks)"
@@ -249,14 +289,15 @@ def write(root=None, *, measured: dict | None = None) -> Path:
 
 
 def main(argv=None) -> int:
-    """``python -m aerophoto.tasks``: rewrite docs/grading_table.md; ``--measure``: measure the deviations over all
-    100 variants first (minutes), writing docs/grading_deviations.json."""
+    """``python -m aerophoto.tasks``: rewrite docs/grading_table.md; ``--measure [--jobs N]``: measure the deviations
+    over all 100 variants first (minutes; N processes, 2 by default), writing docs/grading_deviations.json."""
     import sys
 
     args = sys.argv[1:] if argv is None else list(argv)
     root = _root()
     if "--measure" in args:
-        measured = measure()
+        jobs = int(args[args.index("--jobs") + 1]) if "--jobs" in args else 2
+        measured = measure(jobs=jobs)
         (root / DEVIATIONS).write_text(json.dumps(measured, ensure_ascii=False, indent=1, sort_keys=True) + "\n",
                                        encoding="utf-8")
         print("wrote", DEVIATIONS)

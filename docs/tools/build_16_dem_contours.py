@@ -202,12 +202,12 @@ pd.DataFrame(rows, columns=["reading", "RMS of DEM − SD-3, m", "DEM's own erro
 ## Live: contours of a sheet of the site
 
 One 1 km × 1 km sheet (a 1:2000 trapezoid) in the site's hills. The colour is the DEM's error, DEM − true
-height; blue lines are the contours drawn from the DEM, dashed grey the true ones. The demo opens on the
+height; black lines are the contours drawn from the DEM, dashed grey the true ones. The demo opens on the
 article's example: a 30 m grid, h = 0.5 m and node heights with the article's measured densification
 error, m_z = 12 cm.
 
 * **d, m** — the grid step; **structural lines** — add points along the thalwegs (green) and watersheds
-  (brown), d/2 apart, and triangulate grid and lines together;
+  (orange, dash-dotted), d/2 apart, and triangulate grid and lines together;
 * **m_z, m** — the RMS error of the node heights; **h, m** — the contour interval; **sheet** — hills, a
   valley side or the plain.
 """, id="demo-theory"),
@@ -238,7 +238,7 @@ h = 0.5 m):
 plots.static(ContourView(contour_frame()).fig,
              alt="A 1 km sheet of the site's hills with a regular DEM of 30 m step: the DEM's error as a "
                  "red-blue image of small patches within ±0.2 m, the contours drawn from the DEM every 0.5 m in "
-                 "blue wriggling around the dashed grey true contours, and the grid nodes as dots.")
+                 "black wriggling around the dashed grey true contours, and the grid nodes as small grey dots.")
 """, id="figure-demo"),
     md(r"""
 ## The grid step, the structural lines and the density

@@ -69,6 +69,7 @@ _SUBMODULES = (
     "course",
     "report",
     "lite",
+    "website",
 )
 """Every public module and subpackage, once (tests/course/test_chapter_key.py checks it against the files on disk)."""
 

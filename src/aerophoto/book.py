@@ -28,7 +28,7 @@ from importlib import metadata
 from pathlib import Path
 
 from . import __version__
-from .plots import use_style
+from .plots import register_table_display, use_style
 from .variants import Variant, variant, variant_for_index
 
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
@@ -199,7 +199,8 @@ CHAPTERS = (
             section=4, views=("measure",), demos=(
         Demo("demo-relief", "aerophoto.demos.displacement.ReliefDemo", "Displacement explorer, relief", "relief ±h, then α and f",
              "arrows radiate from the nadir n — outwards for hills, inwards for the valley; a longer lens at the "
-             "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "ArrowRight")),
+             # relief by PageUp (25 m): with the arrows at a fixed ×2 one 5 m step is a sub-pixel change at f = 150 mm
+             "same scale shortens them", (_F, _M, ("α, °", "ArrowRight"), ("relief ±h, m", "PageUp")),
              timed="relief ±h, m"),
     )),
     Chapter("04", "tilt_displacement", "tilt displacement", "смещения за угол наклона",
@@ -738,6 +739,7 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
         if saved:
             set_language(saved)
     use_style()
+    register_table_display()  # the package's tables and the guide's audits in the book's number format
     problems = check_installation()
     if problems:
         raise RuntimeError("aerophoto cannot run in this environment:\n- " + "\n- ".join(problems))

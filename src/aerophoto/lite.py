@@ -170,23 +170,28 @@ def tools_venv(deploy: Path, cache: Path, out=print) -> Path:
     return venv / "bin"
 
 
-def pyodide_core(deploy: Path, cache: Path, out=print) -> Path:
-    """Pyodide's runtime from npm (``npm ci`` with deploy/lite/package-lock.json); returns its folder."""
-    lock = deploy / "package-lock.json"
-    d = cache / f"npm-{_key(deploy / 'package.json', lock)}"
-    pkg = d / "node_modules" / "pyodide"
+def npm_ci(deploy: Path, cache: Path, *, what: str, out=print) -> Path:
+    """``npm ci`` of ``deploy``'s package.json and package-lock.json (npm checks every file's sha512) into the cache,
+    under the two files' digest, once; returns the cached folder (its ``node_modules/`` holds the packages)."""
+    d = cache / f"npm-{_key(deploy / 'package.json', deploy / 'package-lock.json')}"
     if not (d / ".aerophoto-complete").is_file():
         npm = shutil.which("npm")
         if npm is None:
-            raise LiteBuildError("npm is not installed (Pyodide's runtime comes from npm): apt-get install -y nodejs npm")
-        out(f"lite: Pyodide {PYODIDE_VERSION} runtime → {d} (npm ci: package-lock.json's sha512)")
+            raise LiteBuildError(f"npm is not installed ({what} comes from npm): apt-get install -y nodejs npm")
+        out(f"{what} → {d} (npm ci: package-lock.json's sha512)")
         shutil.rmtree(d, ignore_errors=True)
         d.mkdir(parents=True)
         shutil.copy2(deploy / "package.json", d)
-        shutil.copy2(lock, d)
+        shutil.copy2(deploy / "package-lock.json", d)
         _run([npm, "ci", "--ignore-scripts", "--no-audit", "--no-fund", "--loglevel=error"], cwd=d,
-             what="npm ci (Pyodide's runtime)")
+             what=f"npm ci ({what})")
         (d / ".aerophoto-complete").write_text("", encoding="utf-8")
+    return d
+
+
+def pyodide_core(deploy: Path, cache: Path, out=print) -> Path:
+    """Pyodide's runtime from npm (``npm ci`` with deploy/lite/package-lock.json); returns its folder."""
+    pkg = npm_ci(deploy, cache, what=f"lite: Pyodide {PYODIDE_VERSION} runtime", out=out) / "node_modules" / "pyodide"
     version = json.loads((pkg / "package.json").read_text(encoding="utf-8")).get("version")
     if version != PYODIDE_VERSION:
         raise LiteBuildError(f"npm installed pyodide {version}; the site needs {PYODIDE_VERSION} (do not move to "
@@ -443,11 +448,12 @@ def patch_comm_cancel(site: Path) -> dict:
                    "the patch requeues them, executes stay cancelled"}
 
 
-def _replace(out_dir: Path, new: Path) -> None:
-    """Put the freshly built site at ``out_dir``, removing an earlier build (never a folder that is not one)."""
+def _replace(out_dir: Path, new: Path, *, marker: str = MANIFEST, what: str = "an aerophoto lite site") -> None:
+    """Put the freshly built site at ``out_dir``, removing an earlier build — a folder with the ``marker`` file,
+    never a folder that is not one."""
     if out_dir.exists():
-        if not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / MANIFEST).is_file()):
-            raise LiteBuildError(f"{out_dir} exists and is not an aerophoto lite site: choose another --out")
+        if not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / marker).is_file()):
+            raise LiteBuildError(f"{out_dir} exists and is not {what}: choose another --out")
         shutil.rmtree(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     shutil.move(str(new), str(out_dir))
@@ -537,6 +543,8 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
 
     See the module's docstring for the inputs and their checks.  Raises :class:`LiteBuildError`.
     """
+    from .website import live
+
     t0 = time.monotonic()
     deploy = deploy_dir(root)
     root = deploy.parents[1]
@@ -575,6 +583,8 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
         contents = tmp / "contents"
         contents.mkdir()
         names = _contents(notebooks, contents, out)
+        names += live.russian_contents(contents, notebooks, out)  # the Russian book (aerophoto.website.live)
+        live.lecture_apps(contents)
         (lite_dir / "jupyter-lite.json").write_text(json.dumps(_lite_config(PRELOAD), indent=2) + "\n",
                                                     encoding="utf-8")
         (lite_dir / "overrides.json").write_text(json.dumps(SETTINGS, indent=2) + "\n", encoding="utf-8")
@@ -583,6 +593,7 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
         lock_files = {v["file_name"]: v["sha256"] for v in site_lock["packages"].values()}
         _check_site(site, lock_files)
         patches = [patch_comm_cancel(site)]
+        worker = live.cache_service_worker(site)  # the browser's cache on any static host
 
         files = _binaries(site, sources)
         size = sum(p.stat().st_size for p in site.rglob("*") if p.is_file())
@@ -599,6 +610,7 @@ def build(out_dir="_site", *, root=None, notebooks=None, cache=None, out=print) 
             "notebooks": names,
             "binaries": files,
             "patches": patches,
+            "service_worker": worker,
         }
         (site / MANIFEST).write_text(json.dumps(manifest, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
         _replace(out_dir, site)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import html as _html
+import re
 
 import matplotlib as mpl
 import numpy as np
@@ -36,8 +37,13 @@ __all__ = [
     "steady_title",
     "steady_limits",
     "html_table",
+    "html_subscripts",
+    "math_subscripts",
+    "finish_figure",
+    "register_table_display",
     "legend_html",
     "mark_points",
+    "move_onc",
     "photo_frame",
 ]
 
@@ -182,6 +188,7 @@ def static(fig, alt: str, *, dpi: int = 100) -> StaticFigure:
 
     if not str(alt).strip():
         raise ValueError("alt = '' is empty; describe what the figure shows (read aloud by screen readers)")
+    finish_figure(fig)  # the reader's language, the book's number format on the ticks, subscripts set
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
     plt.close(fig)
@@ -372,41 +379,168 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL) -> bool:
     return True
 
 
-def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", notes=None, highlight=None) -> str:
-    """Render a DataFrame as compact, projector-friendly HTML for an HTML widget.
+#: a symbol with a subscript in a label: p_x, m_z, λ_t, h_c, m_ЦМР, h_{max} (not words joined by underscores)
+_SUBSCRIPT = re.compile(r"(?<![\w\\$])([A-Za-zα-ωΑ-ΩΔ])_(\{[^}]{1,10}\}|[A-Za-z0-9α-ωА-Яа-яЁё.]{1,8}?)"
+                        r"(?=[\s,;:()/·=+−–\-²³′″]|$)")
+#: mathtext written by :func:`math_subscripts` (read back by :func:`html_subscripts`)
+_MATH_SUB = re.compile(r"\$([A-Za-zα-ωΑ-ΩΔ])_\{([^}]{1,10})\}\$")
 
-    ``highlight`` is an optional boolean DataFrame/array of the same shape:
-    True cells are shaded (e.g. a tolerance exceeded).  ``notes`` is a list of
-    strings printed under the table.
+
+def html_subscripts(text: str) -> str:
+    """Escape ``text`` for HTML with its symbols' subscripts as subscripts: ``p_x, mm`` → ``p<sub>x</sub>, mm``
+    (also ``$p_{x}$`` from :func:`math_subscripts`)."""
+    out = _MATH_SUB.sub(lambda m: f"{m.group(1)}_{{{m.group(2)}}}", str(text))
+    out = _html.escape(out)
+    return _SUBSCRIPT.sub(lambda m: f"{m.group(1)}<sub>{m.group(2).strip('{}')}</sub>", out)
+
+
+def math_subscripts(text):
+    """A figure text with its symbols' subscripts in mathtext: ``p_x, mm`` → ``$p_{x}$, mm`` (matplotlib sets the
+    subscript); a text already holding ``$`` and anything that is not a str are returned unchanged."""
+    if not isinstance(text, str) or "$" in text or "_" not in text:
+        return text
+    return _SUBSCRIPT.sub(lambda m: f"${m.group(1)}_{{{m.group(2).strip('{}')}}}$", text)
+
+
+def finish_figure(fig) -> None:
+    """What every figure of the book gets once it is built: its fixed texts in the reader's language
+    (:func:`aerophoto.i18n.translate_figure`), tick labels in the book's number format
+    (:func:`aerophoto.i18n.numfmt.localise_ticks`) and symbols' subscripts set (:func:`math_subscripts`).
+    :class:`aerophoto.widgets.LiveDemo` and :func:`static` call it; calling it twice changes nothing more."""
+    from .i18n import translate_figure
+    from .i18n.numfmt import localise_ticks
+
+    if fig is None:
+        return
+    translate_figure(fig)
+    localise_ticks(fig)
+    for art in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "set_text")):
+        s = art.get_text()
+        new = math_subscripts(s)
+        if new != s:
+            art.set_text(new)
+
+
+def _cell_format(spec, v, lang):
+    """One real number of a table by its column's or row's ``spec``: decimals (int), ``"count"``, ``"scale"``, a
+    ``str.format`` spec (``"{:.3g}"``) or a callable."""
+    from .i18n.numfmt import fmt_count, fmt_number, fmt_spec
+
+    if callable(spec):
+        return spec(v)
+    if isinstance(spec, bool):
+        raise ValueError(f"precision = {spec!r} is not a precision; expected decimals, 'count', 'scale' or a spec")
+    if isinstance(spec, int):
+        return fmt_number(v, spec, lang=lang)
+    if spec == "count":
+        return fmt_count(round(float(v)), lang=lang)
+    if spec == "scale":
+        return fmt_number(round(float(v)), 0, lang=lang)
+    return fmt_spec(v, spec, lang=lang)
+
+
+def html_table(df, *, caption: str = "", float_format: str = "{:.4g}", precision=None, notes=None,
+               highlight=None) -> str:
+    """Render a DataFrame as compact, projector-friendly HTML for an HTML widget, in the book's number format.
+
+    Numbers follow :mod:`aerophoto.i18n.numfmt` (the reader's decimal mark, ``12 043``, a true minus, never
+    ``−0.00``): a whole-number cell (an int, or a float in an integer column) is a count; a real number takes
+    ``precision`` — a dict from a column's or a row's label to decimals (``2``), ``"count"``, ``"scale"`` or a
+    ``str.format`` spec (a row's label wins over its column's), or one int for every real cell — else
+    ``float_format`` (``"{:.4g}"``: 4 significant digits).  A row whose ``unit`` is ``"1:"`` is a scale
+    (``1:12 000``).  Text is translated, a number written in it by Python rewritten (``-0.00`` → ``0.00``), and
+    symbols' subscripts set (``p_x`` → p<sub>x</sub>); a ``unit`` column's units are the reader's (m → м).
+    ``highlight`` is an optional boolean DataFrame/array of the same shape: True cells are shaded (e.g. a
+    tolerance exceeded).  ``notes`` is a list of strings printed under the table.
     """
-    from .i18n import translate as _tr  # the reader's language (aerophoto.i18n); English unchanged
+    import pandas as pd
 
-    def fmt(v):
+    from .i18n import get_language, translate_unit, translate_units_in
+    from .i18n import translate as _tr  # the reader's language (aerophoto.i18n); English unchanged
+    from .i18n.numfmt import fmt_count, fmt_text, fmt_value
+
+    lang = get_language()
+    rules = precision if isinstance(precision, dict) else {}
+    every = precision if isinstance(precision, int) and not isinstance(precision, bool) else None
+    cols = [str(c) for c in df.columns]
+    unit_col = next((j for j, c in enumerate(cols) if c.strip().lower() in ("unit", "units")), None)
+    int_col = [pd.api.types.is_integer_dtype(df.iloc[:, j]) for j in range(df.shape[1])]
+
+    def fmt(v, row, j):
+        if isinstance(v, str):
+            # a unit column's units are the tasks' (m → м; a lone "m" elsewhere may be a point's name)
+            shown = translate_unit(v) if j == unit_col and translate_unit(v) != v else _tr(v)
+            return html_subscripts(translate_units_in(fmt_text(shown, lang=lang)))
+        if v is None or isinstance(v, (bool, np.bool_)):
+            return _html.escape(fmt_value(v, lang=lang))
+        if isinstance(v, (int, np.integer)):
+            return fmt_count(v, lang=lang)
         if isinstance(v, (float, np.floating)):
             if np.isnan(v):
                 return "—"
-            return float_format.format(v)
-        return _html.escape(_tr(str(v)))
+            spec = rules.get(row, rules.get(cols[j], every))
+            if spec is None and unit_col is not None and str(df.iat[ri, unit_col]) == "1:":
+                spec = "scale"
+            if spec is None and int_col[j] and float(v).is_integer():
+                spec = "count"
+            return _html.escape(_cell_format(float_format if spec is None else spec, v, lang))
+        return html_subscripts(translate_units_in(fmt_text(_tr(str(v)), lang=lang)))
 
     hl = None if highlight is None else np.asarray(highlight, dtype=bool)
-    head = "".join(f"<th>{_html.escape(_tr(str(c)))}</th>" for c in df.columns)
-    index_name = _html.escape(_tr(str(df.index.name or "")))
+    head = "".join(f"<th>{html_subscripts(_tr(c))}</th>" for c in cols)
+    index_name = html_subscripts(_tr(str(df.index.name or "")))
     rows = []
-    for i, (idx, row) in enumerate(df.iterrows()):
+    for ri in range(len(df)):
+        label = str(df.index[ri])
         cells = []
-        for j, v in enumerate(row.values):
-            style = ' style="background:#F0E442"' if hl is not None and hl[i, j] else ""
-            cells.append(f"<td{style}>{fmt(v)}</td>")
-        rows.append(f"<tr><th>{_html.escape(_tr(str(idx)))}</th>{''.join(cells)}</tr>")
-    cap = f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{_html.escape(_tr(caption))}</caption>" if caption else ""
+        for j in range(df.shape[1]):
+            style = ' style="background:#F0E442"' if hl is not None and hl[ri, j] else ""
+            cells.append(f"<td{style}>{fmt(df.iat[ri, j], label, j)}</td>")
+        rows.append(f"<tr><th>{html_subscripts(fmt_text(_tr(label), lang=lang))}</th>{''.join(cells)}</tr>")
+    cap = (f"<caption style='caption-side:top;font-weight:bold;text-align:left'>{html_subscripts(_tr(caption))}"
+           "</caption>") if caption else ""
     foot = ""
     if notes:
-        foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(f"<li>{_html.escape(_tr(n))}</li>" for n in notes) + "</ul>"
+        foot = "<ul style='margin:4px 0 0 16px;padding:0'>" + "".join(
+            f"<li>{html_subscripts(translate_units_in(fmt_text(_tr(n), lang=lang)))}</li>" for n in notes) + "</ul>"
     return (
         "<div class='aerophoto-table' style='font-size:15px'>"
         "<table style='border-collapse:collapse' border='1' cellpadding='3'>"
         f"{cap}<thead><tr><th>{index_name}</th>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>{foot}</div>"
     )
+
+
+def register_table_display() -> bool:
+    """Show the package's tables in a notebook in the book's format: a DataFrame marked
+    ``df.attrs["aerophoto"]`` (``Variant.table()``) through :func:`html_table`, a guide's audit
+    (:class:`aerophoto.guide.Audit`) with its numbers by :mod:`aerophoto.i18n.numfmt`; every other DataFrame as
+    pandas shows it.  :func:`aerophoto.setup` calls it; returns False outside IPython."""
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover - IPython is a dependency of ipywidgets
+        return False
+    shell = get_ipython()
+    if shell is None:
+        return False
+    import pandas as pd
+
+    from .guide.audit import Audit, render
+
+    def frame_html(df):
+        meta = df.attrs.get("aerophoto") if hasattr(df, "attrs") else None
+        if not isinstance(meta, dict):
+            return df._repr_html_()
+        return html_table(df, caption=meta.get("caption", ""), precision=meta.get("precision"))
+
+    def audit_html(audit):
+        from .i18n.numfmt import fmt_text
+
+        return render(audit, number=lambda text: fmt_text(text, lang="en"))
+
+    html = shell.display_formatter.formatters["text/html"]
+    html.for_type(pd.DataFrame, frame_html)
+    html.for_type(Audit, audit_html)
+    return True
 
 
 _MARKER_GLYPH = {"o": "●", "s": "■", "^": "▲", "v": "▼", "D": "◆", "+": "+", "x": "×", "*": "★", ".": "•"}
@@ -448,6 +582,9 @@ def legend_html(ax, *, remove: bool = True) -> str:
                     glyph = _MARKER_GLYPH.get(marker, "●")
                     if h.get_markerfacecolor() in ("none", "None"):
                         glyph = {"●": "○", "■": "□", "▲": "△", "▼": "▽", "◆": "◇"}.get(glyph, glyph)
+                        colour = to_hex(h.get_markeredgecolor())  # an open marker shows its edge's colour
+                    else:
+                        colour = to_hex(h.get_markerfacecolor())
                 elif h.get_linestyle() in ("--", "dashed", ":", "dotted", "-.", "dashdot"):
                     glyph = "┅" if h.get_linestyle() in (":", "dotted") else "╍"
             else:
@@ -461,7 +598,7 @@ def legend_html(ax, *, remove: bool = True) -> str:
         except (TypeError, ValueError):
             pass
         items.append(f"<span style='white-space:nowrap;margin-right:12px'><span style='color:{colour};{style}"
-                     f"font-size:17px'>{glyph}</span> {_html.escape(label)}</span> ")
+                     f"font-size:17px'>{glyph}</span> {html_subscripts(label)}</span> ")
     if not items:
         return ""
     return f"<div class='aerophoto-legend' style='font-size:14px;line-height:1.6;margin:4px 0'>{''.join(items)}</div>"
@@ -476,6 +613,24 @@ def photo_frame(ax, camera, *, color=None, label="photo frame", lw=1.5):
     ax.set_xlabel("x, mm")
     ax.set_ylabel("y, mm")
     return line
+
+
+def move_onc(marks: dict, o, n, c, u, *, offset_pt: float = 14.0) -> None:
+    """Move the o, n, c marks of :func:`mark_points` to the photo points ``o``, ``n``, ``c`` (mm) with their labels
+    fanned out so that they never overlap, at any tilt: the three lie on the principal vertical (unit direction
+    ``u``, from o towards n), so o's label goes behind o, n's beyond n and c's across the line (α = 0: all three
+    coincide, and the labels still stand apart)."""
+    o, n, c = (np.asarray(p, float) for p in (o, n, c))
+    d = n - o
+    ahead = d / np.hypot(*d) if np.hypot(*d) > 1e-9 else np.asarray(u, float) / max(np.hypot(*u), 1e-12)
+    across = np.array([-ahead[1], ahead[0]])
+    for name, pt, way in (("o", o, -ahead), ("n", n, ahead), ("c", c, across)):
+        marker, label = marks[name]
+        marker.set_data([pt[0]], [pt[1]])
+        label.xy = (pt[0], pt[1])
+        label.set_horizontalalignment("center")
+        label.set_verticalalignment("center")
+        label.xyann = (float(offset_pt * way[0]), float(offset_pt * way[1]))
 
 
 def mark_points(ax, points: dict, *, size=9):

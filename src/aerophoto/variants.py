@@ -86,8 +86,8 @@ class Variant:
             ("Aircraft speed W", "km/h", self.W_kmh),
             ("Frame size", "cm", f"{self.frame_mm / 10:g}×{self.frame_mm / 10:g}"),
             ("Focal length f", "mm", self.f_mm),
-            ("Photo scale 1/m", "", f"1:{self.m:,.0f}".replace(",", " ")),
-            ("Photoplan scale 1/M", "", f"1:{self.M:,.0f}".replace(",", " ")),
+            ("Photo scale 1/m", "1:", self.m),
+            ("Photoplan scale 1/M", "1:", self.M),
             ("Forward overlap p_x", "%", self.px_percent),
             ("Side overlap p_y", "%", self.py_percent),
             ("Area size L_x (along the parallel)", "km", self.Lx_km),
@@ -97,7 +97,13 @@ class Variant:
             ("Tilt α", "°", self.alpha_deg),
             ("Swing λ", "°", self.lambda_deg),
         ]
-        return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
+        # object dtype: a count stays whole beside the lengths; the mark has a notebook show the table in the book's
+        # number format (aerophoto.plots.register_table_display: 1:12 000, 1200, decimal comma in Russian)
+        df = pd.DataFrame(rows, columns=["quantity", "unit", "value"], dtype=object).set_index("quantity")
+        df.attrs["aerophoto"] = {"caption": "The variant (guide §1)",
+                                 "precision": {"Area size L_x (along the parallel)": "{:.4g}",
+                                               "Area size L_y (along the meridian)": "{:.4g}"}}
+        return df
 
 
 def index_from_record_book(record_book) -> int:

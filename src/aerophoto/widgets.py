@@ -73,7 +73,9 @@ def pending_html(message: str = PREVIEW_NOTE) -> str:
     """
     from .i18n import t
 
-    return f"<span class='aerophoto-pending' style='color:#777777'>{t(message)}</span>"
+    # one line that never wraps (the status line keeps its height: the table under it does not jump)
+    return (f"<span class='aerophoto-pending' style='color:#777777;display:block;white-space:nowrap;"
+            f"overflow:hidden;text-overflow:ellipsis'>{t(message)}</span>")
 
 
 #: seconds a demo's table waits after its picture in a running kernel (:func:`table_after_picture`)
@@ -97,17 +99,23 @@ def _after_picture(demo, slot: str, fill) -> None:
     """Call ``fill()`` :data:`TABLE_DELAY_S` from now in a running kernel (at once without an event loop).
 
     ``slot`` names the attribute of ``demo`` that holds the pending call: a newer call for the same slot
-    replaces a pending one, and :func:`_drop_after_picture` drops it.  The demos' tables and status lines use it.
+    fills the newest content but keeps the pending call's time (a stream of moves faster than the delay would
+    otherwise hold the table back until the slider stops: the figure saying 196 nodes, the table 1 225), and
+    :func:`_drop_after_picture` drops it.  The demos' tables and status lines use it.
     """
-    _drop_after_picture(demo, slot)
     loop = running_loop()
     if loop is None:
+        _drop_after_picture(demo, slot)
         fill()
+        return
+    setattr(demo, slot + "_fill", fill)
+    pending = getattr(demo, slot, None)
+    if pending is not None and not pending.cancelled():
         return
 
     def run():
         setattr(demo, slot, None)
-        fill()
+        getattr(demo, slot + "_fill")()
 
     setattr(demo, slot, loop.call_later(TABLE_DELAY_S, run))
 
@@ -278,7 +286,7 @@ class LiveDemo:
     def __init__(self, **values):
         import ipywidgets as w
 
-        from .i18n import translate_figure
+        from .plots import finish_figure
 
         self._params = {p.name: p for p in self.params}
         self.values = {p.name: p.default for p in self.params}
@@ -286,13 +294,14 @@ class LiveDemo:
             p.validate(p.default)
         self.values.update(self._checked(values))
         self.table = w.HTML()
-        self.status = w.HTML()
+        # a fixed height for the one-line status: a note that comes and goes never moves the table under it
+        self.status = w.HTML(layout=w.Layout(min_height="24px"))
         self.n_updates = 0
         self._controls = {}
         self._syncing = False
         self._layout = None
         self.build()
-        translate_figure(self.fig)  # titles, axis labels, legends in the reader's language (aerophoto.i18n)
+        finish_figure(self.fig)  # texts in the reader's language, ticks in the book's number format, subscripts
         from .plots import fast_frames, freeze_layout, legend_html
 
         #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)

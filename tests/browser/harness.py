@@ -455,6 +455,11 @@ def new_page(browser, *, instrument: bool = True):
 def open_lab_notebook(page, server: LabServer, notebook: str) -> None:
     """Open ``notebook`` in a fresh workspace and wait until its kernel is ready."""
     page.goto(server.lab_url(notebook), wait_until="domcontentloaded")
+    wait_lab_notebook(page, notebook)
+
+
+def wait_lab_notebook(page, notebook: str) -> None:
+    """Wait until the page's JupyterLab shows ``notebook`` with its kernel idle; tag its cells with their ids."""
     page.wait_for_function(
         """(name) => {
           const app = window.jupyterapp; if (!app || !app.shell) return false;

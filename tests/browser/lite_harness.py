@@ -184,6 +184,31 @@ def launch(playwright, trap: EgressTrap, *, headless: bool = True):
     return playwright.chromium.launch(executable_path=path, headless=headless, args=args)
 
 
+def assert_no_egress(trap: "EgressTrap", requests: "RequestLog", where: str) -> None:
+    """Fail (AssertionError) when a request left the loopback address or reached the trap for another host."""
+    assert not requests.outside(), f"{where}: requests left the loopback address: {requests.outside()[:5]}"
+    assert not trap.from_the_site(), f"{where}: requests for other hosts reached the trap: {trap.from_the_site()[:5]}"
+
+
+@contextlib.contextmanager
+def trapped_chromium(site: Path):
+    """``(server, trap, browser)``: ``site`` served on 127.0.0.1, and chromium whose every non-loopback request goes
+    to the trap; everything is stopped on leaving."""
+    from playwright.sync_api import sync_playwright
+
+    trap = EgressTrap().start()
+    server = SiteServer(site).start()
+    pw = sync_playwright().start()
+    browser = launch(pw, trap)
+    try:
+        yield server, trap, browser
+    finally:
+        browser.close()
+        pw.stop()
+        server.stop()
+        trap.stop()
+
+
 @dataclass
 class RequestLog:
     """Every request Playwright sees in a context (pages, workers): URL, and whether it left the loopback."""

@@ -19,6 +19,8 @@ import json
 
 import pytest
 
+from aerophoto.i18n.numfmt import parse_number
+
 from aerophoto.book import lecture_page
 
 from . import harness as h
@@ -113,7 +115,7 @@ def test_lecture_page_shows_each_demo_on_one_screen(chapter, voila_remembering, 
         _inside(probe.table().bounding_box(), w, "table")
         for label in probe.slider_labels():
             value, step = starts[k][label]
-            shown = float(probe.readout(label).replace("−", "-").replace(" ", "").replace(",", ""))
+            shown = parse_number(probe.readout(label).replace(",", ""), lang="en")  # the slider's own readout
             assert abs(shown - value) <= step / 2 + 1e-9, (
                 f"{w}: {label} starts at {shown}, not at {value:g} (the guide's example)")
     text = page.locator("body").inner_text()

@@ -40,27 +40,16 @@ def lite_site(tmp_path_factory):
 def trapped(lite_site):
     """(site server, egress trap, chromium whose non-loopback requests all go to the trap)."""
     try:
-        from playwright.sync_api import sync_playwright
+        import playwright.sync_api  # noqa: F401
     except ImportError:
         pytest.fail("Playwright for Python is not installed (environment.txt)")
     if h.chromium_path() is None:
         pytest.fail(f"chromium is not installed: {h.INSTALL_HINT}")
-    trap = L.EgressTrap().start()
-    server = L.SiteServer(lite_site).start()
-    pw = sync_playwright().start()
-    browser = L.launch(pw, trap)
-    try:
-        yield server, trap, browser
-    finally:
-        browser.close()
-        pw.stop()
-        server.stop()
-        trap.stop()
+    with L.trapped_chromium(lite_site) as trapped:
+        yield trapped
 
 
-def _no_egress(trap, requests, where):
-    assert not requests.outside(), f"{where}: requests left the loopback address: {requests.outside()[:5]}"
-    assert not trap.from_the_site(), f"{where}: requests for other hosts reached the trap: {trap.from_the_site()[:5]}"
+_no_egress = L.assert_no_egress
 
 
 # --------------------------------------------------------------------------------------------- the build

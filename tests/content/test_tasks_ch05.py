@@ -211,7 +211,9 @@ def test_the_measuring_figure_shows_the_work_not_the_answers():
     ax = fig.axes[0]
     texts = [t.get_text() for t in ax.texts] + [ax.get_title()]
     assert {"36a", "36b", "39a", "39b", "cut 36/37"} <= set(texts)
-    assert "17 700" in ax.get_title()  # the design scale: an input
+    from aerophoto.i18n.numfmt import numbers_in
+
+    assert 17700 in numbers_in(ax.get_title())  # the design scale: an input (1:17 700, the book's format)
     a = lab05.answers_of(V57)
     shown = " ".join(texts)
     assert f"{a['m_mean']:.0f}" not in shown and "ΔI" not in shown and "m =" not in shown
@@ -223,8 +225,10 @@ def test_student_sheet_is_signed_with_the_computed_scale_on_a3(tmp_path, capsys)
     fig = student_sheet(V57, "Ivanova A.", year=2025)
     assert fig.aerophoto_paper == "A3"
     texts = " ".join(t.get_text() for t in fig.texts)
-    m_txt = f"{int(round(lab05.answers_of(V57)['m_mean'] / 100) * 100):,}".replace(",", " ")
-    assert f"М 1:{m_txt}" in texts and "Ivanova A., record book 19-0457" in texts and "2025" in texts
+    from aerophoto.i18n.numfmt import fmt_scale
+
+    m_txt = fmt_scale(int(round(lab05.answers_of(V57)['m_mean'] / 100) * 100))
+    assert f"М {m_txt}" in texts and "Ivanova A., record book 19-0457" in texts and "2025" in texts
     assert "ФОТОСХЕМА" in texts and "Проверил" in texts
     # every variant's sheet fits A3 at true size, the largest variant too
     for i in (0, 17, 77, 99):

@@ -31,7 +31,8 @@ LIMIT_S = 30.0
 BAD = (math.nan, math.inf, -math.inf, 1e30)
 SKIP_MODULES = ("aerophoto.course", "aerophoto.demos", "aerophoto.widgets", "aerophoto.nbtools", "aerophoto.book",
                 "aerophoto.checks", "aerophoto.plots", "aerophoto.i18n", "aerophoto.site.build", "aerophoto.site.paint",
-                "aerophoto.site.catalogue", "aerophoto.tasks", "aerophoto.guide")
+                "aerophoto.site.catalogue", "aerophoto.tasks", "aerophoto.guide",
+                "aerophoto.website")  # the web book's build runs for minutes by design (tests/course/test_website.py)
 GUESSES = (1.0, 10.0, 100.0, 1000.0, 0.5, 3, 0.1)
 
 

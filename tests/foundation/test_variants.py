@@ -39,7 +39,11 @@ def test_the_variant_table_and_dict():
     t = v.table()
     assert t.shape == (15, 2) and list(t.columns) == ["unit", "value"]
     assert t.loc["Focal length f", "value"] == 670.0
-    assert t.loc["Photo scale 1/m", "value"] == "1:17 700"
+    assert t.loc["Photo scale 1/m", "value"] == 17700.0 and t.loc["Photo scale 1/m", "unit"] == "1:"
+    from aerophoto.plots import html_table
+
+    # shown in the book's format: unit "1:" beside 17 700 with a narrow no-break space (numfmt)
+    assert "<td>1:</td><td>17\u202f700</td>" in html_table(t, precision=t.attrs["aerophoto"].get("precision"))
     assert t.loc["Frame size", "value"] == "18×18"
     assert v.as_dict()["lambda_deg"] == -3.0 and len(v.as_dict()) == 15
 

@@ -36,7 +36,9 @@ def titles():
 
 def test_titles_print_the_misses(titles):
     miss = pc.grid_node_misses(alpha_deg=10.0, n=4)
-    got = [float(re.search(r"largest node miss " + NUM, t).group(1)) for t in titles]
+    from aerophoto.i18n.numfmt import parse_number
+
+    got = [parse_number(re.search(r"largest node miss " + NUM, t).group(1)) for t in titles]
     assert got == [round(miss["central"], 2), round(miss["proportional"], 2)]
 
 

@@ -74,10 +74,12 @@ _DATA_URI = re.compile(r"data:[\w/+.-]+;base64,[A-Za-z0-9+/=]+")
 
 
 def _to_float(token: str) -> float | None:
-    t = token.replace("−", "-").replace("\u00a0", "").replace("\u2009", "").replace("\u202f", "")
-    t = t.replace(" ", "").replace(",", "")
+    """A number read off the screen by the book's reader (:func:`aerophoto.i18n.numfmt.parse_number`), an English
+    grouping comma dropped first ("5,100" is read as 5100 here; the other reading comes from _SIMPLE)."""
+    from aerophoto.i18n.numfmt import parse_number
+
     try:
-        x = float(t)
+        x = parse_number(token.replace(",", ""), lang="en")
     except ValueError:
         return None
     return x if math.isfinite(x) else None

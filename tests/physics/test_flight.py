@@ -302,7 +302,9 @@ def test_demo_set_moves_artists(demo):
     assert len(after) == demo.view.shown != len(before_centres) and demo.view.shown <= p.N
     assert demo.view.ax_plan.get_title() != before_title and str(p.K) in demo.view.ax_plan.get_title()
     assert not np.allclose(demo.view.z_fp.get_paths()[0].vertices[:4], np.array(before_fp)[:4])
-    assert f"{p.N:,}".replace(",", " ") in demo.table.value
+    from aerophoto.i18n.numfmt import fmt_count, numbers_in
+
+    assert fmt_count(p.N) in demo.table.value and p.N in numbers_in(demo.table.value)
     demo.draw(force=True)
     demo.reset()
     assert demo.result.plan == flight.guide_example()

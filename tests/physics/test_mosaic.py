@@ -342,10 +342,12 @@ def test_demo_renders_full_resolution_from_code_and_preview_on_request():
     fs = d.result.fs
     assert d.view.points.get_offsets().shape == (fs.dI_mm.size, 2)
     assert np.allclose(d.view.tops.get_offsets()[:, 1], fs.dI_mm)
-    assert "preview" in d.view.title.get_text()
+    preview_title = d.view.title.get_text()
     assert d.view.image.get_array().shape == d.result.image.shape
     d.set(relief_m=80.0)
-    assert not d.result.preview and "full resolution" in d.view.title.get_text()
+    # the resolution is never in the title (issue 33: calm while sliding): the same title for both pictures
+    assert not d.result.preview and d.view.title.get_text() == preview_title
+    assert "preview" not in preview_title and "resolution" not in preview_title
     assert "Mismatches by cut" in d.table.value
     with pytest.raises(ValueError, match="relief_m"):
         d.set(relief_m=500)
@@ -508,9 +510,12 @@ def test_correction_sheet_writes_every_mismatch():
     fs, _ = _fotoschema(relief_m=120.0)
     ax = correction_sheet(fs)
     texts = [t.get_text() for t in ax.texts]
+    from aerophoto.i18n.numfmt import fmt_number, fmt_signed, numbers_in
+
     for d in fs.dI_mm:
-        assert f"{d:+.2f}" in texts
-    assert f"m = {fs.rms_mm:.2f} mm" in ax.get_title()
+        assert fmt_signed(d, 2) in texts  # the book's format: +0.12, −0.25 (a true minus)
+    assert f"m = {fmt_number(fs.rms_mm, 2)} mm" in ax.get_title()
+    assert round(fs.rms_mm, 2) in numbers_in(ax.get_title())
 
 
 def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
@@ -527,7 +532,9 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     fig = sheet_figure(fs, img, ext, made_by="Student S.", checked_by="Teacher T.", year=2025)
     texts = " ".join(t.get_text() for t in fig.texts)
     assert "ФОТОСХЕМА" in texts and "Photo mosaic" in texts
-    assert f"М 1:{fs.scale.m_rounded:,}".replace(",", " ") in texts
+    from aerophoto.i18n.numfmt import fmt_scale
+
+    assert f"М {fmt_scale(fs.scale.m_rounded)}" in texts  # the book's format: 1:12 000 with U+202F
     assert "2025" in texts and "Student S." in texts and "Teacher T." in texts
     paper = fig.aerophoto_paper
     w_mm, h_mm = PAPER_MM[paper]
@@ -554,7 +561,7 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     assert len(inked) == 2 and all(np.all(np.abs(np.abs(y) - 63.0) < 1.0) for y in inked)
     # signed with the scale the student computed, when given
     fig2 = sheet_figure(fs, img, ext, scale_m=12345.0)
-    assert "М 1:12 300" in " ".join(t.get_text() for t in fig2.texts)
+    assert "М 1:12\u202f300" in " ".join(t.get_text() for t in fig2.texts)
     # never overwrite silently
     with pytest.raises(FileExistsError, match="sheet.png"):
         export_sheet(fig, tmp_path / "out", "sheet")

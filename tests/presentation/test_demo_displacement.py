@@ -131,7 +131,10 @@ def test_table_and_widget():
     html = demo.table.value
     assert "max |δα| exact" in html and "arrows drawn lengthened" in html and "isocentre" in html
     s = demo.result.field.summary()
-    assert f"{s['H_m']:,.2f}" in html
+    from aerophoto.i18n.numfmt import fmt_number, numbers_in
+
+    assert fmt_number(s["H_m"], 2) in html  # the book's number format, at the table's precision
+    assert s["H_m"] in numbers_in(html)
     w = demo.widget()
     assert set(demo.controls()) == {p.name for p in demo.params}
     assert w is demo.widget()

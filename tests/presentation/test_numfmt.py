@@ -68,3 +68,65 @@ def test_bad_precision_named(bad):
         fmt_number(1.0, bad)
     with pytest.raises(ValueError, match="lang"):
         fmt_number(1.0, 1, lang="de")
+
+
+# ------------------------------------------------------------------ reading numbers back, specs, ticks, tables
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from aerophoto.i18n.numfmt import fmt_spec, fmt_text, localise_ticks, numbers_in, parse_number  # noqa: E402
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(min_value=-1e9, max_value=1e9, allow_nan=False), st.integers(0, 4), st.sampled_from(["en", "ru"]))
+def test_parse_number_reads_back_what_fmt_number_writes(x, decimals, lang):
+    text = fmt_number(x, decimals, lang=lang)
+    assert parse_number(text, lang=lang) == pytest.approx(round(x, decimals), abs=10.0 ** -decimals)
+    assert numbers_in(f"h = {text} m", lang=lang) == [parse_number(text, lang=lang)]
+
+
+def test_parse_number_and_numbers_in():
+    assert parse_number(f"12{GROUP}043") == 12043.0 and parse_number(f"{MINUS}3,25", lang="ru") == -3.25
+    assert parse_number(f"1:17{GROUP}700") == 17700.0 and parse_number(f"12,3{NBSP}%", lang="ru") == 12.3
+    assert math.isnan(parse_number(DASH))
+    with pytest.raises(ValueError, match="decimal comma"):
+        parse_number("3,25", lang="en")
+    with pytest.raises(ValueError, match="abc"):
+        parse_number("abc")
+    assert numbers_in(f"h = 0,5 м: СКО 0,123 м (узлов: 1{GROUP}225)", lang="ru") == [0.5, 0.123, 1225.0]
+    assert numbers_in(f"misses ×2, largest {MINUS}0.25 mm (1, 2)", lang="en") == [2.0, -0.25, 1.0, 2.0]
+
+
+def test_fmt_spec_follows_the_python_spec_in_the_books_format():
+    assert fmt_spec(12043.2, "{:.4g}") == f"12{GROUP}043"  # never 1.204e+04
+    assert fmt_spec(0.0123456, "{:.3g}") == "0.0123" and fmt_spec(2.50, "{:.3g}") == "2.5"
+    assert fmt_spec(1200.0, "{:,.2f}", lang="ru") == "1200,00" and fmt_spec(-0.001, "{:.2f}") == "0.00"
+    assert fmt_spec(0.123, "{:+.2f}") == "+0.12" and fmt_spec(7.0, "{:d}") == "7"
+    assert fmt_spec(0.1234, "{:.1%}", lang="ru") == f"12,3{NBSP}%"
+    with pytest.raises(ValueError, match="spec"):
+        fmt_spec(1.0, "{:>10}")
+
+
+def test_fmt_text_rewrites_numbers_written_by_python():
+    assert fmt_text("-0.00 and 12043.5 and -1.80 %", lang="ru") == f"0,00 and 12{GROUP}043,5 and {MINUS}1,80 %"
+    # codes, names and numbers already in the book's format stay as they are
+    for keep in ("19-0457", "1a–4a", "p_x2", "007", f"12{GROUP}043", "0,25"):
+        assert fmt_text(keep, lang="ru") == keep
+
+
+def test_tick_labels_in_the_books_format():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots()
+    ax.plot([-12000, 15000], [-0.5, 1.5])
+    ax.set_yscale("linear")
+    assert localise_ticks(fig, lang="ru") == 2 and localise_ticks(fig, lang="ru") == 0  # once is enough
+    fig.canvas.draw()
+    xs = [t.get_text() for t in ax.get_xticklabels()]
+    ys = [t.get_text() for t in ax.get_yticklabels()]
+    plt.close(fig)
+    assert f"{MINUS}10{GROUP}000" in xs and "5000" in xs
+    assert f"{MINUS}0,50" in ys and "1,00" in ys

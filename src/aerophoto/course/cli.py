@@ -73,6 +73,20 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--cache", type=Path, default=None,
                    help="downloads kept between builds (default: $AEROPHOTO_LITE_CACHE or ~/.cache/aerophoto-lite)")
 
+    p = sub.add_parser("site", help="build the web book: every chapter readable in English and Russian with its "
+                                    "figures, formulas and search, the browser book beside it, and the PDFs, offline "
+                                    "from pinned inputs")
+    p.add_argument("--out", type=Path, default=Path("_book"), help="the site's folder (default: _book)")
+    p.add_argument("--cache", type=Path, default=None,
+                   help="build tools and executed chapters kept between builds (default: $AEROPHOTO_SITE_CACHE or "
+                        "~/.cache/aerophoto-site)")
+    p.add_argument("--hub-url", default=None,
+                   help="the course hub's address (https://hub.example.edu): adds \"open on the course hub\" to every "
+                        "chapter")
+    p.add_argument("--lite", type=Path, default=None,
+                   help="a browser book already built (aerophoto-course lite --out DIR) to ship instead of building one")
+    p.add_argument("--no-pdf", action="store_true", help="leave out the printed books (PDF)")
+
     p = sub.add_parser("report", help="the student's course report (guide §15, PDF and HTML) and fotoschema sheet "
                                       "from their workbook, read without running it (no course set-up needed)")
     from ..report.cli import add_arguments as _report_arguments
@@ -171,6 +185,11 @@ def _dispatch(args, out) -> int:
         from ..lite import main as lite
 
         return lite(args.out, cache=args.cache, notebooks=args.notebooks, out=out)
+
+    if args.cmd == "site":
+        from ..website import main as site
+
+        return site(args.out, cache=args.cache, hub_url=args.hub_url, lite_dir=args.lite, pdf=not args.no_pdf, out=out)
 
     from .grading import Course
 

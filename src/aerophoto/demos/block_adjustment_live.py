@@ -302,8 +302,9 @@ class BlockAdjustmentView:
         a = self.ax_map
         sv = _block()
         xy, cen = sv.truth_m[:, :2] / 1000.0, sv.eo_true[:, :2] / 1000.0
-        a.plot(cen[:, 0], cen[:, 1], "+", color=_C["grey"], ms=8, label="photo centres")
-        (self.ties,) = a.plot([], [], ".", color=_C["grey"], ms=3, label="tie points")
+        # black, not grey: grey sat too close to the green ellipses with deuteranopia (tests/presentation/test_colours)
+        a.plot(cen[:, 0], cen[:, 1], "+", color=_C["black"], ms=8, label="photo centres")
+        (self.ties,) = a.plot([], [], ".", color=_C["black"], ms=3, label="tie points")
         (self.ctrl,) = a.plot([], [], "^", color=_C["control"], ms=9, label="control")
         (self.check,) = a.plot([], [], "o", mfc="none", mec=_C["blue"], ms=4, label="check points")
         self.arrows = LineCollection([], colors=_C["vermillion"], linewidths=1.2, label=f"true error × {MAGNIFY:g}")

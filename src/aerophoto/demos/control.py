@@ -25,6 +25,7 @@ from .. import control as c
 from .. import geometry as g
 from .. import plots
 from ..i18n import t as _t  # functions here name a local t
+from ..i18n.numfmt import fmt_number, fmt_spec
 from ..widgets import LiveDemo, Param
 
 __all__ = ["ControlDesignResult", "control_design_model", "ControlDesignView", "ControlDesignDemo",
@@ -235,7 +236,8 @@ class ResectionResult:
             rows.append(("shift of P per 1″ of angle error", "m", f"{self.resection.metres_per_arcsec:.4f}"))
         else:
             rows.append(("resection", "", "undetermined: on the danger circle"))
-        rows.append((f"RMS scatter for σβ = {self.sigma_arcsec:g}″", "m", f"{self.cloud_rms_m:.2f}"))
+        rows.append((_t("RMS scatter for σβ = {s}″", s=fmt_spec(self.sigma_arcsec, "{:g}")), "m",
+                     fmt_number(self.cloud_rms_m, 2)))
         if self.check is not None:
             rows.append(("check, one draw: |Δγ| / tolerance", "″",
                          f"{abs(self.check.discrepancy_arcsec):.0f} / {self.check.tolerance_arcsec:.0f}"))

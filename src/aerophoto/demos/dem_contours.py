@@ -25,6 +25,7 @@ from matplotlib.collections import LineCollection
 from .. import dem
 from .. import plots
 from ..i18n import t
+from ..i18n.numfmt import fmt_count, fmt_number, fmt_spec
 from ..widgets import LiveDemo, Param
 
 __all__ = ["SHEETS", "INTERVALS", "SheetCache", "sheet_cache", "ContourFrame", "contour_frame", "ContourView",
@@ -38,7 +39,7 @@ INTERVALS = (("0.25 m", 0.25), ("0.5 m", 0.5), ("1 m", 1.0), ("2 m", 2.0))
 ERROR_CLIM_M = 0.3
 _C = plots.COLORS
 _VALLEY = "#009E73"
-_RIDGE = "#8C510A"
+_RIDGE = "#E69F00"  # orange, dash-dotted: apart from the green thalwegs in colour and in shape (colour-blind safe)
 
 
 def _site():
@@ -164,13 +165,17 @@ class ContourView:
         if cax is not None:
             cb = fig.colorbar(self.image, cax=cax, ticks=[-ERROR_CLIM_M, 0.0, ERROR_CLIM_M])
             cb.set_label("DEM − true height, m")
-        self.true_lc = LineCollection([], colors=_C["grey"], linewidths=0.8, linestyles="dashed")
-        self.dem_lc = LineCollection([], colors=_C["blue"], linewidths=1.3)
-        self.valley_lc = LineCollection([], colors=_VALLEY, linewidths=2.2, alpha=0.8)
-        self.ridge_lc = LineCollection([], colors=_RIDGE, linewidths=2.2, alpha=0.8)
+        self.true_lc = LineCollection([], colors=_C["grey"], linewidths=0.8, linestyles="dashed",
+                                      label="true contours")
+        # black: dark over the blue/red error field and its node dots (a blue line vanished over its blue half)
+        self.dem_lc = LineCollection([], colors=_C["black"], linewidths=1.4, label="contours from the DEM")
+        self.valley_lc = LineCollection([], colors=_VALLEY, linewidths=2.2, alpha=0.8, label="thalwegs (тальвеги)")
+        self.ridge_lc = LineCollection([], colors=_RIDGE, linewidths=2.2, alpha=0.9, linestyles="dashdot",
+                                       label="watersheds (водоразделы)")
         for lc in (self.true_lc, self.valley_lc, self.ridge_lc, self.dem_lc):
             ax.add_collection(lc)
-        self.nodes = ax.scatter([], [], s=4, c=_C["black"], zorder=4, linewidths=0)
+        # the nodes small and grey under the contours: 1 225 of them must not hide the lines
+        self.nodes = ax.scatter([], [], s=3, c=_C["grey"], zorder=2, linewidths=0)
         ax.set_xlim(0, 1000)
         ax.set_ylim(0, 1000)
         ax.set_xticks([0, 500, 1000])  # few tick labels: text is much of a redraw's cost
@@ -195,20 +200,23 @@ class ContourView:
             self.valley_lc.set_segments([])
             self.ridge_lc.set_segments([])
         self.nodes.set_offsets(r.dem.nodes_m[:, :2] - (x0, y0))
-        self.title.set_text(t("h = {h:g} m: RMS of contour heights {rms:.3f} m ({n} nodes)", h=r.interval_m,
-                              rms=r.accuracy.rms_m, n=r.dem.n_nodes))
+        self.title.set_text(t("h = {h} m: RMS of contour heights {rms} m ({n} nodes)", h=fmt_spec(r.interval_m, "{:g}"),
+                              rms=fmt_number(r.accuracy.rms_m, 3), n=fmt_count(r.dem.n_nodes)))
 
 
 def legend_html() -> str:
-    items = ((_C["blue"], "solid", "contours from the DEM"), (_C["grey"], "dashed", "true contours"),
-             (_VALLEY, "solid", "thalwegs (тальвеги)"), (_RIDGE, "solid", "watersheds (водоразделы)"))
+    """The view's key as HTML (the live demo shows it beside the figure): the lines' swatches in their own dash
+    patterns (watersheds dash-dotted, apart from the thalwegs in shape too), the error colours, the nodes."""
+    items = ((_C["black"], "solid", "contours from the DEM"), (_C["grey"], "dashed", "true contours"),
+             (_VALLEY, "solid", "thalwegs (тальвеги)"), (_RIDGE, "dotted", "watersheds (водоразделы)"))
     rows = "".join(f"<div><span style='display:inline-block;width:28px;border-top:3px {ls} {col};"
-                   f"vertical-align:middle;margin-right:6px'></span>{lab}</div>" for col, ls, lab in items)
+                   f"vertical-align:middle;margin-right:6px'></span>{t(lab)}</div>" for col, ls, lab in items)
     bar = ("<span style='display:inline-block;width:120px;height:10px;vertical-align:middle;margin:0 4px;"
            "background:linear-gradient(to right,#053061,#4393c3,#f7f7f7,#d6604d,#67001f)'></span>")
+    lim = fmt_spec(ERROR_CLIM_M, "{:g}")
     return (f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{rows}"
-            f"<div>colour: DEM − true height, −{ERROR_CLIM_M:g} m{bar}+{ERROR_CLIM_M:g} m (red: DEM too high)</div>"
-            "<div>● DEM nodes</div></div>")
+            f"<div>{t('colour: DEM − true height, −{lim} m', lim=lim)}{bar}{t('+{lim} m (red: DEM too high)', lim=lim)}"
+            f"</div><div><span style='color:{_C['grey']}'>●</span> {t('DEM nodes')}</div></div>")
 
 
 class ContourDemo(LiveDemo):
@@ -220,7 +228,7 @@ class ContourDemo(LiveDemo):
     """
 
     title = "Contours from a DEM against the true ground (article 000)"
-    hint = ("Blue: contours drawn from the DEM; dashed grey: where they should be. Coarsen the grid until the "
+    hint = ("Black: contours drawn from the DEM; dashed grey: where they should be. Coarsen the grid until the "
             "interpolation shows, then switch the structural lines on; raise m_z and watch the contours wriggle.")
     params = (
         Param("spacing_m", "d, m", 10, 200, 10, 30, group="DEM", help="step of the regular grid"),

@@ -31,6 +31,7 @@ from .. import plots
 from .._validate import check_range
 from ..terrain import AnalyticHills
 from ..i18n import t
+from ..i18n.numfmt import fmt_spec
 from ..widgets import LiveDemo, Param
 
 __all__ = ["DisplacementField", "displacement_field", "DisplacementView", "DisplacementDemo", "ReliefDemo",
@@ -50,7 +51,7 @@ _LEGEND = (
     (_C["tilt"], 2.5, "-", "tilt δα, exact (radial from c)"),
     (_C["approx"], 1.2, "-", "tilt δα, the guide's formula"),
     (_C["nadir"], 1.0, ":", "principal vertical"),
-    (_C["isocentre"], 1.0, "--", "isoline h_c h_c"),
+    (_C["isocentre"], 1.0, "--", "isoline h_c–h_c"),
 )
 
 
@@ -157,14 +158,15 @@ class DisplacementField:
             ("oc = −f·tg(α/2)", "mm", s["oc_mm"]),
             ("max |δh| exact", "mm", s["max_relief_exact_mm"]),
             ("max |δh| = r·h/H", "mm", s["max_relief_formula_mm"]),
-            ("points with |δh| > 0.2 mm", "", s["n_relief_corrections"]),
+            ("points with |δh| > 0.2 mm", "", int(s["n_relief_corrections"])),
             ("max |δα| exact", "mm", s["max_tilt_exact_mm"]),
             ("max |δα| guide's formula", "mm", s["max_tilt_approx_mm"]),
             ("max |formula − exact|", "mm", s["max_tilt_error_mm"]),
             ("… relative to max |δα|", "%", s["max_tilt_error_percent"]),
-            ("points with |δα| > 0.2 mm", "", s["n_tilt_corrections"]),
+            ("points with |δα| > 0.2 mm", "", int(s["n_tilt_corrections"])),
         ]
-        return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
+        # object dtype: the counts stay whole numbers beside the lengths (shown 71, not 71.00)
+        return pd.DataFrame(rows, columns=["quantity", "unit", "value"], dtype=object).set_index("quantity")
 
 
 def displacement_field(f_mm: float = 100.0, m: float = 12000.0, alpha_deg: float = 3.0, lambda_deg: float = -60.0,
@@ -223,12 +225,12 @@ def legend_html() -> str:
     dash = {"-": "solid", ":": "dotted", "--": "dashed"}
     items = "".join(
         f"<div><span style='display:inline-block;width:28px;border-top:{max(2, lw * 1.5):.0f}px "
-        f"{dash[ls]} {col};vertical-align:middle;margin-right:6px'></span>{lab}</div>"
+        f"{dash[ls]} {col};vertical-align:middle;margin-right:6px'></span>{plots.html_subscripts(t(lab))}</div>"
         for col, lw, ls, lab in _LEGEND)
     dots = ("<div><span style='color:#8C510A'>●</span> / <span style='color:#01665E'>●</span> "
-            "points above / below the mean object plane</div>")
-    marks = ("<div><b>+ o</b> principal point, <b style='color:#D55E00'>▲ n</b> nadir point, "
-             "<b style='color:#0072B2'>○ c</b> isocentre</div>")
+            f"{t('points above / below the mean object plane')}</div>")
+    marks = (f"<div><b>+ o</b> {t('principal point')}, <b style='color:#D55E00'>▲ n</b> {t('nadir point')}, "
+             f"<b style='color:#0072B2'>○ c</b> {t('isocentre')}</div>")
     return f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{items}{dots}{marks}</div>"
 
 
@@ -302,8 +304,9 @@ class DisplacementView:
         self.pts = ax.scatter(zeros, zeros, c=zeros, s=16, cmap="BrBG_r", vmin=-1, vmax=1, zorder=3,
                               edgecolors="none")
         kw = dict(angles="xy", scale_units="xy", scale=1.0, zorder=4)
-        self.q_relief = ax.quiver(zeros, zeros, zeros, zeros, color=C["relief"], width=0.006, **kw)
-        self.q_tilt = ax.quiver(zeros, zeros, zeros, zeros, color=C["tilt"], width=0.006, **kw)
+        # arrows thick enough for the back row at the fixed ×2 (a relief step of 5 m must show on a projector)
+        self.q_relief = ax.quiver(zeros, zeros, zeros, zeros, color=C["relief"], width=0.009, **kw)
+        self.q_tilt = ax.quiver(zeros, zeros, zeros, zeros, color=C["tilt"], width=0.009, **kw)
         self.q_approx = ax.quiver(zeros, zeros, zeros, zeros, color=C["approx"], width=0.0025, **kw)
         self.marks = plots.mark_points(ax, {"o": (0, 0), "n": (0, 0), "c": (0, 0)})
         if legend:
@@ -342,10 +345,7 @@ class DisplacementView:
         self.pv.set_data([-L * u[0], L * u[0]], [-L * u[1], L * u[1]])
         c = field.c_mm
         self.iso.set_data([c[0] - L * v[0], c[0] + L * v[0]], [c[1] - L * v[1], c[1] + L * v[1]])
-        for name, pt in (("o", field.o_mm), ("n", field.n_mm), ("c", field.c_mm)):
-            marker, label = self.marks[name]
-            marker.set_data([pt[0]], [pt[1]])
-            label.xy = (pt[0], pt[1])
+        plots.move_onc(self.marks, field.o_mm, field.n_mm, field.c_mm, u)  # labels fanned out: never overlapping
         what = {"both": "relief and tilt", "relief": "relief", "tilt": "tilt"}[show]
         self.title.set_text(t("Photo, mm — {what} displacement, arrows ×{k}", what=t(what), k=k))
         return k
@@ -364,7 +364,9 @@ def _params(show: str = "both", alpha: float = 3.0, relief: float = 60.0) -> tup
         Param("relief_m", "relief ±h, m", 0, 200, 5, relief, group="Terrain",
               help="height of the highest hill above (and the valley below) the mean object plane"),
         Param("show", "show", kind="choice", options=SHOW_OPTIONS, default=show, group="View"),
-        Param("exaggeration", "arrows", kind="choice", options=EXAGGERATION_OPTIONS, default=0, group="View",
+        # a fixed ×2 (the automatic factor at the guide's example), not auto: doubling the relief doubles every
+        # arrow on screen, as the chapters say (auto would halve the factor instead); "auto" stays a choice
+        Param("exaggeration", "arrows", kind="choice", options=EXAGGERATION_OPTIONS, default=2, group="View",
               help="how much the arrows are lengthened so they can be seen; auto keeps the longest ≈ 14 mm"),
     )
 
@@ -391,10 +393,9 @@ class DisplacementDemo(LiveDemo):
     def render(self, frame: DemoFrame):
         k = self.view.update(frame.field, show=frame.show, exaggeration=frame.factor)
         df = frame.field.table()
-        df.loc["arrows drawn lengthened ×"] = ("", float(k))
+        df.loc["arrows drawn lengthened ×"] = ("", int(k))
         self.factor = k
-        self.table.value = legend_html() + plots.html_table(df, caption="Displacements on this photo",
-                                                            float_format="{:,.2f}")
+        self.table.value = legend_html() + plots.html_table(df, caption="Displacements on this photo", precision=2)
 
 
 class ReliefDemo(DisplacementDemo):
@@ -411,7 +412,7 @@ class TiltDemo(DisplacementDemo):
 
     title = "Tilt displacement: radial from the isocentre c"
     hint = ("Blue: the exact displacement (tilted photo vs the vertical one turned about the isoline); "
-            "orange: the guide's δα = −(r_c²·cos φ/f)·sin α. Points on the isoline h_c h_c do not move.")
+            "orange: the guide's δα = −(r<sub>c</sub>²·cos φ/f)·sin α. Points on the isoline h<sub>c</sub>–h<sub>c</sub> do not move.")
     params = _params(show="tilt", alpha=3.0, relief=0.0)
 
 
@@ -505,10 +506,10 @@ def principal_plane_figure(ax=None, *, f_mm=100.0, alpha_deg=12.0, H=300.0):
         ax.plot([Xg], [0], "o", color=colours[name], ms=6)
         ax.annotate(name.upper(), (Xg, 0), xytext=(-5, -16), textcoords="offset points", color=colours[name])
     # the tilt α between the plumb line SN and the optical axis SO
-    t = np.linspace(-math.pi / 2, -math.pi / 2 + math.radians(alpha_deg), 20)
-    ax.plot(60 * np.cos(t), H + 60 * np.sin(t), color=C["grey"], lw=1)
-    ax.annotate("α", (60 * math.cos(t[10]), H + 60 * math.sin(t[10])), xytext=(3, -14), textcoords="offset points")
-    ax.set_title(f"The principal plane W (α = {alpha_deg:g}°, exaggerated)")
+    arc = np.linspace(-math.pi / 2, -math.pi / 2 + math.radians(alpha_deg), 20)
+    ax.plot(60 * np.cos(arc), H + 60 * np.sin(arc), color=C["grey"], lw=1)
+    ax.annotate("α", (60 * math.cos(arc[10]), H + 60 * math.sin(arc[10])), xytext=(3, -14), textcoords="offset points")
+    ax.set_title(t("The principal plane W (α = {a}°, exaggerated)", a=fmt_spec(alpha_deg, "{:g}")))
     ax.set_aspect("equal")
     ax.set_ylim(-25, H + 20)
     ax.axis("off")

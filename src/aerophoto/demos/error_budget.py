@@ -17,6 +17,7 @@ import pandas as pd
 from .. import budget as bu
 from .. import plots
 from ..i18n import t
+from ..i18n.numfmt import fmt_number
 from ..widgets import LiveDemo, Param
 
 __all__ = ["BAR_KEYS", "BudgetView", "BudgetDemo", "budget_figure", "MAP_SCALES", "DTM_OPTIONS"]
@@ -91,7 +92,8 @@ def _extra_table(B: bu.Budget, f_mm: float, relief_m: float, frame_mm: float) ->
     rows = [("total on the ground m_D", "m", f"{B.total_m:.3f}"), ("RMS on the map m_d", "mm", f"{B.map_rms_mm:.3f}"),
             ("mean on the map v_d = m_d/1.25", "mm", f"{B.map_mean_mm:.3f}"),
             ("meets v_d ≤ 0.4 mm", "", "yes" if B.meets_tolerance else "no"),
-            ("largest stage", "", f"{B.dominant.name} ({100 * B.shares()[B.dominant.key]:.0f} % of the variance)"),
+            ("largest stage", "", t("{stage} ({share} % of the variance)", stage=t(B.dominant.name),
+                                    share=fmt_number(100 * B.shares()[B.dominant.key], 0))),
             ("relief limit h_пред = 0.3·f·M_k/r_max (2)", "m", f"{h_lim:.2f}"),
             ("relief Δh/2 within it?", "", "yes: a plane would do" if relief_m / 2 <= h_lim else "no: a DEM is needed")]
     return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")

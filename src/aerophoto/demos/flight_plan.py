@@ -21,6 +21,7 @@ from matplotlib.collections import PolyCollection
 from .. import flight
 from .. import plots
 from ..i18n import t
+from ..i18n.numfmt import fmt_spec
 from ..widgets import LiveDemo, Param
 from .own import after, task_label
 
@@ -39,13 +40,16 @@ MAX_FOOTPRINTS_PER_STRIP = MAX_PHOTOS_DRAWN
 
 
 def format_value(v) -> str:
-    """A table value as text: whole numbers as they are, large values with thin spaces, else 4 digits."""
+    """A table value as text in the book's number format (:mod:`aerophoto.i18n.numfmt`): whole numbers as
+    counts, values of 1000 and more whole, else 4 significant digits."""
+    from ..i18n.numfmt import fmt_count, fmt_number
+
     if isinstance(v, (int, np.integer)):
-        return f"{int(v):,}".replace(",", " ")
+        return fmt_count(int(v))
     v = float(v)
     if abs(v) >= 1000:
-        return f"{v:,.0f}".replace(",", " ")
-    return f"{v:.4g}"
+        return fmt_number(v, 0)
+    return fmt_number(v, sig=4)
 
 
 #: compact labels of the demo's table (symbol first), by FlightPlan attribute
@@ -299,12 +303,12 @@ class FlightPlanView:
             yb = ya - 0.72 * half
             self.bx_arrow.xy, self.bx_arrow.xyann = (xa, yb), (xa + p.Bx_km, yb)
             self.bx_label.set_position((xa + p.Bx_km / 2, yb - 0.04 * half))
-            self.bx_label.set_text(f"Bx = {p.Bx_km:.3g} km")
+            self.bx_label.set_text(f"Bx = {fmt_spec(p.Bx_km, '{:.3g}')} {t('km')}")
         if K > 1:
             xb = xa + 0.35 * half
             self.by_arrow.xy, self.by_arrow.xyann = (xb, ya), (xb, ya + p.By_km)
             self.by_label.set_position((xb + 0.04 * half, ya + p.By_km / 2))
-            self.by_label.set_text(f"By = {p.By_km:.3g} km")
+            self.by_label.set_text(f"By = {fmt_spec(p.By_km, '{:.3g}')} {t('km')}")
         for art, ok in ((self.bx_arrow, n > 1), (self.bx_label, n > 1), (self.by_arrow, K > 1),
                         (self.by_label, K > 1)):
             art.set_visible(ok)
@@ -323,7 +327,9 @@ def _every(count: int, step: int) -> np.ndarray:
 
 
 def _count_text(N: int) -> str:
-    return f"{N:,}".replace(",", " ")
+    from ..i18n.numfmt import fmt_count
+
+    return fmt_count(N)
 
 
 class FlightPlanDemo(LiveDemo):

@@ -82,6 +82,11 @@ class FootprintResult:
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 
+#: the table's precision, row by row (the book's number format): H to the metre, on and oc to 0.01 mm, areas 0.01 km²
+_PRECISION = {"Flying height H = f·m": 0, "Nadir distance on = f·tg α": 2, "Isocentre oc = −f·tg(α/2)": 2,
+              "Footprint area": 2, "… of the vertical photo": 2}
+
+
 def _area(poly) -> float:
     x, y = poly[:, 0], poly[:, 1]
     return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
@@ -154,7 +159,8 @@ class FootprintView:
         a.set_aspect("equal")
         a.set_xlabel("X (east), km")
         a.set_ylabel("Y (north), km")
-        (self.vpoly,) = a.plot([], [], ls="--", color=C["grey"], lw=1.5, label="vertical photo")
+        # black dashed: the grey it was sat too close to the green grid under deuteranopia (tests/presentation)
+        (self.vpoly,) = a.plot([], [], ls="--", color=C["black"], lw=1.5, label="vertical photo")
         (self.poly,) = a.plot([], [], color=C["footprint"], lw=2.5, label="tilted photo")
         (self.N,) = a.plot([], [], "^", color=C["nadir"], ms=9, label="N (plumb point)")
         (self.O,) = a.plot([], [], "+", color=C["photo"], ms=13, mew=2, label="O")
@@ -166,7 +172,7 @@ class FootprintView:
         p.add_collection(self.grid)
         plots.photo_frame(p, g.Camera(), label="frame")
         (self.pv,) = p.plot([], [], color=C["nadir"], lw=1, ls=":", label="principal vertical")
-        (self.iso,) = p.plot([], [], color=C["isocentre"], lw=1, ls="--", label="isoline h_c h_c")
+        (self.iso,) = p.plot([], [], color=C["isocentre"], lw=1, ls="--", label="isoline h_c–h_c")
         self.marks = plots.mark_points(p, {"o": (0, 0), "n": (0, 0), "c": (0, 0)})
         p.set_xlim(-100, 100)
         p.set_ylim(-100, 100)
@@ -194,10 +200,7 @@ class FootprintView:
         L = r.camera.half_mm * 1.4
         self.pv.set_data([-L * u[0], L * u[0]], [-L * u[1], L * u[1]])
         self.iso.set_data([r.c_mm[0] - L * v[0], r.c_mm[0] + L * v[0]], [r.c_mm[1] - L * v[1], r.c_mm[1] + L * v[1]])
-        for name, pt in (("o", r.o_mm), ("n", r.n_mm), ("c", r.c_mm)):
-            marker, label = self.marks[name]
-            marker.set_data([pt[0]], [pt[1]])
-            label.xy = (pt[0], pt[1])
+        plots.move_onc(self.marks, r.o_mm, r.n_mm, r.c_mm, u)  # labels fanned out: never overlapping
 
 
 class FootprintDemo(LiveDemo):
@@ -235,7 +238,7 @@ class FootprintDemo(LiveDemo):
 
     def render(self, result):
         self.view.update(result)
-        self.table.value = plots.html_table(result.table(), caption="Elements of the photo", float_format="{:,.1f}")
+        self.table.value = plots.html_table(result.table(), caption="Elements of the photo", precision=_PRECISION)
 
 
 def own_footprint(variant, passed):

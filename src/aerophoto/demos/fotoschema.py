@@ -67,9 +67,11 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from matplotlib import patheffects
 from matplotlib.collections import LineCollection
 
 from .. import geometry as g
+from ..i18n.numfmt import fmt_count, fmt_number, fmt_scale, fmt_signed, fmt_spec
 from .. import mosaic as mo
 from .. import plots
 from .. import simulate as sim
@@ -161,13 +163,14 @@ class FotoschemaResult:
         fs = self.fs
         s = fs.scale
         rows = [
-            ("m = √(ΣΔI²/n), RMS of the seams", "mm", f"{fs.rms_mm:.2f}"),
-            ("largest cut-out (вырез), allowed −0.5", "mm", f"{fs.worst_cutout_mm:+.2f}"),
-            ("largest duplicate (дублет)", "mm", f"{max(0.0, float(fs.dI_mm.max())) if fs.dI_mm.size else 0.0:+.2f}"),
-            ("check points n", "", f"{fs.dI_mm.size}"),
-            ("mean scale 1:m (6.1), four bases", "1:", f"{s.m:,.0f}".replace(",", " ")),
-            ("design scale of the photos", "1:", f"{fs.m_design:,.0f}".replace(",", " ")),
-            ("spread of the partial scales m_i", "", f"{float(np.ptp(s.m_i)):,.0f}".replace(",", " ")),
+            ("m = √(ΣΔI²/n), RMS of the seams", "mm", fmt_number(fs.rms_mm, 2)),
+            ("largest cut-out (вырез), allowed −0.5", "mm", fmt_signed(fs.worst_cutout_mm, 2)),
+            ("largest duplicate (дублет)", "mm",
+             fmt_signed(max(0.0, float(fs.dI_mm.max())) if fs.dI_mm.size else 0.0, 2)),
+            ("check points n", "", fmt_count(fs.dI_mm.size)),
+            ("mean scale 1:m (6.1), four bases", "1:", fmt_count(round(s.m))),
+            ("design scale of the photos", "1:", fmt_count(round(fs.m_design))),
+            ("spread of the partial scales m_i", "", fmt_count(round(float(np.ptp(s.m_i))))),
             ("seams", "", "pass" if fs.ok else "FAIL: cut-out > 0.5 mm"),
         ]
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
@@ -210,8 +213,8 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
     note = ""
     if alpha < alpha_max_deg - 1e-9:
         H = g.flying_height_m(f_mm, m)
-        note = (f"α max reduced from {alpha_max_deg:g}° to {alpha:.2f}°: at H = {H:,.0f} m a larger tilt would carry "
-                "the photos off the 10 × 5 km site").replace(",", " ")
+        note = (f"α max reduced from {alpha_max_deg:g}° to {fmt_number(alpha, 2, lang='en')}°: at H = "
+                f"{fmt_count(round(H), lang='en')} m a larger tilt would carry the photos off the 10 × 5 km site")
     asked = alpha
     while True:  # a large tilt at a small base can leave two neighbours no common strip for their tie points:
         strip = sim.strip_over_site(gr, cam, m, px_percent, n_photos,  # then fly a smaller one, 0.25° at a time
@@ -241,6 +244,9 @@ def fotoschema_model(f_mm: float = 100.0, m: float = 12000.0, alpha_max_deg: flo
 
 # =========================================================================== the view
 _CUTOUT = plots.COLORS["vermillion"]
+#: the cut lines: yellow with a dark edge (orange ones merged with the vermilion cut-out dots for a deuteranope)
+_CUT = plots.COLORS["yellow"]
+_CUT_EDGE = [patheffects.withStroke(linewidth=3.4, foreground="black")]
 _DUPLICATE = plots.COLORS["blue"]
 
 
@@ -270,7 +276,8 @@ class FotoschemaView:
                               extent=(0, 1, 0, 1), interpolation="antialiased", zorder=0)
         self.frames = LineCollection([], colors=C["skyblue"], linewidths=0.8, alpha=0.9, zorder=2)
         a.add_collection(self.frames)
-        self.cuts = LineCollection([], colors=C["orange"], linewidths=1.8, zorder=3, label="cuts (порезы)")
+        self.cuts = LineCollection([], colors=_CUT, linewidths=1.8, zorder=3, label="cuts (порезы)",
+                                   path_effects=_CUT_EDGE)
         a.add_collection(self.cuts)
         self.points = a.scatter(np.zeros(0), np.zeros(0), s=np.zeros(0), facecolors=[], edgecolors="white",
                                 linewidths=0.8, zorder=5)
@@ -292,7 +299,8 @@ class FotoschemaView:
         d.set_ylabel("ΔI, mm")
         d.axhline(0.0, color=C["grey"], lw=1.0)
         self.tol = d.axhline(-mo.ALLOWED_CUTOUT_MM, color=_CUTOUT, lw=1.2, ls="--")
-        d.text(1.0, -mo.ALLOWED_CUTOUT_MM, " −0.5 mm", color=_CUTOUT, fontsize=9, va="center", ha="left",
+        d.text(1.0, -mo.ALLOWED_CUTOUT_MM, f" {fmt_number(-mo.ALLOWED_CUTOUT_MM, 1)} {_t('mm')}", color=_CUTOUT,
+               fontsize=9, va="center", ha="left",
                transform=d.get_yaxis_transform())
         self.stems = LineCollection([], linewidths=2.2, zorder=3)
         d.add_collection(self.stems)
@@ -343,10 +351,10 @@ class FotoschemaView:
                 t.set_visible(True)
             else:
                 t.set_visible(False)
-        res = _t("preview") if r.preview else _t("full resolution")
-        self.title.set_text(_t("Fotoschema 1:{m} · m = {rms:.2f} mm · {verdict} · {res}",
-                              m=f"{fs.scale.m:,.0f}".replace(",", " "), rms=fs.rms_mm,
-                              verdict=_t("seams pass") if fs.ok else _t("cut-out > 0.5 mm"), res=res))
+        # the resolution is no news for the class: never written in the title (the picture just sharpens)
+        self.title.set_text(_t("Fotoschema 1:{m} · m = {rms} mm · {verdict}", m=fmt_count(round(fs.scale.m)),
+                              rms=fmt_number(fs.rms_mm, 2),
+                              verdict=_t("seams pass") if fs.ok else _t("cut-out > 0.5 mm")))
         # ΔI chart: points grouped by cut
         xs, ticks, labels, seps = [], [], [], []
         x = 0.0
@@ -457,7 +465,7 @@ class FotoschemaDemo(LiveDemo):
     def _tables(self, result: FotoschemaResult) -> str:
         fs = result.fs
         H_m = g.flying_height_m(fs.camera.f_mm, fs.m_design)
-        notes = [_t("H = f·m = {H} m above the mean ground", H=f"{H_m:,.0f}".replace(",", " ")),
+        notes = [_t("H = f·m = {H} m above the mean ground", H=fmt_count(round(H_m))),
                  _t("ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip")]
         if result.note:
             notes.insert(0, "⚠ " + result.note)
@@ -550,21 +558,21 @@ def correction_sheet(fs: mo.Fotoschema, ax=None, *, values: bool = True):
         ax.plot(*p, "+", color=C["black"], ms=9, mew=1.5)
         ax.annotate(str(fs.numbers[k]), p, xytext=(4, 4), textcoords="offset points", fontsize=10, fontweight="bold")
     for s in fs.seams:
-        ax.plot(s.cut_mm[:, 0], s.cut_mm[:, 1], color=C["orange"], lw=1.6)
+        ax.plot(s.cut_mm[:, 0], s.cut_mm[:, 1], color=_CUT, lw=1.6, path_effects=_CUT_EDGE)
         for p, d in zip(s.points_mm, s.dI_mm):
             col = _CUTOUT if d < 0 else _DUPLICATE
             ax.plot(*p, "o", color=col, ms=4)
             if values:
                 bad = round(float(d), 2) < -mo.ALLOWED_CUTOUT_MM
-                ax.annotate(f"{d:+.2f}", p, xytext=(5, 0), textcoords="offset points", va="center", fontsize=9,
+                ax.annotate(fmt_signed(d, 2), p, xytext=(5, 0), textcoords="offset points", va="center", fontsize=9,
                             color=col, fontweight="bold" if bad else "normal",
                             bbox=dict(boxstyle="square,pad=0.1", fc="white", ec=col) if bad else None)
     x0, x1, y0, y1 = fs.extent_mm
     ax.set_xlim(x0 - 5, x1 + 12)
     ax.set_ylim(y0 - 5, y1 + 5)
     ax.set_xlabel("sheet mm")
-    ax.set_title(f"Correction sheet (корректурный лист): ΔI in mm along each cut · m = {fs.rms_mm:.2f} mm, "
-                 f"n = {fs.dI_mm.size}")
+    ax.set_title(_t("Correction sheet (корректурный лист): ΔI in mm along each cut · m = {rms} mm, n = {n}",
+                    rms=fmt_number(fs.rms_mm, 2), n=fmt_count(fs.dI_mm.size)))
     return ax
 
 
@@ -670,7 +678,7 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     yr = datetime.date.today().year if year is None else int(year)
     m_sign = fs.scale.m if scale_m is None else float(scale_m)
     m_rounded = int(round(m_sign / 100.0) * 100)
-    m_txt = f"{m_rounded:,}".replace(",", " ")
+    m_txt = fmt_count(m_rounded, lang="ru")
     cx = 0.5
     fig.text(cx, fy(ph - 16), "ФОТОСХЕМА", ha="center", va="center", fontsize=26, fontweight="bold")
     if english:
@@ -691,7 +699,7 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     for t in (0.0, 0.5, 1.0):
         fig.add_artist(Line2D([fx(bx + t * bar_mm)] * 2, [fy(by - 1.5), fy(by + 1.5)], lw=1.2, color="black",
                               transform=fig.transFigure))
-    fig.text(fx(bx + bar_mm + 3), fy(by), f"{bar_m:,.0f} m".replace(",", " "), va="center", fontsize=10)
+    fig.text(fx(bx + bar_mm + 3), fy(by), f"{fmt_count(round(bar_m), lang='ru')} м", va="center", fontsize=10)
     made = f"Фотосхема изготовлена в {yr} г." + (f" ({place})" if place else "")
     fig.text(fx(left), fy(by - 12), made + (f"  ·  made in {yr}" if english else ""), fontsize=11, va="center")
     rx = left + w
@@ -790,7 +798,7 @@ def own_sheet_figure(variant, ax=None, *, px_per_mm: float = 5.0):
     ax.set_aspect("equal")
     ax.grid(False)
     for s in fs.seams:
-        ax.plot(s.cut_mm[:, 0], s.cut_mm[:, 1], color=C["orange"], lw=1.6)
+        ax.plot(s.cut_mm[:, 0], s.cut_mm[:, 1], color=_CUT, lw=1.6, path_effects=_CUT_EDGE)
     d = own.details
     ax.plot(d.contour_mm[:, 0], d.contour_mm[:, 1], linestyle="none", marker="o", ms=5, mfc="none", mew=1.4,
             color=C["yellow"], label="details pricked along the cuts (task 05.1)")
@@ -817,9 +825,8 @@ def own_sheet_figure(variant, ax=None, *, px_per_mm: float = 5.0):
     ax.set_ylim(y0 - 2, y1 + 10)
     ax.set_xlabel("along the strip, mm (from the principal point of photo %d)" % fs.numbers[0])
     ax.set_ylabel("across, mm")
-    m_txt = f"{fs.m_design:,.0f}".replace(",", " ")
-    ax.set_title(f"Your fotoschema: photos {fs.numbers[0]}–{fs.numbers[-1]}, f = {fs.camera.f_mm:g} mm, "
-                 f"photos at 1:{m_txt}")
+    ax.set_title(_t("Your fotoschema: photos {a}–{b}, f = {f} mm, photos at {scale}", a=fs.numbers[0],
+                    b=fs.numbers[-1], f=fmt_spec(fs.camera.f_mm, "{:g}"), scale=fmt_scale(fs.m_design)))
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=3, fontsize=9, frameon=False)
     return fig
 

@@ -23,6 +23,8 @@ import pandas as pd
 from .. import geometry as g
 from .. import interpretation as ip
 from .. import plots
+from ..i18n import t
+from ..i18n.numfmt import fmt_number
 from ..widgets import LiveDemo, Param
 
 __all__ = ["ConditionsResult", "conditions_model", "ConditionsView", "ConditionsDemo", "KEY_VIEWS", "KeyResult",
@@ -55,7 +57,8 @@ class ConditionsResult:
         rows = [("RMS contrast of the photo (red band)", f"{self.contrast:.3f}"),
                 ("shadow of a 20 m tree, L = h / tan e", f"{self.shadow_m:.1f} m"),
                 ("shadows fall towards (azimuth)", f"{ip.shadow_azimuth_deg(c.sun_azimuth_deg):.0f}°"),
-                ("image motion δ = W·t/m", f"{self.blur_mm:.3f} mm = {self.blur_px:.1f} px"),
+                ("image motion δ = W·t/m", t("{blur} mm = {px} px", blur=fmt_number(self.blur_mm, 3),
+                                             px=fmt_number(self.blur_px, 1))),
                 ("season", c.season)]
         return pd.DataFrame(rows, columns=["quantity", "value"]).set_index("quantity")
 

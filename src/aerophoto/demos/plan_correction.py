@@ -21,6 +21,7 @@ from matplotlib.collections import LineCollection
 
 from .. import geometry as g
 from .. import plots
+from ..i18n import t
 from .. import projective as pj
 from ..widgets import LiveDemo, Param
 
@@ -91,7 +92,7 @@ class PlanCorrectionResult:
         node = float(np.max(self.pair.node_error()))
         grid_err = self.grid_error_mm
         rows = [
-            ("grid", "", f"{self.pair.n} × {self.pair.n}, {self.pair.method}"),
+            ("grid", "", f"{self.pair.n} × {self.pair.n}, {t(self.pair.method)}"),
             ("largest error of the carried changes", "mm on the plan", f"{e.max():.2f}"),
             ("… on the ground", "m", f"{e.max() * self.M / 1000:.1f}"),
             ("RMS error of the carried changes", "mm", f"{np.sqrt(np.mean(e**2)):.2f}"),
@@ -216,9 +217,9 @@ def legend_html() -> str:
     dash = {"-": "solid", "--": "dashed"}
     items = "".join(
         f"<div><span style='display:inline-block;width:28px;border-top:{max(2, lw * 1.5):.0f}px "
-        f"{dash[ls]} {col};vertical-align:middle;margin-right:6px'></span>{lab}</div>"
+        f"{dash[ls]} {col};vertical-align:middle;margin-right:6px'></span>{t(lab)}</div>"
         for col, lw, ls, lab in _LEGEND)
-    marks = f"<div><b style='color:{_C['control']}'>△ 1–4</b> control (transformation) points</div>"
+    marks = f"<div><b style='color:{_C['control']}'>△ 1–4</b> {t('control (transformation) points')}</div>"
     return f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{items}{marks}</div>"
 
 

@@ -39,6 +39,7 @@ from matplotlib.collections import LineCollection
 
 from .. import geometry as g
 from .. import plots
+from ..i18n import t as _t
 from .. import quality as q
 from .. import simulate as sim
 from ..widgets import TABLE_DELAY_S, LiveDemo, Param, table_after_picture  # noqa: F401 (TABLE_DELAY_S: importable from here, as before)
@@ -274,7 +275,9 @@ def verdict_html(report: q.QualityReport, *, conclusion: bool = True) -> str:
     out = plots.html_table(df, caption="Photogrammetric quality (guide §3)", highlight=hl)
     if conclusion:
         text = _html.escape(report.conclusion())
-        out += (f"<div style='max-width:420px;font-size:12px;white-space:pre-wrap;margin-top:6px'>"
+        # the conclusion is written by aerophoto.quality in English (not yet in Russian: issue 33's report)
+        out += (f"<div class='aerophoto-conclusion' style='max-width:420px;font-size:12px;white-space:pre-wrap;"
+                "margin-top:6px'>"
                 f"<b>Conclusion</b>\n{text}</div>")
     return out
 
@@ -402,8 +405,8 @@ class RoughMosaicView:
             else:
                 t.set_visible(False)
         n_fail = len(rep.failures())
-        self.title.set_text("Rough mosaic (накидной монтаж): " + ("all criteria met" if n_fail == 0 else
-                                                                   f"{n_fail} check{'s' if n_fail > 1 else ''} failed"))
+        self.title.set_text(_t("Rough mosaic (накидной монтаж): all criteria met") if n_fail == 0 else
+                            _t("Rough mosaic (накидной монтаж): checks failed: {n}", n=n_fail))
 
 
 class QualityDemo(LiveDemo):

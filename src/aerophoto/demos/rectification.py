@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from matplotlib import patheffects
 import pandas as pd
 
 from .. import geometry as g
@@ -32,6 +33,7 @@ from .. import plots
 from .. import projective as pj
 from .. import rectify as rf
 from ..i18n import t as _t  # functions here name a local t
+from ..i18n.numfmt import fmt_number
 from ..widgets import LiveDemo, Param
 
 __all__ = ["EXAMPLE", "TransformerResult", "transformer_model", "TransformerView", "TransformerDemo",
@@ -153,16 +155,16 @@ class TransformerResult:
         st = s.state
         first = self.run.within_tolerance_step
         conv = self.run.converged_step
-        rows = [("motion", "", f"{self.step}: {s.name} (cycle {s.cycle})"),
+        rows = [("motion", "", _t("{step}: {name} (cycle {cycle})", step=self.step, name=_t(s.name), cycle=s.cycle)),
                 ("what the operator does", "", rf.STEP_NAMES[s.name]),
-                ("screen tilt ε", "°", f"{st.eps_deg:.3f}"),
-                ("tilt direction λ_t", "°", f"{st.tilt_dir_deg % 360:.1f}"),
-                ("cassette turn θ", "°", f"{st.theta_deg:.2f}"),
-                ("enlargement s", "", f"{st.scale:.4f}")]
+                ("screen tilt ε", "°", fmt_number(st.eps_deg, 3)),
+                ("tilt direction λ_t", "°", fmt_number(st.tilt_dir_deg % 360, 1)),
+                ("cassette turn θ", "°", fmt_number(st.theta_deg, 2)),
+                ("enlargement s", "", fmt_number(st.scale, 4))]
         names = ("1", "2", "3", "4", "centre")
-        rows += [(f"residual at {n}", "mm", f"{d:.2f}") for n, d in zip(names, s.lengths_mm)]
-        rows.append(("largest residual vs 0.4 mm", "", f"{s.max_residual_mm:.2f} — "
-                     + ("within" if s.max_residual_mm <= rf.TOLERANCE_MM else "not yet")))
+        rows += [(f"residual at {n}", "mm", fmt_number(d, 2)) for n, d in zip(names, s.lengths_mm)]
+        rows.append(("largest residual vs 0.4 mm", "", fmt_number(s.max_residual_mm, 2) + " — "
+                     + _t("within" if s.max_residual_mm <= rf.TOLERANCE_MM else "not yet")))
         rows.append(("every point within 0.4 mm from step", "", "—" if first is None else f"{first}"))
         rows.append(("first full cycle within 0.4 mm ends at step", "", "—" if conv is None else f"{conv}"))
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
@@ -217,13 +219,18 @@ class TransformerView:
         a.grid(False)
         self.image = a.imshow(np.ones((2, 2)), cmap="gray", vmin=0, vmax=1, extent=(0, 1, 0, 1),
                               interpolation="antialiased")
-        (self.hh,) = a.plot([], [], "-.", color=_C["blue"], lw=1.6, label="principal horizontal hh")
-        (self.hh_pts,) = a.plot([], [], "x", color=_C["blue"], ms=7, mew=1.6)
+        # black: blue sat too close to the pink base triangles with protanopia (tests/presentation/test_colours)
+        (self.hh,) = a.plot([], [], "-.", color=_C["black"], lw=1.6, label="principal horizontal hh")
+        (self.hh_pts,) = a.plot([], [], "x", color=_C["black"], ms=7, mew=1.6, label="crossings of corresponding lines")
+        # a black outline under the pink triangles: they stay visible on the grey photo with any colour vision
         (self.base,) = a.plot([], [], "^", mfc="none", mec=_C["control"], mew=2.4, ms=12,
-                              label="points on the base planchet")
-        (self.images,) = a.plot([], [], "o", color=_C["orange"], ms=7, label="their images on the screen")
+                              label="points on the base planchet",
+                              path_effects=[patheffects.withStroke(linewidth=4.6, foreground="black")])
+        (self.images,) = a.plot([], [], "o", color=_C["orange"], ms=7, label="their images on the screen",
+                                markeredgecolor="black", markeredgewidth=0.8)
         self.arrows = a.quiver(np.zeros(5), np.zeros(5), np.zeros(5), np.zeros(5), angles="xy", scale_units="xy",
-                               scale=1.0, color=_C["vermillion"], width=0.006, zorder=5)
+                               scale=1.0, color=_C["vermillion"], width=0.006, zorder=5, label="misses (lengthened ×k)")
+        a.legend(loc="upper right")  # the key (a live demo shows it beside the figure: LiveDemo.legend_beside)
 
     def update(self, r: TransformerResult) -> None:
         s = r.current
@@ -253,8 +260,8 @@ class TransformerView:
             self.hh.set_data([], [])
             self.hh_pts.set_data([], [])
         # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
-        self.ax.title.set_text(_t("Step {step}: {name} — misses ×{k}, largest {largest:.2f} mm", step=r.step,
-                                  name=_t(s.name), k=k, largest=s.max_residual_mm))
+        self.ax.title.set_text(_t("Step {step}: {name} — misses ×{k}, largest {largest} mm", step=r.step,
+                                  name=_t(s.name), k=k, largest=fmt_number(s.max_residual_mm, 2)))
 
 
 class TransformerDemo(LiveDemo):
@@ -289,10 +296,17 @@ class TransformerDemo(LiveDemo):
 
     def render(self, result):
         self.view.update(result)
+        self._shown = dict(self.values)
         self.table.value = plots.html_table(result.table(), caption="The screen")
 
     def on_slider(self) -> str:
-        """Photo sliders: a preview render at once, the full resolution when the slider rests (the step slider is cheap)."""
+        """Photo sliders: a preview render at once, the full resolution when the slider rests.  The step slider is
+        discrete and cheap: every step is drawn at full resolution at once (no blurred frame, no status line)."""
+        shown = getattr(self, "_shown", {})
+        if {k for k, v in self.values.items() if shown.get(k) != v} <= {"step"}:
+            self.cancel_later()
+            self.update()
+            return ""
         return self.preview_then_full(0.25)
 
 

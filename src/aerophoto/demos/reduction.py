@@ -122,7 +122,8 @@ class ReductionResult:
         rows = [
             ("mean reduction coefficient k", "", red.k),
             ("largest |Δk| (spread)", "", red.coefficients.spread),
-            ("bases within tolerance", "", f"{int(red.coefficients.ok.sum())} of {len(red.coefficients.k)}"),
+            ("bases within tolerance", "", t("{done} of {total}", done=int(red.coefficients.ok.sum()),
+                                              total=len(red.coefficients.k))),
             ("largest error-triangle side", "mm", fs.max_triangle_side_mm),
             ("largest control residual", "mm", red.max_control_residual_mm),
             ("RMS error, orienting points and centres", "mm", float(np.sqrt(np.mean(red.errors_mm[inner] ** 2)))),

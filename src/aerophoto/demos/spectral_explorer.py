@@ -166,7 +166,7 @@ class SpectralView:
             self.img.set_extent(r.extent_km)
         if r.camera != getattr(self, "_camera", None):  # a new title only with a new camera
             self._camera = r.camera
-            self.ax_img.set_title(t("Patch: {bands} as RGB", bands="-".join(b.upper() for b in shown)), fontsize=12)
+            self.ax_img.set_title(t("Patch: {bands} as RGB", bands="-".join(t(b.upper()) for b in shown)), fontsize=12)
 
 
 class SpectralExplorerDemo(LiveDemo):

@@ -28,7 +28,8 @@ import pandas as pd
 
 from .. import plots
 from .. import stereo as st
-from ..i18n import t
+from ..i18n import t, translate_unit
+from ..i18n.numfmt import fmt_number
 from ..widgets import LiveDemo, Param
 
 __all__ = ["AREA_SIZE_MM", "areas", "AnaglyphView", "FloatingMarkDemo", "MarkResult", "BaseHeightView",
@@ -271,11 +272,11 @@ class FloatingMarkDemo(LiveDemo):
     def render(self, r: MarkResult):
         self.view.update(r.rgb, r.extent_mm)
         # set_text, not set_title: set_title restyles the axes' other titles too, which is a change of the axes
-        self.view.ax.title.set_text(t("{area}: p = {p:.2f} mm", area=t(r.area), p=r.p_mm)
+        self.view.ax.title.set_text(t("{area}: p = {p} mm", area=t(r.area), p=fmt_number(r.p_mm, 2))
                                     + (t(" — reverse stereo") if r.reverse else ""))
-        text = f"p {r.p_mm:.2f} mm"
+        text = f"p {fmt_number(r.p_mm, 2)} {t('mm')}"
         if not self.measure_only:
-            text += f"\nZ {float(r.table.loc[MARK_Z, 'value']):.1f} m"
+            text += f"\nZ {fmt_number(float(r.table.loc[MARK_Z, 'value']), 1)} {translate_unit('m')}"
         self.reading.xy = (r.x_mm, r.y_mm)
         self.reading.set_text(text)
         self.table.value = plots.html_table(r.table, caption="Floating mark")
@@ -335,7 +336,8 @@ class BaseHeightView:
         C = plots.COLORS
         (self.exact,) = a1.plot([], [], color=C["blue"], label="Δp = b·h/(H − h)")
         (self.small,) = a1.plot([], [], color=C["orange"], ls="--", label="small form b·h/H")
-        (self.point,) = a1.plot([], [], "o", color=C["vermillion"], ms=9, label="the object")
+        # black: a vermilion dot on the orange dashed curve merged with deuteranopia (tests/presentation/test_colours)
+        (self.point,) = a1.plot([], [], "o", color=C["black"], ms=9, label="the object")
         a1.set_xlabel("height h above the ground, m")
         a1.set_ylabel("parallax difference Δp, mm")
         a1.set_title("Parallax grows with height")

@@ -222,32 +222,51 @@ def discrepancy_frame(audits) -> pd.DataFrame:
     return FullTextFrame(rows, columns=["source", "table", "where", "quantity", "printed", "computed", "reason"])
 
 
-def _html_frame(df: pd.DataFrame, caption: str) -> str:
-    """A small HTML table (no presentation-layer import: the guide layer renders its own audits)."""
+def _html_frame(df: pd.DataFrame, caption: str, number=None) -> str:
+    """A small HTML table (no presentation-layer import: the guide layer renders its own audits).
+
+    ``number`` (text → text) writes a cell's numbers in the reader's format (:func:`render`); a whole float is
+    shown as a whole number (``11934``, not ``11934.0``)."""
+    number = number or str
     head = "".join(f"<th>{html.escape(str(c))}</th>" for c in [df.index.name or ""] + list(df.columns))
     body = []
     for idx, row in df.iterrows():
-        cells = "".join(f"<td>{html.escape('' if _blank(v) else str(v))}</td>" for v in row)
-        body.append(f"<tr><th>{html.escape(str(idx))}</th>{cells}</tr>")
+        cells = "".join(f"<td>{html.escape('' if _blank(v) else number(_text(v)))}</td>" for v in row)
+        body.append(f"<tr><th>{html.escape(number(str(idx)))}</th>{cells}</tr>")
     cap = f"<caption style='caption-side:top;text-align:left;font-weight:bold'>{html.escape(caption)}</caption>"
     return (f"<table class='aerophoto-audit' style='border-collapse:collapse;font-size:13px'>{cap}"
             f"<thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>")
+
+
+def _text(v) -> str:
+    """A cell as text: a whole float as a whole number, any other float with 4 significant digits (no exponent
+    for the table's magnitudes), text as it is."""
+    if isinstance(v, float) and math.isfinite(v):
+        if v.is_integer():
+            return str(int(v))
+        digits = max(0, 3 - math.floor(math.log10(abs(v))))
+        return f"{v:.{digits}f}".rstrip("0").rstrip(".")
+    return str(v)
 
 
 def _blank(v) -> bool:
     return v is None or (isinstance(v, float) and math.isnan(v))
 
 
-def render(audit: Audit) -> str:
-    """An audit as HTML: the recomputed table left; printed vs computed (the values that do not follow) right."""
-    left = _html_frame(audit.table, f"{audit.title} — recomputed by aerophoto ({audit.source})")
+def render(audit: Audit, number=None) -> str:
+    """An audit as HTML: the recomputed table left; printed vs computed (the values that do not follow) right.
+
+    ``number`` (text → text) rewrites the numbers of every cell and note in the book's format; the notebooks get
+    :mod:`aerophoto.i18n.numfmt`'s (:func:`aerophoto.plots.register_table_display`), without it they stay as
+    written."""
+    left = _html_frame(audit.table, f"{audit.title} — recomputed by aerophoto ({audit.source})", number)
     disc = audit.comparison()
     if len(disc):
         right = _html_frame(disc.drop(columns=["verdict"]).set_index("where"),
-                            "Printed vs computed: the values that do not follow")
+                            "Printed vs computed: the values that do not follow", number)
     else:
         right = "<p><b>Printed vs computed:</b> every printed number follows from its inputs.</p>"
-    notes = "".join(f"<li>{html.escape(n)}</li>" for n in audit.notes)
+    notes = "".join(f"<li>{html.escape((number or str)(n))}</li>" for n in audit.notes)
     notes_html = f"<ul style='margin:4px 0 0 16px;padding:0;font-size:13px'>{notes}</ul>" if notes else ""
     return ("<div class='aerophoto-guide-table' style='display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start'>"
             "<style>.aerophoto-audit td,.aerophoto-audit th{text-align:left;padding:2px 6px;"

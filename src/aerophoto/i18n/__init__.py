@@ -31,7 +31,7 @@ import os
 import string
 
 __all__ = ["LANGUAGES", "DEFAULT", "t", "_", "set_language", "get_language", "language", "catalogue",
-           "translate", "translate_unit", "translate_options", "translate_figure", "placeholders", "has"]
+           "translate", "translate_unit", "translate_units_in", "translate_options", "translate_figure", "placeholders", "has"]
 
 #: the languages of the book
 LANGUAGES = ("en", "ru")
@@ -110,10 +110,35 @@ def translate(text, lang: str | None = None):
     return catalogue().get(text, text)
 
 
+class _BookFormatter(string.Formatter):
+    """``str.format`` with the book's number format for a real number under a plain ``f``, ``g`` or ``%`` spec
+    (``{v:.2f}`` → ``0,25`` in Russian, ``−3.5``, never ``−0.00``, ``12 043``: :func:`.numfmt.fmt_spec`); any
+    other field (text, a count without a spec, ``{i:02d}``, a width) as Python formats it."""
+
+    _PLAIN = None
+
+    def format_field(self, value, format_spec):
+        import re
+        from numbers import Real
+
+        if _BookFormatter._PLAIN is None:
+            _BookFormatter._PLAIN = re.compile(r"^\+?(?:\.\d+)?[fg%]$")
+        if (format_spec and isinstance(value, Real) and not isinstance(value, bool)
+                and _BookFormatter._PLAIN.match(format_spec)):
+            from .numfmt import fmt_spec
+
+            return fmt_spec(value, "{:" + format_spec + "}")
+        return super().format_field(value, format_spec)
+
+
+_FORMATTER = _BookFormatter()
+
+
 def t(key: str, /, **fmt) -> str:
-    """The message ``key`` (its English text) in the language in use, formatted with ``fmt`` (``str.format``)."""
+    """The message ``key`` (its English text) in the language in use, formatted with ``fmt`` (``str.format``; a
+    real number under an ``f``/``g``/``%`` spec in the book's number format, :mod:`.numfmt`)."""
     text = translate(key)
-    return text.format(**fmt) if fmt else text
+    return _FORMATTER.format(text, **fmt) if fmt else text
 
 
 _ = t
@@ -126,6 +151,31 @@ def translate_unit(unit: str) -> str:
     from .checks import UNITS
 
     return UNITS.get(unit, unit)
+
+
+#: units that follow a number in a text written by code (a table cell from a physics module, a figure text)
+_UNIT_AFTER_NUMBER = None
+#: the units this rewrites beyond the tasks' own (:data:`aerophoto.i18n.checks.UNITS`)
+_MORE_UNITS = {"cm": "см", "km²": "км²", "km/h": "км/ч", "px": "пикс.", "m/s": "м/с"}
+
+
+def translate_units_in(text):
+    """A text's units that follow a number in the language in use: ``"f = 100 mm"`` → ``"f = 100 мм"``,
+    ``"0.5 m"`` → ``"0.5 м"`` in Russian (a unit only after a number and a space: a lone "m" is a symbol).  English
+    and anything not a str come back unchanged."""
+    global _UNIT_AFTER_NUMBER
+    if get_language() == "en" or not isinstance(text, str) or not any(c.isdigit() for c in text):
+        return text
+    import re
+
+    from .checks import UNITS
+
+    units = {**{k: v for k, v in UNITS.items() if k.isalpha() or k == "µm"}, **_MORE_UNITS}
+    if _UNIT_AFTER_NUMBER is None:
+        names = sorted(units, key=len, reverse=True)
+        _UNIT_AFTER_NUMBER = re.compile(r"(?<=\d)([ \u00a0])(" + "|".join(re.escape(u) for u in names) +
+                                        r")(?![\w²/])")
+    return _UNIT_AFTER_NUMBER.sub(lambda m: m.group(1) + units[m.group(2)], text)
 
 
 def translate_options(options) -> list:

@@ -40,6 +40,18 @@ _HELP = {
     "build the browser book: a JupyterLite site (Pyodide) of the workbook, the lecture index and the package, offline from pinned, hash-checked inputs":
         "собрать учебник для браузера: сайт JupyterLite (Pyodide) с рабочей тетрадью, указателем лекций и пакетом, "
         "офлайн из закреплённых, проверенных по хешу файлов",
+    "build the web book: every chapter readable in English and Russian with its figures, formulas and search, the browser book beside it, and the PDFs, offline from pinned inputs":
+        "собрать веб-книгу: каждая глава для чтения на русском и английском, с рисунками, формулами и поиском, рядом "
+        "— книга для браузера и PDF, офлайн из закреплённых файлов",
+    "the site's folder (default: _book)": "папка сайта (по умолчанию: _book)",
+    "build tools and executed chapters kept between builds (default: $AEROPHOTO_SITE_CACHE or ~/.cache/aerophoto-site)":
+        "средства сборки и выполненные главы, сохраняемые между сборками (по умолчанию: $AEROPHOTO_SITE_CACHE или "
+        "~/.cache/aerophoto-site)",
+    "the course hub's address (https://hub.example.edu): adds \"open on the course hub\" to every chapter":
+        "адрес сервера курса (https://hub.example.edu): добавляет к каждой главе «открыть на сервере курса»",
+    "a browser book already built (aerophoto-course lite --out DIR) to ship instead of building one":
+        "уже собранная книга для браузера (aerophoto-course lite --out DIR), чтобы не собирать её заново",
+    "leave out the printed books (PDF)": "не собирать печатные книги (PDF)",
     "the student's course report (guide §15, PDF and HTML) and fotoschema sheet from their workbook, read without running it (no course set-up needed)":
         "пояснительная записка студента (пособие §15, PDF и HTML) и лист фотосхемы по его рабочей тетради, "
         "прочитанной без выполнения (настройка курса не нужна)",

@@ -180,12 +180,12 @@ _HINTS = {
     "A longer base B or a lower flight H makes every height give more parallax and the stereo model taller (V); a longer lens at the same scale needs a higher flight and flattens it.":
         "Длиннее базис B или ниже полёт H — каждая высота даёт больший параллакс, и стереомодель выше (V); "
         "более длиннофокусный объектив при том же масштабе требует более высокого полёта и уплощает её.",
-    "Blue: contours drawn from the DEM; dashed grey: where they should be. Coarsen the grid until the interpolation shows, then switch the structural lines on; raise m_z and watch the contours wriggle.":
-        "Синие — горизонтали по ЦМР; серые штриховые — где они должны быть. Огрубляйте сетку, пока не проявится "
+    "Black: contours drawn from the DEM; dashed grey: where they should be. Coarsen the grid until the interpolation shows, then switch the structural lines on; raise m_z and watch the contours wriggle.":
+        "Чёрные — горизонтали по ЦМР; серые штриховые — где они должны быть. Огрубляйте сетку, пока не проявится "
         "интерполяция, затем включите структурные линии; увеличьте m_z и посмотрите, как горизонтали извиваются.",
-    "Blue: the exact displacement (tilted photo vs the vertical one turned about the isoline); orange: the guide's δα = −(r_c²·cos φ/f)·sin α. Points on the isoline h_c h_c do not move.":
+    "Blue: the exact displacement (tilted photo vs the vertical one turned about the isoline); orange: the guide's δα = −(r<sub>c</sub>²·cos φ/f)·sin α. Points on the isoline h<sub>c</sub>–h<sub>c</sub> do not move.":
         "Синие — точное смещение (наклонный снимок против горизонтального, повёрнутого вокруг линии неискажённых "
-        "масштабов); оранжевые — формула пособия δα = −(r_c²·cos φ/f)·sin α. Точки на линии h_c h_c не смещаются.",
+        "масштабов); оранжевые — формула пособия δα = −(r<sub>c</sub>²·cos φ/f)·sin α. Точки на линии h<sub>c</sub>–h<sub>c</sub> не смещаются.",
     "Change the free strip's scale: k follows 1/q and the arrows v = r(k − 1) grow, but the control residuals do not change. Raise the pricking error: the triangles and the spread of k grow. Move the centre: the corrections change, the result does not.":
         "Измените масштаб свободного маршрута: k следует за 1/q и стрелки v = r(k − 1) растут, но остатки на опорных "
         "точках не меняются. Увеличьте ошибку накола: растут треугольники и разброс k. Сместите центр: поправки "

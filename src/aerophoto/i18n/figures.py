@@ -66,9 +66,9 @@ _ROWS = {
     "Flying height H (above the mean plane)": "Высота полёта H (над средней плоскостью)",
     "Flying height H = f·m": "Высота полёта H = f·m",
     "Footprint area": "Площадь охвата",
-    "Isocentre oc = −f·tg(α/2)": "Точка нулевых искажений oc = −f·tg(α/2)",
-    "Nadir distance on = f·tg α": "Расстояние до надира on = f·tg α",
-    "Photo scale 1/m (vertical)": "Масштаб снимка 1/m (горизонтального)",
+    "Isocentre oc = −f·tg(α/2)": "Изоцентр oc = −f·tg(α/2)",
+    "Nadir distance on = f·tg α": "До надира on = f·tg α",
+    "Photo scale 1/m (vertical)": "Масштаб снимка 1/m",
     "RMS contrast of the photo (red band)": "СКО контраста снимка (красная зона)",
     "RMS error of the carried changes": "СКО перенесённых изменений",
     "RMS of DEM − truth, whole sheet": "СКО ЦМР − истина, весь лист",
@@ -301,5 +301,124 @@ _CELLS = {
     "first full cycle within 0.4 mm ends at step": "первый полный цикл в пределах 0,4 мм кончается на шаге",
 }
 
+_LEGENDS = {
+    # chapter 00
+    "vertical photo": "горизонтальный снимок",
+    "tilted photo": "наклонный снимок",
+    "N (plumb point)": "N (точка надира)",
+    "ground grid": "сетка на местности",
+    "frame": "рамка снимка",
+    "principal vertical": "главная вертикаль",
+    "isoline h_c–h_c": "линия неискажённых масштабов h_c–h_c",
+    # chapters 03–04
+    "relief δh (radial from n)": "за рельеф δh (радиально от n)",
+    "tilt δα, exact (radial from c)": "за наклон δα, точно (радиально от c)",
+    "tilt δα, the guide's formula": "за наклон δα, формула пособия",
+    "points above / below the mean object plane": "точки выше / ниже средней плоскости",
+    "principal point": "главная точка",
+    "nadir point": "точка надира",
+    "isocentre": "точка нулевых искажений",
+    # chapter 05
+    "cuts (порезы)": "порезы",
+    "tie points a, b": "связующие точки a, b",
+    "principal points o": "главные точки o",
+    "cut-out (вырез, −)": "вырез (−)",
+    "duplicate (дублет, +)": "дублет (+)",
+    # chapters 06, 12
+    "control on the base": "опорные точки на основе",
+    "control points": "опорные точки",
+    "error triangles": "треугольники погрешностей",
+    "mean k": "средний k",
+    "mean ± tolerance": "среднее ± допуск",
+    "orienting points": "ориентирующие точки",
+    "reduction centre": "центр редуцирования",
+    "working centres": "рабочие центры",
+    # chapter 01
+    "detail (right)": "фрагмент (справа)",
+    "flight path": "маршрут полёта",
+    "footprints (first strips)": "охваты снимков (первые маршруты)",
+    "survey area Lx × Ly": "участок съёмки Lx × Ly",
+    "working area Bx × By": "рабочая площадь Bx × By",
+    # chapter 02
+    "2 prints": "2 отпечатка",
+    "3 prints": "3 отпечатка",
+    "4 prints": "4 отпечатка",
+    "base o–o": "базис o–o",
+    "out of tolerance": "вне допуска",
+    "strip line L": "линия маршрута L",
+    # chapter 07
+    "as the model shows it": "как её показывает модель",
+    "small form b·h/H": "краткая формула b·h/H",
+    "the house": "дом",
+    "the object": "объект",
+    # chapter 10
+    "Resection: three known points, two angles": "Обратная засечка: три известные точки, два угла",
+    # chapter 11
+    "crossings of corresponding lines": "пересечения соответственных линий",
+    "misses (lengthened ×k)": "невязки (удлинены ×k)",
+    "points on the base planchet": "точки на планшете-основе",
+    "principal horizontal hh": "главная горизонталь hh",
+    "their images on the screen": "их изображения на экране",
+    "within": "в допуске",
+    "not yet": "ещё нет",
+    # chapter 13
+    "Patch of the site, bare soil": "Участок, открытая почва",
+    "band values (camera's bands)": "значения в зонах (зоны камеры)",
+    "the same soil dry (θ = 0)": "та же почва сухая (θ = 0)",
+    "the soil, ρ(λ)": "почва, ρ(λ)",
+    "near infrared": "ближняя ИК",
+    # chapter 14
+    "control points (опознаки)": "опознаки",
+    "control rows": "ряды опоры",
+    "height": "по высоте",
+    "plan": "в плане",
+    # chapter 16
+    "DEM nodes": "узлы ЦМР",
+    "contours from the DEM": "горизонтали по ЦМР",
+    "thalwegs (тальвеги)": "тальвеги",
+    "true contours": "истинные горизонтали",
+    "watersheds (водоразделы)": "водоразделы",
+    # static figures of chapters 03–05, 16
+    "A (height h)": "A (высота h)",
+    "E (mean object plane)": "E (средняя плоскость)",
+    "Relief displacement on a vertical photo: a′a = δh = r·h/H":
+        "Смещение за рельеф на горизонтальном снимке: a′a = δh = r·h/H",
+    "photo P": "снимок P",
+    "v  principal vertical\n(+ away from n)": "v  главная вертикаль\n(+ от n)",
+    "sheet mm": "мм листа",
+    "DEM − true height, m": "ЦМР − истинная высота, м",
+    # chapter 13's bands (Landsat TM), short names
+    "nir": "БИК", "swir1": "СИК-1", "swir2": "СИК-2",
+    "NIR": "БИК", "RED": "К", "GREEN": "З", "BLUE": "С", "SWIR1": "СИК-1", "SWIR2": "СИК-2",
+    # chapter 09
+    "the ground now (photo) / the old plan": "местность сейчас (снимок) / старый план",
+    "grid cells": "ячейки сетки",
+    "changes: on the photo / carried onto the plan": "изменения: на снимке / перенесённые на план",
+    "where the changes really are": "где изменения на самом деле",
+    "control (transformation) points": "опорные (трансформационные) точки",
+    "central": "центральные направления",
+    "proportional": "пропорциональное деление",
+    # the variant (Variant.table())
+    "The variant (guide §1)": "Вариант (пособие §1)",
+    "Record-book number (номер зачётной книжки)": "Номер зачётной книжки",
+    "Variant i": "Вариант i",
+    "Aircraft speed W": "Скорость самолёта W",
+    "Frame size": "Размер кадра",
+    "Focal length f": "Фокусное расстояние f",
+    "Photo scale 1/m": "Масштаб снимка 1/m",
+    "Photoplan scale 1/M": "Масштаб фотоплана 1/M",
+    "Forward overlap p_x": "Продольное перекрытие p_x",
+    "Side overlap p_y": "Поперечное перекрытие p_y",
+    "Area size L_x (along the parallel)": "Размер участка L_x (по параллели)",
+    "Area size L_y (along the meridian)": "Размер участка L_y (по меридиану)",
+    "Highest ground Z_max": "Наибольшая отметка Z_max",
+    "Lowest ground Z_min": "Наименьшая отметка Z_min",
+    "Tilt α": "Угол наклона α",
+    "Swing λ": "Угол λ",
+    "km/h": "км/ч",
+    "px, %": "px, %",
+    "py, %": "py, %",
+}
+
 #: English → Russian
-MESSAGES = {**_CAPTIONS, **_HEADERS, **_ROWS, **_FIGURES, **_CELLS}
+MESSAGES = {**_CAPTIONS, **_HEADERS, **_ROWS, **_FIGURES, **_CELLS, **_LEGENDS}

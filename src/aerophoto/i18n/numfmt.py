@@ -27,10 +27,12 @@ machine.
 from __future__ import annotations
 
 import math
+import re
 from numbers import Real
 
-__all__ = ["GROUP", "MINUS", "NBSP", "DASH", "decimal_mark", "decimals_for", "fmt_number", "fmt_count",
-           "fmt_scale", "fmt_percent", "fmt_quantity", "fmt_signed", "fmt_value"]
+__all__ = ["GROUP", "MINUS", "NBSP", "DASH", "NUMBER", "decimal_mark", "decimals_for", "fmt_number", "fmt_count",
+           "fmt_scale", "fmt_percent", "fmt_quantity", "fmt_signed", "fmt_value", "fmt_spec", "fmt_text",
+           "parse_number", "numbers_in", "TickFormatter", "localise_ticks"]
 
 #: the thousands separator: a narrow no-break space
 GROUP = "\u202f"
@@ -185,3 +187,149 @@ def fmt_value(x, *, decimals: int | None = None, sig: int | None = None, lang=No
     if hasattr(x, "dtype") and getattr(x.dtype, "kind", "") in "iu":
         return fmt_number(v, 0, lang=lang)
     return fmt_number(v, decimals, sig=sig, lang=lang)
+
+
+_SPEC = re.compile(r"^\{?:?(?P<plus>\+)?,?(?:\.(?P<prec>\d+))?(?P<kind>[fgd%]?)\}?$")
+
+
+def fmt_spec(x, spec: str = "{:.4g}", *, lang=None) -> str:
+    """``x`` in the book's format with the precision of a ``str.format`` spec: ``"{:.2f}"`` (2 decimals),
+    ``"{:.3g}"`` (3 significant digits, trailing zeros dropped as ``g`` does, never an exponent), ``"{:d}"`` (a
+    count), ``"{:.1%}"`` (a percentage), ``"{:+.2f}"`` (a sign always).  A grouping comma in the spec is ignored
+    (grouping is the book's rule).  A spec it does not know is a ValueError naming it."""
+    m = _SPEC.match(str(spec).strip())
+    if m is None:
+        raise ValueError(f"spec = {spec!r} is not a number format of the book (e.g. '{{:.2f}}', '{{:.3g}}')")
+    prec = None if m.group("prec") is None else int(m.group("prec"))
+    kind, plus = m.group("kind") or "g", bool(m.group("plus"))
+    v = _finite(x)
+    if v is None:
+        return DASH
+    if kind == "d":
+        return fmt_count(round(v), lang=lang)
+    if kind == "%":
+        return fmt_percent(v * 100, 6 if prec is None else prec, lang=lang, plus=plus)
+    if kind == "f":
+        return fmt_number(v, 6 if prec is None else prec, lang=lang, plus=plus)
+    if math.isinf(v):
+        return fmt_number(v, lang=lang)
+    sig = max(1, 6 if prec is None else prec)
+    decimals = decimals_for(v, sig)
+    text = fmt_number(round(v, decimals), decimals, lang=lang, plus=plus)
+    mark = decimal_mark(lang)
+    return text.rstrip("0").rstrip(mark) if mark in text else text
+
+
+#: a number as the book writes it, or as Python does (``12 043``, ``−3,5``, ``1200.00``, ``-0.25``, ``1:17 700``'s
+#: 17 700); the separators of both languages are read by :func:`parse_number`
+NUMBER = (r"(?<![\w.,])[-−+]?(?:\d{1,3}(?:[\u202f\u00a0\u2009 ]\d{3})+|\d+)(?:[.,]\d+)?(?![\w]|[.,]\d)")
+_NUMBER_RE = re.compile(NUMBER)
+_PY_NUMBER = re.compile(r"(?<![\w.,\u202f\u00a0\u2009])(?P<sign>-)?(?P<int>\d+)(?:\.(?P<frac>\d+))?"
+                        r"(?![\w]|[.,]\d|\u202f\d)")
+
+
+def parse_number(text, *, lang=None) -> float:
+    """A number written by this module back into a float: ``"12 043"`` → 12043.0, ``"−3,25"`` → −3.25 (``lang``'s
+    decimal mark: a comma in Russian; in English a comma is no mark and a point is), ``"—"`` → NaN, ``"1:17 700"``
+    → 17700.0 (the scale's denominator), ``"12,3 %"`` → 12.3.  The tests read every number off a page or a table
+    with it.  Text that is no number is a ValueError naming it."""
+    s = str(text).strip()
+    if s == DASH:
+        return math.nan
+    core = s[2:] if s.startswith("1:") else s
+    core = core.rstrip("%°′″ \u00a0")
+    core = core.replace(MINUS, "-")
+    for sep in (GROUP, NBSP, "\u2009", " "):
+        core = core.replace(sep, "")
+    if "," in core:
+        if _lang(lang) == "ru" or "." in core:
+            core = core.replace(",", "." if "." not in core else "")
+        else:
+            raise ValueError(f"text = {text!r} has a decimal comma; in English the book writes a point")
+    try:
+        return float(core)
+    except ValueError:
+        raise ValueError(f"text = {text!r} is not a number in the book's format") from None
+
+
+def numbers_in(text, *, lang=None) -> list:
+    """Every number in ``text`` (a title, a table's text, a page), in order, as floats (:func:`parse_number`)."""
+    lang = _lang(lang)
+    out = []
+    for m in _NUMBER_RE.finditer(str(text)):
+        token = m.group(0)
+        if lang == "en" and "," in token:  # "1,2" in English: two numbers in a list
+            out += [parse_number(p, lang=lang) for p in token.split(",") if p.strip("+-−")]
+        else:
+            out.append(parse_number(token, lang=lang))
+    return out
+
+
+def fmt_text(text, *, lang=None) -> str:
+    """Numbers inside a text, as Python writes them, rewritten in the book's format: ``"-0.00"`` → ``"0.00"``,
+    ``"12043.5"`` → ``"12 043.5"``, ``"-1.80 %"`` → ``"−1,80 %"`` in Russian.  Each keeps its own decimals; a
+    number already grouped, a code with a leading zero (``007``) and a number glued to a word (``p_x2``, ``1a``)
+    are left as they are.  For a table cell or a label that carries numbers from elsewhere (a catalogue, a task)."""
+    if not isinstance(text, str) or not any(c.isdigit() for c in text):
+        return text
+    lang = _lang(lang)
+
+    def one(m):
+        whole, frac = m.group("int"), m.group("frac")
+        if len(whole) > 1 and whole.startswith("0"):
+            return m.group(0)
+        value = float(("-" if m.group("sign") else "") + whole + ("." + frac if frac else ""))
+        return fmt_number(value, len(frac or ""), lang=lang)
+
+    return _PY_NUMBER.sub(one, text)
+
+
+def _tick_text(text: str, lang: str) -> str:
+    """A tick label matplotlib wrote (``"−1.5"``, ``"12000"``, ``"$\\mathdefault{10^{3}}$"``) in the book's format."""
+    if "$" in text or not text:
+        return text
+    return fmt_text(text.replace(MINUS, "-"), lang=lang)
+
+
+def TickFormatter(lang=None):  # noqa: N802 - a class factory: matplotlib is imported only when it is used
+    """A matplotlib tick formatter writing the book's format: matplotlib's own choice of ticks and decimals
+    (:class:`matplotlib.ticker.ScalarFormatter`), with ``lang``'s decimal mark, a true minus and the narrow-space
+    grouping from five digits (``12 000``).  ``lang`` fixed at construction (default: the language in use)."""
+    from matplotlib.ticker import ScalarFormatter
+
+    lang = _lang(lang)
+
+    class _BookFormatter(ScalarFormatter):
+        _aerophoto_numfmt = lang
+
+        def __call__(self, x, pos=None):
+            return _tick_text(super().__call__(x, pos), lang)
+
+        def get_offset(self):
+            return _tick_text(super().get_offset(), lang)
+
+        def format_data_short(self, value):
+            return _tick_text(super().format_data_short(value), lang)
+
+    return _BookFormatter(useOffset=False)
+
+
+def localise_ticks(fig, *, lang=None) -> int:
+    """Give every plain numeric axis of ``fig`` (a ScalarFormatter's, linear) the book's tick format
+    (:func:`TickFormatter`); log axes, dates, fixed and custom labels are left alone.  Returns how many changed.
+    The live demos and :func:`aerophoto.plots.static` call it once on a built figure."""
+    from matplotlib.ticker import ScalarFormatter
+
+    if fig is None:
+        return 0
+    lang = _lang(lang)
+    changed = 0
+    for ax in getattr(fig, "axes", ()):
+        for axis in (getattr(ax, "xaxis", None), getattr(ax, "yaxis", None)):
+            if axis is None or axis.get_scale() != "linear":
+                continue
+            f = axis.get_major_formatter()
+            if type(f) is ScalarFormatter or (getattr(f, "_aerophoto_numfmt", None) not in (None, lang)):
+                axis.set_major_formatter(TickFormatter(lang))
+                changed += 1
+    return changed

@@ -24,7 +24,7 @@ DEMOS = {
     "spectral": ("spectral_explorer", "SpectralExplorerDemo", "moisture_pct", (18, 28)),
     "reduction": ("reduction", "ReductionDemo", "f_mm", (100, 150)),
     "flight_plan": ("flight_plan", "FlightPlanDemo", "f_mm", (100, 110)),
-    "key": ("interpretation", "KeyDemo", "row", (0, 1)),
+    "key": ("interpretation", "KeyDemo", "row", (1, 2)),
     "relief": ("displacement", "ReliefDemo", "relief_m", (60, 65)),
     "tilt": ("displacement", "TiltDemo", "alpha_deg", (3, 3.25)),
     "floating_mark": ("stereo", "FloatingMarkDemo", "p_mm", (72.5, 72.8)),

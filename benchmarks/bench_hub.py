@@ -12,11 +12,18 @@ with N students and an instructor:
 * **opening a chapter**: every student opens chapter 00 at once — N−1 simulated students run its first cells
   (setup, the footprint demo) in a kernel of their server over the kernel websocket; one real student opens
   it in JupyterLab in Debian's chromium (Playwright) and runs it;
-* **moving a slider at once**: the simulated students each move the demo's α slider once a second (the
-  kernel side of a move: ``demo.set(alpha_deg=…)``, the figure drawn with Agg and encoded as a PNG, as ipympl
-  does) and time the kernel round trip of each move from their websocket; meanwhile the real student moves
-  the same slider in the browser and the move is timed from the key press to the painted frame with the
-  method of bench_browser.py (``performance.now()`` in the page);
+* **moving a slider at once**: the simulated students each move the demo's α slider once a second *as a
+  browser does* — the slider's new value as a widget message over the kernel websocket; in the kernel the
+  demo's own handler (compute, the blitted redraw, the PNG of the changed pixels, as ipympl sends it); the frame
+  back over the websocket.  Each simulated student greets the figure's canvas as ipympl's front end does
+  (``initialized``: a canvas that never hears it keeps encoding a second, full PNG of every frame for the
+  widget's state) and answers its requests for a draw.  Timed: the round trip of each move from the student's
+  websocket (the slider's message sent → the frame received), the kernel's own time and CPU time of each move
+  (the handler, wrapped in the kernel) and the frame's size.  Meanwhile the real student moves the same slider in
+  the browser, timed from the key press to the painted frame with the method of bench_browser.py
+  (``performance.now()`` in the page);
+* **CPU**: the share of a core the students' servers, their kernels and the hub with its proxy use while the
+  class sits idle (chapter open, nobody moving, :data:`IDLE_S` s) and while it moves (``cpu_core_share``);
 * **memory**: after that, the proportional set size (PSS: shared pages split between their users) of each
   student's server and kernel processes (found by the student's uid), the hub and the proxy, and how much of
   the machine's available memory the class took;
@@ -49,20 +56,28 @@ HUB = ROOT / "deploy" / "jupyterhub"
 A = "00_start_here"
 MOVE_PERIOD_S = 1.0
 BROWSER_MOVES = 10
+#: seconds the class sits idle (chapter open) while its CPU is measured
+IDLE_S = 20.0
 
-MOVE = """
-import io as _io, time as _t
-import numpy as _np
-from PIL import Image as _Image
-_t0 = _t.perf_counter()
-demo.set(alpha_deg={alpha})
-demo.draw(force=True)
-_buf = _io.BytesIO()
-_Image.fromarray(_np.asarray(demo.fig.canvas.buffer_rgba())).save(_buf, format="png")
-_kernel_ms = (_t.perf_counter() - _t0) * 1000
+#: after the chapter's first cells: time every slider move inside the kernel (the demo's own handler, wrapped) and
+#: hand the client the ids of the slider's and the canvas' widgets
+INSTRUMENT = """
+import ast as _ast, json as _json, time as _t
+_aero_moves = []
+_aero_ctl = demo.controls()["alpha_deg"]
+_aero_ctl.unobserve(demo._on_change, names="value")
+def _aero_timed(change, _inner=demo._on_change):
+    c0, w0 = _t.process_time(), _t.perf_counter()
+    _inner(change)
+    _aero_moves.append([(_t.perf_counter() - w0) * 1000, (_t.process_time() - c0) * 1000])
+_aero_ctl.observe(_aero_timed, names="value")
+_aero_ids = _json.dumps({"slider": _aero_ctl.model_id, "canvas": demo.fig.canvas.model_id})
 """
 
-
+#: what ipympl's front end sends a new figure's canvas (its `send_initialization_message`): a kernel whose canvas
+#: never hears "initialized" keeps encoding a second, full PNG of every frame for the widget state
+CANVAS_HELLO = ({"type": "set_dpi_ratio", "dpi_ratio": 1}, {"type": "initialized"}, {"type": "send_image_mode"},
+                {"type": "refresh"})
 
 
 def _hubclient():
@@ -75,7 +90,7 @@ def _hubclient():
 
 
 def _chapter_opening(record_book: str) -> str:
-    """The code of chapter 00 up to its demo (setup cell with the student's number, the demo cell)."""
+    """The code of chapter 00 up to its demo (setup cell with the student's number, the demo cell), shown."""
     nb = json.loads((ROOT / "notebooks" / f"{A}.ipynb").read_text(encoding="utf-8"))
     cells = {c.get("id"): "".join(c["source"]) for c in nb["cells"]}
     setup = cells["setup"].replace("RECORD_BOOK = None", f'RECORD_BOOK = "{record_book}"')
@@ -132,16 +147,87 @@ def _memory(hub) -> dict:
             "servers": len(servers), "kernels": len(kernels)}
 
 
+def _cpu_s(hub) -> dict:
+    """CPU seconds (user + system) so far of the students' servers, their kernels, and the hub with its proxy."""
+    import psutil
+
+    table = json.loads((hub.state / "users.json").read_text(encoding="utf-8"))
+    uids = {u for n, u in table.items() if n != "teacher"}
+    out = {"servers": 0.0, "kernels": 0.0, "hub_and_proxy": 0.0}
+    for p in psutil.process_iter(["uids", "cmdline"]):
+        try:
+            uid = p.info["uids"].real if p.info["uids"] else None
+            if uid not in uids:
+                continue
+            t = p.cpu_times()
+            cmd = " ".join(p.info["cmdline"] or [])
+        except psutil.Error:
+            continue
+        key = "kernels" if "ipykernel" in cmd else "servers"
+        out[key] += t.user + t.system
+    try:
+        hp = psutil.Process(hub.proc.pid)
+        for p in [hp, *hp.children(recursive=True)]:
+            if p.uids().real in uids:
+                continue
+            t = p.cpu_times()
+            out["hub_and_proxy"] += t.user + t.system
+    except psutil.Error:
+        pass
+    return out
+
+
+def _cpu_rate(a: dict, b: dict, seconds: float, n: int) -> dict:
+    """Per part, the share of one core used between two :func:`_cpu_s` snapshots (and per student)."""
+    out = {k: round((b[k] - a[k]) / seconds, 3) for k in a}
+    out["per_student_core_share"] = round((b["servers"] + b["kernels"] - a["servers"] - a["kernels"]) / seconds / n, 4)
+    return out
+
+
 # --------------------------------------------------------------------------------------------- simulated students
-async def _execute(hc, ws, code: str, timeout: float = 600) -> dict:
+def _frame(raw):
+    """One kernel websocket frame as ``(message, buffers)``: JSON text, or jupyter_server's binary framing of a
+    message with buffers (a count, offsets, the JSON, the buffers) — a figure's frame comes that way."""
+    import struct
+
+    if isinstance(raw, str):
+        return json.loads(raw), []
+    n = struct.unpack("!I", raw[:4])[0]
+    offsets = list(struct.unpack("!" + "I" * n, raw[4:4 * (n + 1)])) + [len(raw)]
+    parts = [raw[offsets[i]:offsets[i + 1]] for i in range(n)]
+    return json.loads(parts[0].decode("utf-8")), parts[1:]
+
+
+async def _next(ws, timeout: float):
+    raw = await asyncio.wait_for(ws.read_message(), timeout)
+    if raw is None:
+        raise RuntimeError("the kernel's websocket closed")
+    return _frame(raw)
+
+
+def _custom(hc, ws, comm_id: str, content: dict) -> None:
+    """A widget's custom message, as its front end sends it (ipympl's canvas protocol)."""
+    hc.send(ws, "comm_msg", {"comm_id": comm_id, "data": {"method": "custom", "content": content}})
+
+
+def _canvas_says(msg, canvas: str):
+    """What the kernel's canvas sent: "binary" (a frame), "draw" (asks the page for a draw), another type, or None."""
+    if msg.get("header", {}).get("msg_type") != "comm_msg" or msg["content"].get("comm_id") != canvas:
+        return None
+    data = msg["content"].get("data", {})
+    try:
+        return json.loads(data.get("content", {}).get("data", "{}")).get("type")
+    except (TypeError, ValueError, AttributeError):
+        return None
+
+
+async def _execute(hc, ws, code: str, timeout: float = 600, expressions: dict | None = None) -> dict:
     msg_id = hc.send(ws, "execute_request", {"code": code, "silent": False, "store_history": False,
-                                             "user_expressions": {"k": "_kernel_ms"} if "_kernel_ms" in code else {},
-                                             "allow_stdin": False, "stop_on_error": True})
+                                             "user_expressions": expressions or {}, "allow_stdin": False,
+                                             "stop_on_error": True})
     reply, error, idle = None, None, False
     while reply is None or not idle:  # the reply (shell) and the idle status (iopub) come in either order
-        msg = await asyncio.wait_for(hc.recv(ws), timeout)
-        if msg is None:
-            raise RuntimeError("the kernel's websocket closed")
+        msg, _ = await _next(ws, timeout)
         if msg.get("parent_header", {}).get("msg_id") != msg_id:
             continue
         kind = msg["header"]["msg_type"]
@@ -156,27 +242,51 @@ async def _execute(hc, ws, code: str, timeout: float = 600) -> dict:
     return reply
 
 
+async def _await_frame(hc, ws, canvas: str, timeout: float = 120) -> int:
+    """Wait for the canvas' next frame, answering its requests for a draw as the page does; the frame's bytes."""
+    while True:
+        msg, bufs = await _next(ws, timeout)
+        said = _canvas_says(msg, canvas)
+        if said == "binary":
+            return sum(len(b) for b in bufs)
+        if said == "draw":
+            _custom(hc, ws, canvas, {"type": "draw"})
+
+
 async def _student(hc, user, rb: str, go: threading.Event, stop: threading.Event, out: dict) -> None:
+    """One student without a browser who moves α once a second *as the browser does*: the slider's new value as
+    a widget message, the kernel's frame (a blitted diff) back over the websocket, the canvas greeted and its
+    requests for a draw answered as ipympl's front end does."""
+    import ast
+
     kid = await asyncio.to_thread(user.start_kernel)
     ws = await user.connect(kid)
     try:
         t0 = time.perf_counter()
         await _execute(hc, ws, _chapter_opening(rb))
+        reply = await _execute(hc, ws, INSTRUMENT, expressions={"ids": "_aero_ids"})
+        ids = json.loads(ast.literal_eval(reply["user_expressions"]["ids"]["data"]["text/plain"]))
+        for hello in CANVAS_HELLO:
+            _custom(hc, ws, ids["canvas"], hello)
+        await _await_frame(hc, ws, ids["canvas"])  # the first, full picture
         out["open_s"] = time.perf_counter() - t0
         while not go.is_set():
             await asyncio.sleep(0.05)
-        out["moves_s"], out["kernel_ms"] = [], []
+        out["moves_s"], out["frame_bytes"] = [], []
         k = 0
         while not stop.is_set() or k < 3:
             t = time.perf_counter()
-            reply = await _execute(hc, ws, MOVE.format(alpha=[3.0, 3.5][k % 2]))
+            hc.send(ws, "comm_msg", {"comm_id": ids["slider"],
+                                     "data": {"method": "update", "state": {"value": [3.5, 3.0][k % 2]},
+                                              "buffer_paths": []}})
+            out["frame_bytes"].append(await _await_frame(hc, ws, ids["canvas"]))
             out["moves_s"].append(time.perf_counter() - t)
-            try:
-                out["kernel_ms"].append(float(reply["user_expressions"]["k"]["data"]["text/plain"]))
-            except (KeyError, TypeError, ValueError):
-                pass
             k += 1
             await asyncio.sleep(max(0.0, MOVE_PERIOD_S - (time.perf_counter() - t)))
+        reply = await _execute(hc, ws, "", expressions={"m": "_json.dumps(_aero_moves)"})
+        moves = json.loads(ast.literal_eval(reply["user_expressions"]["m"]["data"]["text/plain"]))
+        out["kernel_ms"] = [w for w, _c in moves]
+        out["kernel_cpu_ms"] = [c for _w, c in moves]
     finally:
         ws.close()
 
@@ -275,9 +385,16 @@ def _one_class(n: int, launch, hc, h, browser) -> dict:
         thread = threading.Thread(target=_simulated_class, args=(hc, sims, rbs, go, stop, sim, done), daemon=True)
         thread.start()
 
+        cpu: dict = {}
+
         def all_opened():
             while not done.is_set():
                 if all("open_s" in sim[u.name] for u in sims):
+                    # the class idle (chapter open, nobody moving): what it costs the machine anyway
+                    c0, t0 = _cpu_s(hub), time.perf_counter()
+                    time.sleep(IDLE_S)
+                    cpu["idle"] = _cpu_rate(c0, _cpu_s(hub), time.perf_counter() - t0, n)
+                    cpu["moving_from"] = (_cpu_s(hub), time.perf_counter())
                     opened.set()
                     return
                 time.sleep(0.2)
@@ -287,6 +404,9 @@ def _one_class(n: int, launch, hc, h, browser) -> dict:
         try:
             result["browser"] = _browser_student(h, hub, b_user.name, hub.password(b_user.name), browser, go, opened)
         finally:
+            if "moving_from" in cpu:
+                c0, t0 = cpu.pop("moving_from")
+                cpu["moving"] = _cpu_rate(c0, _cpu_s(hub), time.perf_counter() - t0, n)
             stop.set()
             done.wait(timeout=600)
         if "_error" in sim:
@@ -294,8 +414,13 @@ def _one_class(n: int, launch, hc, h, browser) -> dict:
         result["open_chapter"] = summarize([s["open_s"] for s in sim.values()] + [result["browser"]["open_s"]])
         moves = [x for s in sim.values() for x in s.get("moves_s", [])]
         kernel = [x / 1000 for s in sim.values() for x in s.get("kernel_ms", [])]
+        kernel_cpu = [x / 1000 for s in sim.values() for x in s.get("kernel_cpu_ms", [])]
         result["kernel_round_trip_of_a_move"] = summarize(moves)
         result["kernel_work_of_a_move"] = summarize(kernel)
+        result["kernel_cpu_of_a_move"] = summarize(kernel_cpu)
+        result["frame_kb_of_a_move"] = round(statistics.median(
+            [b / 1000 for s in sim.values() for b in s.get("frame_bytes", [])] or [float("nan")]), 1)
+        result["cpu_core_share"] = cpu
         result["moves_per_s_offered"] = round(len(sims) / MOVE_PERIOD_S, 1)
         result["memory"] = _memory(hub)
         result["memory"]["machine_available_mb_before"] = round(mem0)

@@ -19,6 +19,14 @@ What is measured (JSON):
   drawImage, in the page's clock) for the demo's timed slider, in the browser book and, in the same run, in the
   desktop JupyterLab (``desktop``).
 
+* ``class`` (``AEROPHOTO_BENCH_LITE_CLASS=10,30``: only this part, for those class sizes): the hub benchmark's
+  class (``bench_hub``: N students open chapter 00 and move α at once) on the browser book.  N − 1 students'
+  first visits are N − 1 concurrent downloads of what chapter 00's first visit fetched (a process of its own,
+  one thread per student, nothing cached); meanwhile one real student in a fresh chromium profile opens
+  chapter 00, runs it and moves α, timed as in ``bench_browser``.  The server's part is the CPU of this
+  benchmark's process while the class loads (it serves the site from a thread; the downloads run elsewhere) —
+  and nothing per move: a move never leaves the student's browser.
+
 Every request that would leave 127.0.0.1 goes to a trap and is counted (``requests_off_machine``; must be 0).
 """
 
@@ -73,6 +81,61 @@ def _moves(h, page, root, demo, n) -> dict:
     return s
 
 
+_DOWNLOADERS = r"""
+import json, sys, time, urllib.request
+from concurrent.futures import ThreadPoolExecutor
+base, n, paths = sys.argv[1], int(sys.argv[2]), json.loads(sys.stdin.read())
+def student(_k):
+    got = 0
+    for p in paths:
+        with urllib.request.urlopen(base + p, timeout=600) as r:
+            got += len(r.read())
+    return got
+t0 = time.perf_counter()
+with ThreadPoolExecutor(max(n, 1)) as pool:
+    sizes = list(pool.map(student, range(n)))
+print(json.dumps({"bytes": sum(sizes), "seconds": time.perf_counter() - t0}))
+"""
+
+
+def _lite_class(h, L, browser, server, first, paths, n_students: int, moves: int) -> dict:
+    """N students on the browser book: N − 1 first visits downloaded at once, one real student moving α."""
+    import json
+    import subprocess
+    import sys
+
+    load0 = [round(x, 2) for x in os.getloadavg()]
+    cpu0, t0 = time.process_time(), time.perf_counter()
+    dl = subprocess.Popen([sys.executable, "-c", _DOWNLOADERS, server.base, str(n_students - 1)],
+                          stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    dl.stdin.write(json.dumps(paths))
+    dl.stdin.close()
+    page, log, _req = L.new_lite_page(browser)
+    try:
+        to_demo = _open_demo(h, L, page, server, first, first.demos[0])
+        out_dl = json.loads(dl.stdout.read().strip().splitlines()[-1])
+        dl.wait(timeout=600)
+        loaded_s = time.perf_counter() - t0
+        cpu_serving = time.process_time() - cpu0
+        demo = next(d for d in first.demos if d.cell == "demo-footprint")
+        root = h.lab_demo_root(page, demo.cell)
+        root.scroll_into_view_if_needed()
+        h.settle(page, 500)
+        res = h.time_slider_moves(page, h.slider_in(page, root, "α, °"), moves,
+                                  after_move=lambda: h.lab_kernel_idle(page))
+    finally:
+        page.context.close()
+        if dl.poll() is None:
+            dl.kill()
+    return {"students": n_students, "loadavg_before": load0, "loadavg_after": [round(x, 2) for x in os.getloadavg()],
+            "real_student_to_demo_s": round(to_demo, 1), "class_loaded_s": round(loaded_s, 1),
+            "others_download_s": round(out_dl["seconds"], 1), "bytes_served_gb": round(out_dl["bytes"] / 1e9, 2),
+            "server_cpu_s_while_loading": round(cpu_serving, 1),
+            "server_cpu_s_per_student": round(cpu_serving / n_students, 2),
+            "slider_to_paint": summarize(res["samples_s"]), "server_work_per_move": 0,
+            "console_errors": log.relevant()}
+
+
 def run(quick: bool = False) -> dict:
     h = _load("harness", ROOT / "tests" / "browser" / "harness.py")
     L = _load("aerophoto_lite_harness", ROOT / "tests" / "browser" / "lite_harness.py")
@@ -90,6 +153,7 @@ def run(quick: bool = False) -> dict:
         raise ValueError(f"AEROPHOTO_BENCH_ONLY = {only!r}: no chapter with a demo named {unknown}; valid: "
                          f"{', '.join(names)} or 'all'")
 
+    class_sizes = [int(x) for x in os.environ.get("AEROPHOTO_BENCH_LITE_CLASS", "").split(",") if x.strip()]
     result = {"moves_per_demo": n, "chapters": {}}
     with tempfile.TemporaryDirectory(prefix="aerophoto-bench-lite-") as tmp:
         site = Path(tmp) / "site"
@@ -114,6 +178,7 @@ def run(quick: bool = False) -> dict:
                     mark = len(server.requests)
                     cold = _open_demo(h, L, page, server, first, first.demos[0])
                     fetched = _served_bytes(site, server.requests[mark:])
+                    first_mark_end = len(server.requests)
                     mark = len(server.requests)
                     warm = _open_demo(h, L, page, server, second, second.demos[0])
                     result["first_visit"] = {
@@ -121,6 +186,11 @@ def run(quick: bool = False) -> dict:
                         "then_chapter_01_bytes_fetched": _served_bytes(site, server.requests[mark:]),
                         "then_chapter_01_to_demo_s": round(warm, 1)}
                     page.context.close()
+                    if class_sizes:
+                        paths = [p for _m, p, _t, status in server.requests[:first_mark_end] if status == 200]
+                        result["class"] = {str(k): _lite_class(h, L, browser, server, first, paths, k, n)
+                                           for k in class_sizes}
+                        wanted = []  # the class alone
 
                     for ch in chapters.CHAPTERS:
                         if ch.name not in wanted:

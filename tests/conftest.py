@@ -6,7 +6,9 @@ and ``from conftest import NOTEBOOKS`` reads this file from any of them; an area
 ``conftest.py`` (``from .conftest import …``).  Basenames stay unique over the tree: SPREAD names files by them.
 """
 
+import atexit
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -24,6 +26,13 @@ NOTEBOOKS = ROOT / "notebooks"
 os.environ["AEROPHOTO_HOME"] = tempfile.mkdtemp(prefix="aerophoto-home-")
 os.environ.pop("AEROPHOTO_RECORD_BOOK", None)
 os.environ.setdefault("MPLBACKEND", "Agg")
+# one disk cache for the whole run (aerophoto.cache: the site, the guide's stereo pair …), shared by the xdist
+# workers and the kernels and servers they start: what is the same for everyone is built once per run, as on a
+# student's machine.  The first process (pytest's controller) makes it and removes it at the end; the workers
+# inherit it.  tests/foundation/test_cache.py holds a read entry equal to the built value, bit for bit.
+if not os.environ.get("AEROPHOTO_CACHE_DIR"):
+    os.environ["AEROPHOTO_CACHE_DIR"] = tempfile.mkdtemp(prefix="aerophoto-cache-")
+    atexit.register(shutil.rmtree, os.environ["AEROPHOTO_CACHE_DIR"], True)
 
 
 def all_notebooks():

@@ -117,6 +117,20 @@ holds for these numbers, so your tasks are computed and checked with them even w
 W up to 1 200 km/h), and figures stay readable for the largest plans: chapter 01's overview of a plan with
 dozens of strips becomes a schematic (every s-th strip and photo, as its title says).
 """, id="variant-policy-notes"))
+    set_or_insert(nb, "try-this", md("""
+### One ray
+
+On a vertical photo (горизонтальный снимок) over flat ground every point keeps the same scale,
+$1/m = f/H$ (guide §2): the point $x$ from the principal point $o$ on the photo is the ground point
+$X = x\\,m$ from the plumb point $N$ (40 mm on the photo is 480 m on the ground at 1:12 000), and its ray
+leaves the vertical through $S$ at $\\theta = \\arctan(x/f)$. Move $x$ below: only the ray moves — the guide's camera, $f$ = 100 mm at 1:12 000,
+flies at $H = f\\,m$ = 1200 m, and its 180 mm frame covers 2160 m of ground.
+""", id="theory-ray"))
+    set_or_insert(nb, "theory-ray", code("""
+from aerophoto.demos.ray import RayDemo
+ray = RayDemo()   # the guide's camera, variant 00: f = 100 mm, 1:12 000
+ray
+""", id="demo-ray"))
     nbtools.set_cell(nb, "demo-footprint", """
 demo = FootprintDemo()   # the guide's worked example, variant 00: f = 100 mm, 1:12 000, α = 3°, λ = −60°
 demo

@@ -32,14 +32,16 @@ the image.
    (косвенные), and see why colour and the near infrared help;
 3. walk through the guide's **table 10** of topographic keys (топографическое дешифрирование), each row shown on
    the site where it applies;
-4. interpret **your own** photo: name six numbered objects, find the river's flow, tell pine from spruce, and
+4. look at the photo as an interpreter does — its tone, texture, pattern, shadows, shapes and sizes — at its full
+   resolution and under a **magnifier** (лупа);
+5. interpret **your own** photo: name six numbered objects, find the river's flow, tell pine from spruce, and
    measure the river's width by the photo's scale.
 """, id="title"),
     code("""
 RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
 from aerophoto import checks, guide, interpretation, labs, plots, spectral, tasks
-from aerophoto.demos import interpretation as di
+from aerophoto.demos import interpretation as di, loupe
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
     md("""
@@ -126,6 +128,32 @@ calls the objects that point to something unseen **indicators** (индикат�
 guide.ch08.keys_table()
 """, id="theory-keys-table"),
     md(r"""
+### What the keys look like on a photo
+
+The direct keys are read off the photo's image, and a practised interpreter names six things in it (guide §9's
+shape, size, tone and shadow, with the two that come from many objects together):
+
+* **tone** (тон) or colour — how bright an object is in the film's bands: water dark, gravel light, conifers darker
+  than broadleaf trees;
+* **texture** (текстура, зернистость) — the fine grain of small things too small to see one by one: the crowns of a
+  stand, the clods of a ploughed field, grass tufts;
+* **pattern** (рисунок) — a regular arrangement: the rows and **tramlines** (технологическая колея, the wheel tracks
+  a sprayer drives in every 18 m or so) of a crop, the furrows of a ploughed field, a mown meadow's strips, the
+  streaks of a current;
+* **shadow** (тень) — the height and the shape in height: a haystack's round shadow, a house's sharp one, long thin
+  shadows of spruce;
+* **shape** (форма) and **size** (размер) — a field's straight edges, a road's even width with shoulders (обочины)
+  and ditches (кюветы), a house's gabled roof whose two slopes take the light differently.
+
+What shows depends on the scale: a key is seen only if it is larger than what the photo resolves. The table below
+puts a few sizes on the worked example's photo (1:m of the example; one pixel of the 1024 across the 18 cm frame
+is 0.18 mm): a road shows everywhere, tramlines and a house clearly, single crowns as a few pixels — so that pine
+and spruce are told by their stands' tone and grain rather than crown by crown — and the rails only under a glass.
+""", id="theory-marks"),
+    code("""
+di.detail_table(labs.ch08.example_setup().m)
+""", id="theory-marks-table"),
+    md(r"""
 ## How interpretation is organised (guide §9)
 
 **By content** (по содержанию) the guide divides interpretation into two kinds. **Topographic** interpretation
@@ -191,10 +219,15 @@ interpretation by content is read *топографическое*.
 
 ### Each key on the site
 
-Move the row slider: the photo shows the place on the site where that row's key applies, and the table says what to
-look at. Compare the three forests at the same large scale: pine even and grey with convex crowns; spruce darker,
-mottled, with small pointed crowns and long thin shadows; deciduous lighter and coarse. Compare the railway's long
-straights and wide curve with the asphalt road's tight bends.
+Move the row slider: the picture shows the place on the site where that row's key applies — a square of a 1:8 000
+photo taken over that spot, seen through a magnifier (the bar gives the ground distance) — and the table says what
+to look at. Compare the three forests at the same magnification: pine even and grey with round, convex crowns of one
+height; spruce darker and mottled, with small pointed crowns, deep gaps and thin shadows; deciduous lighter, with
+broad, lumpy crowns. Compare the railway's long straights and wide curve with the asphalt road's tight bends, and
+look at the current below an island: streaks along the flow and foam where the two arms meet (table 10's speed of
+flow). A row seen for the first time shows a quick, coarser picture at once and the full one as soon as the slider
+rests. Table 10's row on the height and steepness of banks is the one the site does not show: its banks are low and
+gentle, without the shadows the key reads.
 """, id="example-key-theory"),
     code("""
 key = di.KeyDemo()
@@ -208,9 +241,11 @@ and Q, and the river's flow read with table 10's keys.
 """, id="example-1-theory"),
     code("""
 example = labs.ch08.example_photo()
-plots.static(di.lab_figure(example),
-             alt="A colour aerial photo of the interpretation site with six yellow numbered marks, two blue marks P "
-                 "and Q on two forest stands, and two red marks A and B on opposite banks of the river.", dpi=72)
+plots.static(di.lab_figure(example), dpi=di.LAB_DPI, format="jpeg",
+             alt="A colour aerial photo of the interpretation site, at its full resolution: fields with rows and "
+                 "tramlines, forest stands, a village with red and grey roofs along a gravel road, the river with "
+                 "two islands, a lake and a raised bog; six yellow numbered marks, two blue marks P and Q on two "
+                 "forest stands, and two red marks A and B on opposite banks of the river.")
 """, id="example-1"),
     code("""
 labs.ch08.example_key()
@@ -226,9 +261,16 @@ text exactly, e.g. `obj1 = "lake (озеро)"`):
 
 Each name is graded on its own (half a point for each right one).
 
-The photo is drawn at 72 dpi, so the notebook stays small. To look closer, open it in a browser tab of
-its own (right-click → *Open image in new tab*) and zoom there, or zoom the page (Ctrl and +); the colour-infrared
-copy below it helps to tell water, forest and fields apart.
+**Seeing the photo larger.** The photo below is drawn at its full resolution: 1024 pixels across the 18 cm frame,
+one pixel 0.18 mm on the photo, about 1.5 m on the ground. Two ways to look closer:
+
+* the **magnifier** below the photos (лупа): it shows any spot at ×3 to ×6, rendered afresh from the photo itself —
+  the same camera, light and air — so that it shows finer detail than the screen's picture, as a glass over a print
+  does: crowns, rows, wheel tracks, rails. Put it on a mark with *centre on*, or click on the photo;
+* the browser: right-click the photo → *Open image in new tab* and zoom there, or zoom the page (Ctrl and +). This
+  only enlarges the 1024 pixels: it helps the eye, but shows nothing the pixels do not hold.
+
+The colour-infrared copy helps to tell water (black), forest (dark red) and fields apart.
 """, id="task-08-1"),
     code("""
 lab = tasks.inputs("task-08-1", v)
@@ -238,14 +280,28 @@ for name in labs.ch08.OBJECT_NAMES:
     print("   ", repr(name))
 """, id="task-08-1-data"),
     code("""
-plots.static(di.lab_figure(lab),
-             alt="Your colour aerial photo of the interpretation site with six numbered yellow marks, two blue "
-                 "marks P and Q on two forest stands, and red marks A and B on the two banks of the river.", dpi=72)
+plots.static(di.lab_figure(lab), dpi=di.LAB_DPI, format="jpeg",
+             alt="Your colour aerial photo of the interpretation site at its full resolution, with six numbered "
+                 "yellow marks, two blue marks P and Q on two forest stands, and red marks A and B on the two banks "
+                 "of the river.")
 """, id="task-08-1-photo"),
     code("""
-plots.static(di.lab_figure(lab, "colour-infrared film"),
-             alt="The same photo as colour infrared: vegetation red, water black, with the same marks.", dpi=72)
+plots.static(di.lab_figure(lab, "colour-infrared film"), dpi=di.LAB_DPI, format="jpeg",
+             alt="The same photo as colour infrared: vegetation red, forest dark red, water black, bare fields "
+                 "grey-brown, with the same marks.")
 """, id="task-08-1-cir"),
+    md("""
+### The magnifier (лупа)
+
+Put the glass on each mark in turn (*centre on*), or click on the photo at the left; raise the power to ×5–×6 for
+the stands P and Q. Read what the glass shows with table 10 and the six keys above: how bright, how grainy, what
+pattern, what shadows, what shape and size. The table beside it gives the glass's field on the photo and on the
+ground, and what one of its pixels covers on the ground.
+""", id="demo-loupe-theory"),
+    code("""
+glass = loupe.LoupeDemo(v)
+glass
+""", id="demo-loupe"),
     answer_cell("task-08-1"),
     check_cell("task-08-1"),
     md("""
@@ -283,7 +339,9 @@ lab.marks_table().loc[["A", "B"]]
 * Interpretability depends on the conditions of photographing (guide §9): summer photos taken before noon, in
   clear air, of dry ground, with a short exposure are the most readable; snow, haze, wet soil and image motion
   ($\\delta = W t/m$) take detail away, and the sun's height sets the shadows ($L = h/\\tan e$).
-* Objects are told by direct keys (shape, size, tone, shadow) and indirect ones (their links to other objects).
+* Objects are told by direct keys (shape, size, tone, shadow) and indirect ones (their links to other objects);
+  on the photo they show as tone, texture, pattern, shadow, shape and size, each only where it is larger than what
+  the photo resolves — a magnifier (лупа) brings out the finer ones.
 * Table 10: shallow water is light and deep water dark; islands narrow downstream and tributaries meet a river at an
   acute angle pointing downstream; a pond is widest at its dam; raised bogs lie on watersheds, low bogs along
   valleys; pine is even and grey, spruce darker and mottled with pointed crowns, deciduous lighter; railways have

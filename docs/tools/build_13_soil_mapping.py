@@ -48,7 +48,7 @@ RECORD_BOOK = None  # ← type your record-book number in quotes, e.g. "19-0457"
 import aerophoto
 import numpy as np
 from aerophoto import guide, plots, soilmap, spectral, tasks
-from aerophoto.demos.spectral_explorer import SpectralExplorerDemo, plot_patch, plot_soil_facts, plot_soil_map
+from aerophoto.demos.spectral_explorer import SpectralExplorerDemo, overlay_figure, plot_patch, plot_soil_facts, plot_soil_map
 from aerophoto.site.soils import SOIL_CLASSES, soil_layer
 v = aerophoto.setup(RECORD_BOOK)
 """, id="setup"),
@@ -183,6 +183,13 @@ The keys as the guide lists them, and the five steps of soil interpretation. The
 practises is the second one: the office interpreter first divides the image into areas homogeneous in
 tone, texture and soil-forming factors, and only then names the soils — in the office where the keys
 allow, otherwise in the field, checking each soil type at least three times.
+
+The guide's office work is done on **contact prints** (контактные отпечатки), interpreting **every other photo** of
+a strip (дешифрирование через снимок: with 60 % overlap the even, or the odd, photos cover the ground between them);
+on **photo mosaics** (фотосхемы, chapter 05) where the landscape as a whole decides which soils to expect — the
+landscape approach — and on **stereo mosaics** (стереофотосхемы) where the relief matters most. The finished
+contours go onto the topographic or base land map at the map's scale, by computer or with projection instruments
+that bring the photos to that scale.
 """, id="keys-theory"),
     code("""
 guide.ch13.keys_table()
@@ -282,7 +289,25 @@ with different *combinations* of direct and indirect keys; those combined areas 
 (контурное почвенное дешифрирование) — the same idea as task 13.3's tone areas, with the indirect keys as more
 layers. Sure contours are then drawn in solid lines, doubtful ones dashed, and the field routes go through the
 dashed ones.
+
+The figure does it on a 1.6 km square of the site's bare soil (not a task's patch). Sheet 1 holds four tone areas
+of the colour-infrared photo (k-means, as in task 13.3, on the photo smoothed over 20 m, since an interpreter
+outlines areas, not specks); sheet 2 the relief read from the stereo model — level ground, slopes steeper than 1°,
+closed hollows; sheet 3 the vegetation and land use — arable land, forest, meadow, water. Laid together, the
+sheets cut the square into pieces of one combination of keys (`aerophoto.soilmap.overlay`). A piece is drawn
+**solid** where its combination is the usual one within its tone area (at least 70 % of that area has it: the keys
+agree) and **dashed** where it is not — the tone says one thing, the relief or the cover another. Compare the
+contours with the field survey's soil map under them: the solid ones follow soil boundaries the tone alone misses
+(the slopes, the floodplain's edge), and most dashed ones lie where two soils meet.
 """, id="space-overlay"),
+    code("""
+plots.static(overlay_figure(),
+             alt="Six panels of one square of bare soil. The colour-infrared photo in browns; sheet 1 with orange "
+                 "outlines of four tone areas; sheet 2 with blue outlines of level ground, slopes and hollows; "
+                 "sheet 3 with green outlines of arable land, forest, meadow and water along the river; the three "
+                 "sheets laid together over the photo; and the field survey's soil map in the soil classes' colours "
+                 "with the combined contours in black, solid where the keys agree and dashed where they do not.")
+""", id="space-overlay-figure"),
     md(r"""
 ## Summary
 

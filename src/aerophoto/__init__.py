@@ -31,9 +31,11 @@ import importlib
 __version__ = "0.1.0"
 
 _SUBMODULES = (
+    "cache",
     "geometry",
     "plane",
     "variants",
+    "diskcache",
     "flight",
     "site",
     "render",
@@ -60,6 +62,7 @@ _SUBMODULES = (
     "plots",
     "blit",
     "widgets",
+    "fit",
     "demos",
     "i18n",
     "checks",

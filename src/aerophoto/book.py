@@ -179,6 +179,10 @@ _M = ("m (scale 1:m)", "PageUp")  # scale denominator: five steps up
 CHAPTERS = (
     Chapter("00", "start_here", "start here: your variant, central projection",
             "задание; центральная проекция", section=1, tables=False, demos=(
+                # the cheapest live figure of the book (one blitted line): also the browser benchmark's floor
+                Demo("demo-ray", "aerophoto.demos.ray.RayDemo", "One ray of a vertical photo", "x",
+                     "the ray from S turns and its ground point X = x·m slides along the footprint: the scale "
+                     "1:m = f:H of a vertical photo", (("x, mm", "ArrowRight"),)),
                 Demo("demo-footprint", "aerophoto.demos.footprint.FootprintDemo", "Camera footprint — o, n, c",
                      "α (tilt), then f and m (scale 1:m)",
                      "the footprint turns from a square into a trapezoid; n and c leave o along the principal "
@@ -252,6 +256,13 @@ CHAPTERS = (
                      "each row of table 10 shows the place on the site where its key applies: islands and the "
                      "tributary give the flow, tone and crowns tell pine from spruce, curvature a railway from a road",
                      (("table 10 row", "ArrowRight"),), timed="table 10 row"),
+                Demo("demo-loupe", "aerophoto.demos.loupe.LoupeDemo", "A magnifier on the photo",
+                     "the mark to centre on, then the power, then x and y (or a click on the photo)",
+                     "under the glass the marks of table 10 come out: pine's round crowns of one height against "
+                     "spruce's small dark ones, a field's rows and tramlines, a road's shoulders and ditches, the "
+                     "rails on the ballast",
+                     (("power, ×", "ArrowLeft"), ("x (glass centre), mm", "PageUp")),
+                     timed="x (glass centre), mm"),
             )),
     Chapter("09", "plan_correction", "correcting a plan by mutual projective grids",
             "корректировка плана методом взаимно-проектных сеток", section=10, demos=(

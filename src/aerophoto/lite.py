@@ -77,6 +77,8 @@ NOT_IN_BROWSER = {
               "Pulkovo-1942 zone 5) use the package's Krüger-series Gauss–Krüger, within 1e-8 m of PROJ",
     "nbformat": "notebook maintenance (aerophoto.nbtools) and aerophoto-course are not for the browser",
     "widgetsnbextension": "the classic Notebook's widget extension; the kernel's own stub serves",
+    "anywidget": "the page sensor of the demos (aerophoto.fit) is left out of the browser book: its figures keep "
+                 "their natural size (aerophoto.fit.page_sensor returns None without anywidget)",
 }
 #: JupyterLab settings of the site (overrides.json): every cell stays in the page, so a demo below the screen
 #: keeps its live figure (as in the desktop tests' JupyterLab).  JupyterLab 4.4 binds ← and → in command mode

@@ -225,18 +225,22 @@ class Photo:
     shadow: np.ndarray | None = None
     objects: bool = False
     sun: Sun | None = None
+    window_mm: tuple | None = None
+    normal: np.ndarray | None = None
 
     def __repr__(self) -> str:
         p = self.pose
         num = f" {self.number}" if self.number is not None else ""
-        return (f"Photo{num}({self.n_px}×{self.n_px} px, p = {self.pixel_mm:.4g} mm, f = {self.camera.f_mm:g} mm, "
+        win = "" if self.window_mm is None else (f", window {self.window_mm[2]:g} mm at ({self.window_mm[0]:g}, "
+                                                 f"{self.window_mm[1]:g}) mm")
+        return (f"Photo{num}({self.n_px}×{self.n_px} px, p = {self.pixel_mm:.4g} mm{win}, f = {self.camera.f_mm:g} mm, "
                 f"S = ({p.X_m:.1f}, {p.Y_m:.1f}, {p.Z_m:.1f}) m, α = {p.alpha_deg:.3g}°, λ = {p.lambda_deg:.4g}°, "
                 f"κ = {p.kappa_deg:.4g}°)")
 
     # ---- pixel geometry
     @property
     def n_px(self) -> int:
-        """Pixels across the frame."""
+        """Pixels across the photo (the frame, or the window)."""
         return int(self.image.shape[0])
 
     @property
@@ -244,31 +248,49 @@ class Photo:
         return self.image.shape
 
     @property
+    def raster(self) -> tuple | None:
+        """``(x_left, y_top, p)`` mm of a window's pixel grid (see :func:`render`'s ``window_mm``); None: the frame."""
+        return None if self.window_mm is None else _window_raster(self.window_mm, self.n_px)
+
+    @property
     def pixel_mm(self) -> float:
-        """Pixel size p = l/n_px, mm."""
+        """Pixel size p = l/n_px (the frame) or side/n_px (a window), mm."""
+        if self.window_mm is not None:
+            return float(self.window_mm[2]) / self.n_px
         return self.camera.frame_mm / self.n_px
+
+    def _origin(self) -> tuple:
+        """(x of the left edge, y of the top edge, p), mm."""
+        if self.window_mm is None:
+            h = self.camera.half_mm
+            return -h, h, self.pixel_mm
+        return self.raster
 
     @property
     def extent_mm(self) -> tuple:
         """(left, right, bottom, top) in photo mm, for ``imshow(..., extent=...)``."""
-        h = self.camera.half_mm
-        return (-h, h, -h, h)
+        if self.window_mm is None:
+            h = self.camera.half_mm
+            return (-h, h, -h, h)
+        x0, y0, p = self.raster
+        s = p * self.n_px
+        return (x0, x0 + s, y0 - s, y0)
 
     def mm_to_pixel(self, xy_mm) -> np.ndarray:
         """Photo coordinates (…, 2) in mm → (row, col) (…, 2), fractional; integers are pixel centres."""
         xy = np.asarray(xy_mm, dtype=float)
-        h, p = self.camera.half_mm, self.pixel_mm
-        return np.stack([(h - xy[..., 1]) / p - 0.5, (xy[..., 0] + h) / p - 0.5], axis=-1)
+        x0, y0, p = self._origin()
+        return np.stack([(y0 - xy[..., 1]) / p - 0.5, (xy[..., 0] - x0) / p - 0.5], axis=-1)
 
     def pixel_to_mm(self, rowcol) -> np.ndarray:
         """(row, col) (…, 2) → photo coordinates x, y (…, 2) in mm."""
         rc = np.asarray(rowcol, dtype=float)
-        h, p = self.camera.half_mm, self.pixel_mm
-        return np.stack([-h + (rc[..., 1] + 0.5) * p, h - (rc[..., 0] + 0.5) * p], axis=-1)
+        x0, y0, p = self._origin()
+        return np.stack([x0 + (rc[..., 1] + 0.5) * p, y0 - (rc[..., 0] + 0.5) * p], axis=-1)
 
     def pixel_centres_mm(self) -> np.ndarray:
         """x, y of every pixel centre, shape (n_px, n_px, 2), mm."""
-        return _pixel_grid_mm(self.camera.frame_mm, self.n_px)
+        return _pixel_grid_mm(self.camera.frame_mm, self.n_px, self.raster)
 
     def value_at(self, xy_mm) -> np.ndarray:
         """Image brightness at photo points (…, 2) mm, bilinear between pixel centres."""
@@ -280,7 +302,7 @@ class Photo:
 
     def light_falloff(self) -> np.ndarray:
         """The factor 1 − v·(r/r_corner)² the texture was multiplied by, shape (n_px, n_px), float32."""
-        return _falloff(self.camera.frame_mm, self.n_px, self.vignetting)
+        return _falloff(self.camera.frame_mm, self.n_px, self.vignetting, self.raster)
 
     # ---- ground ↔ photo
     def project(self, XYZ_m) -> np.ndarray:
@@ -310,7 +332,9 @@ class Photo:
             if front.any():
                 xy[front] = g.ground_to_photo(self.camera, self.pose, P[front])
         rc = self.mm_to_pixel(xy)
-        inside = np.all(np.abs(xy) <= self.camera.half_mm, axis=1)
+        left, right, bottom, top = self.extent_mm
+        with np.errstate(invalid="ignore"):
+            inside = ((xy[:, 0] >= left) & (xy[:, 0] <= right) & (xy[:, 1] >= bottom) & (xy[:, 1] <= top))
         visible = inside.copy()
         if inside.any():
             if self.objects:
@@ -328,11 +352,23 @@ class Photo:
 
 # --------------------------------------------------------------------------- cached per-camera arrays
 @functools.lru_cache(maxsize=16)
-def _pixel_grid_mm(frame_mm: float, n_px: int) -> np.ndarray:
-    p = frame_mm / n_px
-    h = frame_mm / 2.0
-    x = -h + (np.arange(n_px) + 0.5) * p
-    y = h - (np.arange(n_px) + 0.5) * p
+def _window_raster(window_mm: tuple, n_px: int) -> tuple:
+    """``(x_left, y_top, p)`` mm of the pixel grid of a window ``(x_centre, y_centre, side)`` mm, ``n_px`` across."""
+    xc, yc, side = (float(a) for a in window_mm)
+    return (xc - side / 2.0, yc + side / 2.0, side / n_px)
+
+
+def _pixel_grid_mm(frame_mm: float, n_px: int, raster: tuple | None = None) -> np.ndarray:
+    """x, y (mm) of the pixel centres, shape (n_px, n_px, 2): the frame's, or a window's ``raster``."""
+    if raster is None:
+        p = frame_mm / n_px
+        h = frame_mm / 2.0
+        x = -h + (np.arange(n_px) + 0.5) * p
+        y = h - (np.arange(n_px) + 0.5) * p
+    else:
+        x0, y0, p = raster
+        x = x0 + (np.arange(n_px) + 0.5) * p
+        y = y0 - (np.arange(n_px) + 0.5) * p
     out = np.empty((n_px, n_px, 2))
     out[..., 0] = x[None, :]
     out[..., 1] = y[:, None]
@@ -341,9 +377,9 @@ def _pixel_grid_mm(frame_mm: float, n_px: int) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=16)
-def _camera_vectors(f_mm: float, frame_mm: float, n_px: int) -> np.ndarray:
+def _camera_vectors(f_mm: float, frame_mm: float, n_px: int, raster: tuple | None = None) -> np.ndarray:
     """(n_px², 3) camera-frame vectors (x, y, −f) of the pixel centres, read-only."""
-    xy = _pixel_grid_mm(frame_mm, n_px).reshape(-1, 2)
+    xy = _pixel_grid_mm(frame_mm, n_px, raster).reshape(-1, 2)
     out = np.empty((len(xy), 3))
     out[:, :2] = xy
     out[:, 2] = -f_mm
@@ -352,8 +388,8 @@ def _camera_vectors(f_mm: float, frame_mm: float, n_px: int) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=16)
-def _falloff(frame_mm: float, n_px: int, v: float) -> np.ndarray:
-    xy = _pixel_grid_mm(frame_mm, n_px)
+def _falloff(frame_mm: float, n_px: int, v: float, raster: tuple | None = None) -> np.ndarray:
+    xy = _pixel_grid_mm(frame_mm, n_px, raster)
     r2 = (xy[..., 0] ** 2 + xy[..., 1] ** 2) / (2.0 * (frame_mm / 2.0) ** 2)
     out = (1.0 - v * r2).astype(np.float32)
     out.flags.writeable = False
@@ -375,22 +411,30 @@ def _coarse_plan(n_px: int, step: int):
     return idx, A
 
 
-def _fiducial_mask(n_px: int) -> tuple:
-    """(dark, light) coverage masks of the four fiducial marks at the middles of the frame sides."""
-    return _fiducial_cached(n_px)
+def _fiducial_mask(n_px: int, frame_mm: float = 180.0, raster: tuple | None = None) -> tuple:
+    """(dark, light) coverage masks of the four fiducial marks at the middles of the frame sides (of a window's
+    ``raster`` of the frame ``frame_mm``: the parts of the marks inside it)."""
+    return _fiducial_cached(n_px, float(frame_mm), raster)
 
 
 @functools.lru_cache(maxsize=8)
-def _fiducial_cached(n_px: int):
+def _fiducial_cached(n_px: int, frame_mm: float = 180.0, raster: tuple | None = None):
     # in units of the frame side: a wedge 4 % deep and 3 % wide at each side's middle, with a thin light axis line
-    c = (np.arange(n_px) + 0.5) / n_px - 0.5  # −0.5 … 0.5 across
-    X, Y = np.meshgrid(c, -c)  # x right, y up (row 0 at the top)
-    depth, half_w, line = 0.04, 0.015, max(0.6 / n_px, 0.002)
+    if raster is None:
+        c = (np.arange(n_px) + 0.5) / n_px - 0.5  # −0.5 … 0.5 across
+        X, Y = np.meshgrid(c, -c)  # x right, y up (row 0 at the top)
+        line = max(0.6 / n_px, 0.002)
+    else:
+        xy = _pixel_grid_mm(frame_mm, n_px, raster) / frame_mm
+        X, Y = xy[..., 0], xy[..., 1]
+        line = max(0.6 * raster[2] / frame_mm, 0.002)
+    depth, half_w = 0.04, 0.015
     dark = np.zeros((n_px, n_px), bool)
     light = np.zeros((n_px, n_px), bool)
     for along, across in ((X, Y), (-X, Y), (Y, X), (-Y, X)):
         d = 0.5 - along  # distance from this side
-        wedge = (d <= depth) & (np.abs(across) <= half_w * (1.0 - d / depth) + 0.5 / n_px)
+        wedge = (d <= depth) & (np.abs(across) <= half_w * (1.0 - d / depth) + (0.5 / n_px if raster is None else
+                                                                               0.5 * raster[2] / frame_mm))
         dark |= wedge
         light |= wedge & (np.abs(across) <= line) & (d <= depth * 0.8)
     dark &= ~light
@@ -400,9 +444,10 @@ def _fiducial_cached(n_px: int):
 
 
 # --------------------------------------------------------------------------- rendering
-def _ground_pixel_m(site, camera: g.Camera, pose: g.Pose, n_px: int) -> float:
+def _ground_pixel_m(site, camera: g.Camera, pose: g.Pose, n_px: int, raster: tuple | None = None) -> float:
     H = max(pose.Z_m - site.mean_height_m, 1e-3)
-    return camera.frame_mm / n_px * H / camera.f_mm
+    p = camera.frame_mm / n_px if raster is None else raster[2]
+    return p * H / camera.f_mm
 
 
 @V.checked(site=V.has_attrs("level_for", "height", what="a Site (aerophoto.site.get_site())"), camera=g.Camera,
@@ -422,6 +467,8 @@ def render(
     number: int | None = None,
     objects: bool = True,
     sun: Sun | None = None,
+    window_mm: tuple | None = None,
+    keep_normals: bool = False,
 ) -> Photo:
     """Photograph the site with a frame camera at an exterior orientation, exactly.
 
@@ -457,6 +504,14 @@ def render(
     sun : Sun or None
         Shade the objects by this sun and cast their shadows; None shades them by the
         texture's light (south-west, 45°) without cast shadows.
+    window_mm : (x, y, side) or None
+        Photograph only a square window of the frame: centre x, y and side in photo mm
+        (0.5 mm ≤ side ≤ l, the window inside the frame), ``n_px`` pixels across it — the
+        same central projection, finer pixels (a magnifier's view, chapter 08).
+        None: the whole frame.
+    keep_normals : bool
+        Keep the unit surface normal of every pixel's hit in :attr:`Photo.normal`
+        (n_px, n_px, 3) float32 (up for bare ground).
 
     Returns
     -------
@@ -467,46 +522,69 @@ def render(
     if not isinstance(pose, g.Pose):
         raise ValueError(f"pose = {pose!r} must be an aerophoto.geometry.Pose")
     n = check_int_range("n_px", n_px, 16, MAX_PX)
+    window, raster = _check_window(window_mm, camera, n)
     v = check_range("vignetting", vignetting, 0.0, 1.0, hi_open=True)
     bg = check_range("background", background, 0.0, 1.0)
     tol = check_range("tol_m", tol_m, 1e-6, 1.0, unit="m")
     if sun is not None and not isinstance(sun, Sun):
         raise ValueError(f"sun = {sun!r} must be an aerophoto.render.Sun or None")
     if level is None:
-        lev = site.level_for(_ground_pixel_m(site, camera, pose, n))
+        lev = site.level_for(_ground_pixel_m(site, camera, pose, n, raster))
     else:
         lev = check_int_range("level", level, 0, site.n_levels - 1)
     zmax = float(site.z_max_m)
     pose.flying_height(zmax)  # S must be above the terrain
 
-    ax, ay = _pixel_rays(camera, pose, n)
-    Xg, Yg, Z, residual, n_eval = _ground_under_rays(site, camera, pose, n, ax, ay, tol)
+    ax, ay = _pixel_rays(camera, pose, n, raster)
+    Xg, Yg, Z, residual, n_eval = _ground_under_rays(site, camera, pose, n, ax, ay, tol, raster)
     objs = getattr(site, "objects", None) if objects else None
     hits = None
     if objs is not None:
-        hits, Xg, Yg, Z = _objects_on_rays(site, objs, camera, pose, n, ax, ay, Xg, Yg, Z)
-    img, valid, shadow = _brightness(site, lev, Xg, Yg, Z, hits, objs, sun, camera, pose, n)
-    img = _finish_image(img.reshape(n, n), valid.reshape(n, n), camera, n, v, bg, fiducials)
+        hits, Xg, Yg, Z = _objects_on_rays(site, objs, camera, pose, n, ax, ay, Xg, Yg, Z, raster)
+    img, valid, shadow = _brightness(site, lev, Xg, Yg, Z, hits, objs, sun, camera, pose, n, raster)
+    img = _finish_image(img.reshape(n, n), valid.reshape(n, n), camera, n, v, bg, fiducials, raster)
     valid = valid.reshape(n, n)
     ground = None
     if keep_ground:
         ground = np.stack([Xg, Yg, Z], axis=-1).reshape(n, n, 3)
-    surface = object_id = None
+    surface = object_id = normal = None
     if hits is not None:
         surface = hits.surface.reshape(n, n)
         object_id = hits.object_id.astype(np.int32).reshape(n, n)
+    if keep_normals:
+        normal = np.zeros((n * n, 3), np.float32)
+        normal[:, 2] = 1.0
+        if hits is not None and len(hits.idx):
+            normal[hits.idx] = hits.normal
+        normal = normal.reshape(n, n, 3)
     return Photo(image=img, camera=camera, pose=pose, site=site, valid=valid, level=lev, vignetting=v,
                  fiducials=bool(fiducials), dem_residual_m=residual, ground_m=ground, number=number,
                  dem_evaluations=n_eval, surface=surface, object_id=object_id, shadow=shadow,
-                 objects=hits is not None, sun=sun)
+                 objects=hits is not None, sun=sun, window_mm=window, normal=normal)
 
 
-def _pixel_rays(camera: g.Camera, pose: g.Pose, n: int):
+def _check_window(window_mm, camera: g.Camera, n: int) -> tuple:
+    """``(window, raster)``: the window ``(x, y, side)`` mm checked (None: the frame) and its pixel grid."""
+    if window_mm is None:
+        return None, None
+    w = np.asarray(window_mm, dtype=float).ravel() if not isinstance(window_mm, str) else np.zeros(0)
+    if w.shape != (3,) or not np.all(np.isfinite(w)):
+        raise ValueError(f"window_mm = {window_mm!r} must be three finite numbers (x, y, side) in mm")
+    h = camera.half_mm
+    side = check_range("window_mm side", float(w[2]), 0.5, camera.frame_mm, unit="mm")
+    lim = h - side / 2.0
+    check_range("window_mm x", float(w[0]), -lim, lim, unit="mm")
+    check_range("window_mm y", float(w[1]), -lim, lim, unit="mm")
+    window = (float(w[0]), float(w[1]), side)
+    return window, _window_raster(window, n)
+
+
+def _pixel_rays(camera: g.Camera, pose: g.Pose, n: int, raster: tuple | None = None):
     """The ray of every pixel as slopes: ``(ax, ay)``, dX/dZ and dY/dZ, each shape (n·n,).
 
     Raises ValueError when a ray points at or above the horizon (the tilt is too large for the lens).
     """
-    cam = _camera_vectors(camera.f_mm, camera.frame_mm, n)
+    cam = _camera_vectors(camera.f_mm, camera.frame_mm, n, raster)
     R = g.rotation_matrix(pose)
     gz = cam @ R[2]
     if np.any(gz >= 0):
@@ -520,7 +598,8 @@ def _pixel_rays(camera: g.Camera, pose: g.Pose, n: int):
     return ax, ay
 
 
-def _ground_under_rays(site, camera: g.Camera, pose: g.Pose, n: int, ax, ay, tol: float):
+def _ground_under_rays(site, camera: g.Camera, pose: g.Pose, n: int, ax, ay, tol: float,
+                       raster: tuple | None = None):
     """Where every pixel's ray meets the bare ground (the DEM), to ``tol`` metres in height.
 
     Exact, bracketed intersections on a coarse lattice of pixels give a first height by interpolation; a secant
@@ -533,7 +612,7 @@ def _ground_under_rays(site, camera: g.Camera, pose: g.Pose, n: int, ax, ay, tol
     s = float(site.dem_spacing_m)
     Sx, Sy, Sz = pose.X_m, pose.Y_m, pose.Z_m
     idx, A = _coarse_plan(n, COARSE_STEP)
-    grid = _pixel_grid_mm(camera.frame_mm, n)
+    grid = _pixel_grid_mm(camera.frame_mm, n, raster)
     coarse = g.photo_to_dem(camera, pose, grid[np.ix_(idx, idx)], site, tol_m=min(tol, 1e-3) * 0.1)
     Z = (A @ coarse[..., 2] @ A.T).reshape(-1)
 
@@ -581,14 +660,15 @@ def _ground_under_rays(site, camera: g.Camera, pose: g.Pose, n: int, ax, ay, tol
     return coords[1] * s, coords[0] * s, Z, residual, n_eval[0]
 
 
-def _objects_on_rays(site, objs, camera: g.Camera, pose: g.Pose, n: int, ax, ay, Xg, Yg, Z):
+def _objects_on_rays(site, objs, camera: g.Camera, pose: g.Pose, n: int, ax, ay, Xg, Yg, Z,
+                     raster: tuple | None = None):
     """What stands on the ground: the nearest hit of every ray on the site's objects.
 
     Returns ``(hits, X, Y, Z)``: the :class:`Hits` and the ground coordinates with the hit pixels moved onto the
     objects' surfaces (``Xg`` and ``Yg`` are changed in place; ``Z`` is copied).
     """
     Sx, Sy, Sz = pose.X_m, pose.Y_m, pose.Z_m
-    k, pix = box_pixel_pairs(objs.bbox, camera, pose, n)
+    k, pix = box_pixel_pairs(objs.bbox, camera, pose, n, raster)
     hits = first_hits(site, objs, pose.centre, ax, ay, Sz - Z, k, pix, Xg, Yg)
     moved = hits.idx
     u = hits.u
@@ -599,7 +679,8 @@ def _objects_on_rays(site, objs, camera: g.Camera, pose: g.Pose, n: int, ax, ay,
     return hits, Xg, Yg, Z
 
 
-def _brightness(site, lev: int, Xg, Yg, Z, hits, objs, sun, camera: g.Camera, pose: g.Pose, n: int):
+def _brightness(site, lev: int, Xg, Yg, Z, hits, objs, sun, camera: g.Camera, pose: g.Pose, n: int,
+                raster: tuple | None = None):
     """The brightness of every pixel: the texture at its ground point, the objects shaded, their shadows cast.
 
     Returns ``(img, valid, shadow)``: brightness 0…1 (float32, shape (n·n,)), whether the ground point is on the
@@ -625,7 +706,7 @@ def _brightness(site, lev: int, Xg, Yg, Z, hits, objs, sun, camera: g.Camera, po
         img[on[own]] = hits.albedo[own]
         img[on] *= lit
         if sun is not None:
-            shadow = in_shadow(objs, site, Xg, Yg, Z, hits.object_id, light, camera, pose, n)
+            shadow = in_shadow(objs, site, Xg, Yg, Z, hits.object_id, light, camera, pose, n, raster)
             sh = np.flatnonzero(shadow)
             f = np.ones(len(sh), np.float32)
             pos = np.searchsorted(on, sh)  # pixels of objects in shadow: down to the ambient light
@@ -637,17 +718,18 @@ def _brightness(site, lev: int, Xg, Yg, Z, hits, objs, sun, camera: g.Camera, po
     return img, valid, shadow
 
 
-def _finish_image(img, valid, camera: g.Camera, n: int, v: float, bg: float, fiducials: bool):
+def _finish_image(img, valid, camera: g.Camera, n: int, v: float, bg: float, fiducials: bool,
+                  raster: tuple | None = None):
     """The camera's marks on the picture: light fall-off ``v``, background ``bg`` off the site, fiducials.
 
     ``img`` (n, n) is changed in place and returned.
     """
     if v > 0:
-        img *= _falloff(camera.frame_mm, n, v)
+        img *= _falloff(camera.frame_mm, n, v, raster)
     if not valid.all():
         img[~valid] = bg
     if fiducials:
-        dark, light_mask = _fiducial_mask(n)
+        dark, light_mask = _fiducial_mask(n, camera.frame_mm, raster)
         img[dark] = 0.0
         img[light_mask] = 1.0
     return img

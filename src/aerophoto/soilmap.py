@@ -13,7 +13,9 @@ Public API
 ----------
 ``segment_tones(image, k, *, seed=0, iterations=30) -> ndarray`` — (ny, nx) labels 0…k−1 of an (ny, nx, b)
 image, ordered by the areas' mean brightness (0 the darkest);
-``contingency(labels, truth, n_classes=None) -> ndarray`` — (k, n) counts of cells with label i and class j.
+``contingency(labels, truth, n_classes=None) -> ndarray`` — (k, n) counts of cells with label i and class j;
+``overlay(sheets, *, sure_share=0.7) -> (areas, sure)`` — the overlay technique (guide §14, the Delft method):
+transparent sheets of keys laid together cut the image into areas of one combination of keys.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ import numpy as np
 from . import _validate as V
 from ._validate import check_int_range
 
-__all__ = ["segment_tones", "contingency"]
+__all__ = ["segment_tones", "contingency", "overlay"]
 
 
 @V.checked(image=V.image(2, 3))
@@ -101,3 +103,61 @@ def contingency(labels, truth, n_classes: int | None = None) -> np.ndarray:
     out = np.zeros((int(a.max()) + 1, nc), np.int64)
     np.add.at(out, (a.ravel(), b.ravel()), 1)
     return out
+
+
+def overlay(sheets, *, sure_share: float = 0.7) -> tuple:
+    """Lay transparent sheets of keys together (guide §14's overlay technique): the areas of one combination.
+
+    Each sheet is a whole-number map (ny, nx) of the areas an interpreter outlined by one group of keys — tone
+    on the first, relief on the second, vegetation or land use on the third.  Laid together, every cell belongs
+    to the combination of its areas on all the sheets; the connected pieces of one combination are the candidate
+    soil contours (контурное почвенное дешифрирование).
+
+    A piece is **sure** (drawn solid) when its combination is the usual one within the first sheet's area it lies
+    in — at least ``sure_share`` (0.5…1) of that area's cells have it: its keys agree.  The others are **doubtful**
+    (drawn dashed): the tone says one thing, the relief or the cover another, and the field routes go through
+    them.
+
+    Returns ``(areas, sure)``: ``areas`` int64 (ny, nx), the piece of each cell (0, 1, … in the order of the
+    pieces' first cells, row by row), and ``sure`` bool (n_pieces,).
+    """
+    from scipy.ndimage import label
+
+    from ._validate import check_range
+
+    share = check_range("sure_share", sure_share, 0.5, 1.0)
+    if sheets is None or isinstance(sheets, (str, bytes)) or not hasattr(sheets, "__len__"):
+        raise TypeError(f"sheets = {sheets!r:.40} is not a list of maps; expected (ny, nx) arrays of whole numbers")
+    maps = [np.asarray(a) for a in sheets]
+    if not maps:
+        raise ValueError("sheets is empty; give at least one map of areas")
+    shape = maps[0].shape
+    for k, a in enumerate(maps):
+        if a.shape != shape or a.ndim != 2 or a.size == 0:
+            raise ValueError(f"sheets[{k}] has shape {a.shape}; every sheet must be one (ny, nx) shape, not empty")
+        if not np.issubdtype(a.dtype, np.integer) or a.min() < 0:
+            raise ValueError(f"sheets[{k}] must hold whole numbers ≥ 0 (got dtype {a.dtype})")
+    combo = np.zeros(shape, np.int64)
+    for a in maps:
+        combo = combo * (int(a.max()) + 1) + a.astype(np.int64)
+    pieces = np.zeros(shape, np.int64)
+    n = 0
+    for c in np.unique(combo):
+        lab, k = label(combo == c)
+        pieces[lab > 0] = lab[lab > 0] + n - 1
+        n += k
+    # renumber the pieces in the order of their first cells, row by row
+    _, first = np.unique(pieces.ravel(), return_index=True)
+    order = np.argsort(first, kind="stable")
+    rank = np.empty(n, np.int64)
+    rank[order] = np.arange(n)
+    pieces = rank[pieces]
+    sure = np.zeros(n, bool)
+    tone = maps[0]
+    for t in np.unique(tone):
+        in_t = tone == t
+        combos, counts = np.unique(combo[in_t], return_counts=True)
+        usual = combos[counts >= share * in_t.sum()]
+        if len(usual):
+            sure[np.unique(pieces[in_t & np.isin(combo, usual)])] = True
+    return pieces, sure

@@ -42,7 +42,7 @@ from dataclasses import dataclass
 
 from ._validate import check_range
 
-__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE", "FIGURE_MAX_PX",
+__all__ = ["Param", "LiveDemo", "error_html", "pending_html", "running_loop", "PREVIEW_NOTE", "FIGURE_MAX_PX", "TABLE_CSS",
            "table_after_picture", "TABLE_DELAY_S"]
 
 
@@ -229,12 +229,38 @@ class Param:
         return wid
 
 
+#: the demos' tables, wherever they are shown: numbers never break across lines, a folded table's summary
+#: looks like a caption, a table fills its column (it does not jump in width as its texts change), links in
+#: prose are underlined (not told apart by colour alone)
+TABLE_CSS = """
+.aerophoto-table table { max-width: 100%; }
+.aerophoto-table .num { white-space: nowrap; }
+.aerophoto-table tbody th { text-align: left; font-weight: normal; }
+.aerophoto-table details > summary { font-weight: bold; cursor: pointer; margin: 4px 0 2px 0; }
+.aerophoto-side .aerophoto-table table { width: 100%; }
+.jp-RenderedHTMLCommon a, .jp-RenderedMarkdown a, .widget-html-content a { text-decoration: underline; }
+"""
+
 #: projector-sized text for the demos' labels, readouts and hints (Lab and Voilà)
 _DEMO_CSS = """<style>
 .aerophoto-demo .widget-label, .aerophoto-demo .widget-readout, .aerophoto-demo .widget-html-content,
 .aerophoto-demo .widget-button, .aerophoto-demo select { font-size: 15px; }
 .aerophoto-demo .aerophoto-hint { font-size: 15px; margin-bottom: 4px; max-width: 1200px; }
-</style>"""
+.aerophoto-demo .widget-slider .slider-container { min-width: 120px; }
+.aerophoto-demo .aerophoto-slider-note .widget-html-content { color: #333333; font-style: italic; line-height: 1.3; }
+""" + TABLE_CSS + "</style>"
+
+
+#: the chapter layout's grid (:meth:`LiveDemo.widget`): the column of sliders and the table left of the figure,
+#: or (stacked) the sliders across the top, the figure and the table under them
+_GRID = {
+    False: {"grid_template_columns": "350px minmax(0, auto)", "grid_template_rows": "auto 1fr",
+            "grid_template_areas": '"controls figure" "table figure"', "grid_gap": "0px 12px",
+            "justify_content": "flex-start", "align_items": "flex-start"},
+    True: {"grid_template_columns": "minmax(0, 100%)", "grid_template_rows": "auto auto auto",
+           "grid_template_areas": '"controls" "figure" "table"', "grid_gap": "4px 0px",
+           "justify_content": "flex-start", "align_items": "flex-start"},
+}
 
 
 def _auto_format(step: float) -> str:
@@ -273,6 +299,13 @@ class LiveDemo:
     fixed_layout: bool = True
     #: show the figure's legends as HTML under it instead of drawing them on every update
     legend_beside: bool = True
+    #: the demo's picture is mostly a photo that a move changes whole (a moved mosaic, a rendered photo, a
+    #: map): its frames to the browser go as JPEG of :data:`aerophoto.plots.PHOTO_QUALITY` (see
+    #: :func:`aerophoto.plots.fast_frames`); the figure itself, savefig and the saved notebook stay exact
+    photo_frames: bool = False
+    #: parameters whose slider shows a note under it (what the value means, e.g. the motion a step is): the
+    #: demo sets ``self.notes[name].value`` (HTML) in :meth:`render`
+    noted: tuple = ()
     #: the artists a move changes (lines, markers, whole Axes whose limits move), set in :meth:`build`;
     #: when given, a move redraws only these over a cached picture of the rest (:class:`blit.Blitter`)
     animated: tuple = ()
@@ -296,19 +329,35 @@ class LiveDemo:
         self.table = w.HTML()
         # a fixed height for the one-line status: a note that comes and goes never moves the table under it
         self.status = w.HTML(layout=w.Layout(min_height="24px"))
+        #: the notes under the sliders of :attr:`noted`, name → HTML widget
+        self.notes = {name: w.HTML(layout=w.Layout(margin="-4px 0 2px 0")) for name in self.noted}
+        for note in self.notes.values():
+            note.add_class("aerophoto-slider-note")
         self.n_updates = 0
         self._controls = {}
         self._syncing = False
         self._layout = None
+        #: the box the figure and its key sit in (sized by fit_to), the last size the page reported, the rule
+        #: that turns it into the figure's size (aerophoto.fit: chapter_fit; lecture_view sets lecture_fit)
+        self._figure_box = None
+        self._root = None
+        self._fits = 0
+        self._page_box = None
+        self._fit_rule = None
         self.build()
         finish_figure(self.fig)  # texts in the reader's language, ticks in the book's number format, subscripts
-        from .plots import fast_frames, freeze_layout, legend_html
+        from .plots import fast_frames, freeze_layout, legend_html, lock_canvas
 
         #: the figure's legends, moved beside it as HTML (a legend redrawn on every update is costly)
         self.legend = w.HTML(legend_html(self.fig) if self.legend_beside else "")
         if self.fixed_layout:
             freeze_layout(self.fig)
-        fast_frames(self.fig)  # cheaper PNG frames to the browser (ipympl only)
+        from .plots import PHOTO_QUALITY
+
+        # cheaper frames to the browser (ipympl only): unfiltered PNG rows; a photo demo's moved photo as JPEG
+        fast_frames(self.fig, photo_quality=PHOTO_QUALITY if self.photo_frames else None)
+        if getattr(self, "fig", None) is not None:
+            lock_canvas(self.fig)  # drawn under the figure's lock (widget messages may come on two threads)
         #: draws only ``animated`` on a move (None: every move draws the whole figure)
         self.blitter = None
         if self.animated and getattr(self, "fig", None) is not None and os.environ.get("AEROPHOTO_BLIT", "1") != "0":
@@ -348,11 +397,21 @@ class LiveDemo:
         Always at full resolution and final: work a slider move scheduled (:meth:`later`) is dropped.
         """
         checked = self._checked(values)
-        self.values.update(checked)
-        self._sync_controls(checked)
-        self.cancel_later()
-        self.update()
+        with self._locked():
+            self.values.update(checked)
+            self._sync_controls(checked)
+            self.cancel_later()
+            self.update()
         return self
+
+    def _locked(self):
+        """The figure's lock (:func:`aerophoto.plots.figure_lock`): every change of the demo from a callback or
+        from code, and every draw, holds it."""
+        if getattr(self, "fig", None) is None:
+            return contextlib.nullcontext()
+        from .plots import figure_lock
+
+        return figure_lock(self.fig)
 
     def reset(self):
         """Back to where the demo started (the values it was built with, else the defaults)."""
@@ -377,7 +436,8 @@ class LiveDemo:
         def run():
             self._later = None
             try:
-                fn()
+                with self._locked():
+                    fn()
             except Exception as exc:  # never let a callback die silently
                 self._drop_status_later()
                 self.status.value = error_html(exc)
@@ -514,9 +574,13 @@ class LiveDemo:
     def _on_change(self, change) -> None:
         if self._syncing:
             return
+        name = change["owner"]._aerophoto_name
+        with self._locked():
+            self._serve_slider(name, change)
+
+    def _serve_slider(self, name: str, change) -> None:
         from .i18n import t
 
-        name = change["owner"]._aerophoto_name
         self._from_slider = True
         try:
             value = self._params[name].validate(change["new"])
@@ -532,7 +596,7 @@ class LiveDemo:
 
     def _on_reset(self) -> None:
         try:
-            self.reset()
+            self.reset()  # set() holds the figure's lock
         except Exception as exc:  # never let a callback die silently
             self.status.value = error_html(exc)
 
@@ -553,10 +617,13 @@ class LiveDemo:
         return figure_widget(self.fig)
 
     def widget(self):
-        """The whole demo, laid out for a projector (1280×800).
+        """The whole demo, laid out for its page (sized by it, :mod:`aerophoto.fit`).
 
         Title and hint on top; on the left a column with the grouped sliders,
-        Reset, the status line and the table; on the right the figure.
+        Reset, the status line and the table; on the right the figure.  In a
+        column too narrow for the figure beside the sliders (JupyterLab beside
+        its file browser) the sliders' groups go side by side across the top,
+        the figure under them, the table under the figure.
         """
         if self._layout is not None:
             return self._layout
@@ -568,26 +635,92 @@ class LiveDemo:
         groups: dict[str, list] = {}
         for p in self.params:
             groups.setdefault(p.group, []).append(ctls[p.name])
+            if p.name in self.notes:
+                groups[p.group].append(self.notes[p.name])
         column = []
         for g, items in groups.items():
             head = [w.HTML(f"<b>{t(g)}</b>")] if g else []
-            column.append(w.VBox(head + items, layout=w.Layout(margin="0 0 6px 0")))
+            column.append(w.VBox(head + items, layout=w.Layout(margin="0 16px 6px 0")))
         reset = w.Button(description=t("Reset"), icon="undo", tooltip=t("Back to the starting values"),
                          layout=w.Layout(width="110px"))
         reset.on_click(lambda _b: self._on_reset())
         self.reset_button = reset
-        column += [reset, self.status, self.table]
-        left = w.VBox(column, layout=w.Layout(width="350px", min_width="350px", margin="0 12px 0 0"))
-        parts = [w.HTML(_DEMO_CSS)]
+        controls = w.VBox([*column, w.VBox([reset, self.status], layout=w.Layout(margin="0 16px 0 0"))],
+                          layout=w.Layout(grid_area="controls", align_items="flex-start"))
+        table = w.VBox([self.table], layout=w.Layout(grid_area="table", min_width="0"))
+        figure = w.VBox([self.figure_widget(), self.legend], layout=w.Layout(grid_area="figure", min_width="0"))
+        self._figure_box = figure
+        self._grid = w.GridBox([controls, figure, table], layout=w.Layout(**_GRID[False]))
+        self._grid._aerophoto_parts = (controls, table)
+        parts = [w.HTML(_DEMO_CSS), *filter(None, [self.page_sensor()])]
         if self.title:
             parts.append(w.HTML(f"<h3 style='margin:4px 0'>{t(self.title)}</h3>"))
         if self.hint:
             parts.append(w.HTML(f"<div class='aerophoto-hint'>{t(self.hint)}</div>"))
-        right = w.VBox([self.figure_widget(), self.legend], layout=w.Layout(max_width=f"{FIGURE_MAX_PX}px"))
-        parts.append(w.HBox([left, right], layout=w.Layout(align_items="flex-start")))
-        self._layout = w.VBox(parts, layout=w.Layout(max_width="1260px"))
+        parts.append(self._grid)
+        self._layout = self._root = w.VBox(parts, layout=w.Layout(max_width="1300px"))
         self._layout.add_class("aerophoto-demo")
         return self._layout
+
+    def _stack(self, stacked: bool) -> None:
+        """The chapter layout side by side (False) or stacked (True): see :meth:`widget`."""
+        grid = getattr(self, "_grid", None)
+        if grid is None or getattr(grid, "_aerophoto_stacked", False) == stacked:
+            return
+        controls, table = grid._aerophoto_parts
+        for key, value in _GRID[stacked].items():
+            setattr(grid.layout, key, value)
+        controls.layout.flex_flow = "row wrap" if stacked else "column nowrap"
+        grid._aerophoto_stacked = stacked
+
+    # ----------------------------------------------------------- the page's size
+    def page_sensor(self, *, store: str = "", projector: bool = False):
+        """A new page sensor (:func:`aerophoto.fit.page_sensor`) whose reports size this demo's figure (None
+        without anywidget)."""
+        from .fit import page_sensor
+
+        sensor = page_sensor(store=store, projector=projector)
+        if sensor is not None:
+            sensor.observe(self._on_page_box, names="box")
+        return sensor
+
+    def _on_page_box(self, change) -> None:
+        from .fit import PageBox
+
+        box = PageBox.of(change["new"])
+        if box is None:
+            return
+        self._page_box = box
+        try:
+            self.refit()
+        except Exception as exc:  # never let a callback die silently
+            self.status.value = error_html(exc)
+
+    def refit(self) -> None:
+        """Size the figure for the page's last reported box (nothing before the page reported one)."""
+        if self._page_box is None or getattr(self, "fig", None) is None:
+            return
+        from .fit import chapter_fit
+        from .plots import natural_size_px
+
+        rule = self._fit_rule or chapter_fit
+        with self._locked():
+            self.fit_to(rule(self._page_box, natural_size_px(self.fig)))
+
+    def fit_to(self, fit) -> None:
+        """Draw the figure at ``fit`` (:class:`aerophoto.fit.Fit`: its size in CSS px, the scale of its text)."""
+        from .fit import TOOLBAR_PX
+        from .plots import scale_figure
+
+        self._stack(fit.stacked)
+        if self._figure_box is not None:
+            self._figure_box.layout.width = f"{fit.width_px + TOOLBAR_PX}px"
+        if scale_figure(self.fig, fit.width_px, fit.height_px, fit.text):
+            self.draw(force=False)
+        if self._root is not None:  # the page's size has reached the figure: aerophoto-fit-N for the N-th (tests)
+            self._fits += 1
+            self._root.remove_class(f"aerophoto-fit-{self._fits - 1}")
+            self._root.add_class(f"aerophoto-fit-{self._fits}")
 
     def _ipython_display_(self):
         from IPython.display import display

@@ -372,8 +372,25 @@ def launch_chromium(playwright, *, headless: bool = True):
 INSTRUMENT_JS = r"""
 (() => {
   if (window.__aero) return;
-  const A = window.__aero = {keys: [], paints: [], draws: 0};
+  const A = window.__aero = {keys: [], paints: [], draws: 0, msgs: [], frames: new Set()};
   document.addEventListener('keydown', (e) => { A.keys.push(performance.now()); }, true);
+  // every message arriving on a WebSocket (the kernel's channels): its time and size, for the benchmarks'
+  // split of a move into kernel + transport, decode, paint (Jupyter's services assign ws.onmessage)
+  const wsd = Object.getOwnPropertyDescriptor(WebSocket.prototype, 'onmessage');
+  if (wsd && wsd.set && wsd.get) {
+    Object.defineProperty(WebSocket.prototype, 'onmessage', {
+      configurable: true, enumerable: wsd.enumerable,
+      get() { return wsd.get.call(this); },
+      set(h) {
+        const wrapped = typeof h === 'function' ? function (ev) {
+          try { const d = ev.data; A.msgs.push({t: performance.now(), n: (d && (d.byteLength || d.size || d.length)) || 0}); }
+          catch (e) { /* never break the page */ }
+          return h.call(this, ev);
+        } : h;
+        wsd.set.call(this, wrapped);
+      },
+    });
+  }
   const markPaint = (kind) => {
     const t0 = performance.now();
     requestAnimationFrame(() => { A.paints.push({kind, changed: t0, painted: performance.now()}); });
@@ -384,6 +401,8 @@ INSTRUMENT_JS = r"""
     try {
       const c = this.canvas;
       if (c && c.isConnected && c.closest('.jupyter-matplotlib-canvas-div')) { A.draws++; markPaint('canvas'); }
+      // ipympl's offscreen canvas takes each frame from the kernel as an image: remember the frame's width
+      else if (c && !c.isConnected && args[0] instanceof HTMLImageElement) { c.__aeroFrameW = args[0].naturalWidth; A.frames.add(c); }
     } catch (e) { /* never break the page */ }
     return r;
   };
@@ -593,8 +612,28 @@ class DemoProbe:
         self.page.wait_for_function("() => window.__aero && window.__aero.draws > 0", timeout=T_RUN, polling=250)
         # the demo's top at the top of the screen, as a lecturer would scroll it
         self.root.evaluate("(el) => el.scrollIntoView({block: 'start'})")
-        # ipympl may resize the canvas (which blanks it) and redraw after the first image: let it finish
-        settle(self.page, 500)
+        self.wait_fitted(0)
+
+    def fit_count(self) -> int:
+        """How many times the kernel has sized this demo's figure for the page (its class ``aerophoto-fit-N``)."""
+        return int(self.root.evaluate(
+            "(el) => Math.max(0, ...Array.from(el.classList).map((c) => /^aerophoto-fit-(\\d+)$/.exec(c))"
+            ".filter((m) => m).map((m) => +m[1]))"))
+
+    def wait_fitted(self, after: int) -> None:
+        """Wait until the kernel has sized the figure for the page more than ``after`` times (the page reports
+        its size, :mod:`aerophoto.fit`) and a frame of that size has reached the canvas (ipympl blanks a resized
+        canvas until its next frame), then until the figure is quiet."""
+        self.page.wait_for_function(
+            """([el, n]) => Array.from(el.classList).some((c) => { const m = /^aerophoto-fit-(\\d+)$/.exec(c);
+                                                                   return m && +m[1] > n; })""",
+            arg=[self.root.element_handle(), after], timeout=T_RUN, polling=100)
+        self.page.wait_for_function(
+            """(el) => { const c = el.querySelector('.jupyter-matplotlib-canvas-div canvas');
+                         return !!c && [...window.__aero.frames].some((f) => f.width === c.width
+                                                                            && f.__aeroFrameW === c.width); }""",
+            arg=self.root.element_handle(), timeout=T_RUN, polling=100)
+        settle(self.page, 400)
 
     def slider(self, label: str):
         return slider_in(self.page, self.root, label)
@@ -700,11 +739,14 @@ def time_slider_moves(page, slider, n: int, *, keys=("ArrowRight", "ArrowLeft"),
     new <img> inside ``.aerophoto-naive`` having decoded.  Between moves the
     figure must have been quiet for 300 ms, so moves never overlap.
 
-    Returns ``{"samples_s": [...], "values": [readouts after each move]}``.
+    Returns ``{"samples_s": [...], "values": [readouts after each move], "split": [...]}``; ``split`` holds per
+    move, in ms from the key press, ``frame_ms`` (the largest WebSocket message between the key press and the
+    figure change arrived: the kernel's work and the transport), ``drawn_ms`` (ipympl copied the decoded frame
+    onto the canvas) and ``painted_ms`` (the frame that shows it), and ``frame_bytes``.
     """
     handle = slider.locator(".noUi-handle").first
     handle.focus()
-    samples, values = [], []
+    samples, values, splits = [], [], []
     for i in range(n):
         k0 = page.evaluate("() => [window.__aero.keys.length, window.__aero.paints.length]")
         page.keyboard.press(keys[i % len(keys)])
@@ -723,7 +765,16 @@ def time_slider_moves(page, slider, n: int, *, keys=("ArrowRight", "ArrowLeft"),
         )
         samples.append(ms / 1000.0)
         values.append(slider.locator(".widget-readout").inner_text().strip())
-    return {"samples_s": samples, "values": values}
+        splits.append(page.evaluate(
+            """([k, p]) => { const A = window.__aero; const t = A.keys[k];
+                             const x = A.paints.slice(p).find((q) => q.changed >= t);
+                             const m = (A.msgs || []).filter((q) => q.t >= t && q.t <= x.changed);
+                             const big = m.reduce((a, q) => (!a || q.n > a.n ? q : a), null);
+                             return {frame_ms: big ? big.t - t : null, frame_bytes: big ? big.n : null,
+                                     drawn_ms: x.changed - t, painted_ms: x.painted - t}; }""",
+            k0,
+        ))
+    return {"samples_s": samples, "values": values, "split": splits}
 
 
 def save_screenshot(page, name: str) -> Path:

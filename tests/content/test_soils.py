@@ -349,3 +349,48 @@ def test_points_read_their_cells(layer):
     b = spectral.soil_band_table().bands(got["moisture_pct"], got["humus_pct"], got["particle_mm"],
                                          got["parent_peak"])
     np.testing.assert_allclose(b, layer.bands()[[7, 250, 499], [5, 500, 999]], rtol=1e-6)
+
+
+# ----------------------------------------------------------------------------------------------- the overlay technique
+def test_overlay_cuts_the_image_into_pieces_of_one_combination_of_keys():
+    tone = np.array([[0, 0, 0, 1, 1, 1],
+                     [0, 0, 0, 1, 1, 1],
+                     [0, 0, 0, 1, 1, 1]])
+    relief = np.array([[0, 0, 1, 1, 1, 1],
+                       [0, 0, 0, 1, 1, 1],
+                       [0, 0, 0, 1, 1, 0]])
+    pieces, sure = soilmap.overlay([tone, relief])
+    # the combinations (0,0), (0,1), (1,1), (1,0): four pieces, numbered in the order of their first cells
+    assert pieces.tolist() == [[0, 0, 1, 2, 2, 2],
+                               [0, 0, 0, 2, 2, 2],
+                               [0, 0, 0, 2, 2, 3]]
+    # within tone 0, (0,0) holds 8 of 9 cells: sure; (0,1) one cell: doubtful; likewise in tone 1
+    assert sure.tolist() == [True, False, True, False]
+    # one combination in two separate places is two pieces
+    p2, _ = soilmap.overlay([np.array([[0, 1, 0]])])
+    assert p2.tolist() == [[0, 1, 2]]
+    with pytest.raises(ValueError, match="sheets"):
+        soilmap.overlay([tone, relief[:, :4]])
+    with pytest.raises(ValueError, match="sheets"):
+        soilmap.overlay([tone.astype(float)])
+    with pytest.raises(ValueError, match="sure_share"):
+        soilmap.overlay([tone], sure_share=0.2)
+
+
+def test_the_key_sheets_follow_the_relief_and_the_cover(site, layer):
+    part = so.soil_layer(site, extent_m=(2000.0, 3600.0, 2300.0, 3900.0), spacing_m=20.0)
+    small = so.key_sheets(part, site)
+    assert small["relief"].shape == part.shape == small["cover"].shape
+    sheets = so.key_sheets(layer, site)  # the whole site
+    assert (sheets["relief"][layer.slope_deg > so.ERODED_SLOPE_DEG] >= 1).all()
+    assert set(np.unique(sheets["relief"])) == {0, 1, 2} and set(np.unique(sheets["cover"])) == {0, 1, 2, 3}
+    # the soils the keys point to (guide §14): gley in the hollows (alluvial where the floodplain takes them),
+    # grey forest soil under the forest, eroded soil on slopes in the fields
+    hollow = sheets["relief"] == 2
+    assert np.isin(layer.code[hollow], [GLEY, ALLUVIAL]).mean() > 0.8  # the map's hollow edge is noisy
+    forest = (sheets["cover"] == 1) & ~hollow  # (a hollow's gley takes precedence over the forest's soil)
+    assert (layer.code[forest] == FOREST).mean() > 0.8
+    slope_field = (sheets["relief"] == 1) & (sheets["cover"] == 0)
+    assert (layer.code[slope_field] == ERODED).mean() > 0.6
+    with pytest.raises(TypeError, match="layer"):
+        so.key_sheets("abc", site)

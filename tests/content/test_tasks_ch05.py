@@ -225,10 +225,10 @@ def test_student_sheet_is_signed_with_the_computed_scale_on_a3(tmp_path, capsys)
     fig = student_sheet(V57, "Ivanova A.", year=2025)
     assert fig.aerophoto_paper == "A3"
     texts = " ".join(t.get_text() for t in fig.texts)
-    from aerophoto.i18n.numfmt import fmt_scale
+    from aerophoto.i18n.numfmt import fmt_count
 
-    m_txt = fmt_scale(int(round(lab05.answers_of(V57)['m_mean'] / 100) * 100))
-    assert f"М {m_txt}" in texts and "Ivanova A., record book 19-0457" in texts and "2025" in texts
+    m_txt = fmt_count(int(round(lab05.answers_of(V57)['m_mean'] / 100) * 100), lang="ru")
+    assert f"М 1:{m_txt}" in texts and "Ivanova A., record book 19-0457" in texts and "2025" in texts
     assert "ФОТОСХЕМА" in texts and "Проверил" in texts
     # every variant's sheet fits A3 at true size, the largest variant too
     for i in (0, 17, 77, 99):

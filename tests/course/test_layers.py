@@ -2,12 +2,13 @@
 
 The layers (docs/CONTRIBUTING.md, "The house"):
 
-1. foundation — ``_validate``, ``_chapters`` (the chapter modules' naming rule), ``geometry`` (camera, projection, Terrain), ``plane`` (2-D fits, rays), ``variants``
+1. foundation — ``_validate``, ``_chapters`` (the chapter modules' naming rule), ``geometry`` (camera, projection, Terrain), ``plane`` (2-D fits, rays), ``variants``, ``cache`` (the disk cache of the chapters' heavy data), ``diskcache`` (the
+   student machine's verified cache)
 2. physics — one module or package per topic, pure functions and frozen dataclasses
 3. the virtual world — ``terrain``, ``site``, ``simulate``, ``render`` (data only)
 4. the course's content — ``guide/`` (printed tables and their audits), ``labs/`` (the students' lab worlds),
    ``tasks/`` (graded tasks: rubrics only)
-5. presentation — ``plots``, ``blit``, ``widgets``, ``demos/``, ``i18n``
+5. presentation — ``plots``, ``tables``, ``blit``, ``widgets``, ``fit``, ``demos/``, ``i18n``
 6. course — ``checks``, ``gradebook``, ``book``, ``course``, ``nbtools``, ``report``, ``lite``, ``website`` (the web book)
 
 A module may import from its own layer or any lower one.  Every import counts, also one inside a function.
@@ -25,12 +26,12 @@ import pytest
 PKG = Path(__file__).resolve().parents[2] / "src" / "aerophoto"
 
 LAYERS = {
-    1: ("_validate", "_chapters", "geometry", "plane", "variants"),
+    1: ("_validate", "_chapters", "geometry", "plane", "variants", "cache", "diskcache"),
     2: ("flight", "quality", "displacement", "mosaic", "triangulation", "stereo", "projective", "control",
         "accuracy", "interpretation", "spectral", "bundle", "dem", "budget", "rectify", "soilmap"),
     3: ("terrain", "site", "simulate", "render"),
     4: ("guide", "labs", "tasks"),
-    5: ("plots", "blit", "widgets", "demos", "i18n"),
+    5: ("plots", "tables", "blit", "widgets", "fit", "demos", "i18n"),
     6: ("checks", "gradebook", "book", "course", "nbtools", "report", "lite", "website", "__init__", "__main__"),
 }
 LAYER_OF = {name: layer for layer, names in LAYERS.items() for name in names}

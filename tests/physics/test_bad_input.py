@@ -62,6 +62,9 @@ EXEMPT_MODULES = {
     "site.paint": "raster kernels called per tile inside the site build (validating there would slow it)",
     "site.raycast": "ray kernels called per block of rays inside render/trace (validated at render/trace)",
     "site.catalogue": "the catalogue step of the site build (inputs are the build's own rasters)",
+    "site.cover_objects": "the objects step of the interpretation site's build (inputs are the build's own rasters)",
+    "site.crowns": "the crowns' surfaces, called per block of rays inside render/trace (validated at render/trace)",
+    "site.texture": "pixel kernels of the colour step, called per photo inside colour_geometry (validated there)",
 }
 
 LIMIT_S = 3.0  # a mutated call that runs longer counts as a hang
@@ -691,6 +694,7 @@ VALID: dict = {
     # soilmap
     "soilmap.segment_tones": {"image": _IMG, "k": 3, "iterations": 5},
     "soilmap.contingency": {"labels": np.array([0, 1, 2, 1]), "truth": np.array([0, 1, 1, 1])},
+    "soilmap.overlay": {"sheets": [np.array([[0, 0, 1], [0, 1, 1]]), np.array([[0, 1, 1], [0, 1, 1]])]},
     # simulate
     "simulate.Imperfections": {"max_tilt_deg": 1.0, "crab_deg": 1.0, "max_crab_jitter_deg": 1.0,
                                "max_height_percent": 1.0, "curvature_percent": 1.0, "max_base_percent": 1.0},
@@ -705,6 +709,8 @@ VALID: dict = {
     "site.get_site": lambda S: {"width_m": 2000.0, "height_m": 1500.0},
     "site.cover.default_soil": {},
     "site.soils.soil_layer": lambda S: {"site": _g("site", S), "spacing_m": 50.0},
+    "site.soils.key_sheets": lambda S: {"layer": __import__("aerophoto.site.soils").site.soils.soil_layer(
+        _g("site", S), spacing_m=50.0), "site": _g("site", S)},
     "site.model.SiteParams": {"width_m": 2000.0, "height_m": 1500.0},
     "site.colour.class_band_table": {},
     "site.colour.to_display": {"rho": np.random.default_rng(1).uniform(0.0, 0.5, (8, 8, 3))},
@@ -757,6 +763,7 @@ EXEMPT: dict = {
 #: (name, parameter, mutation label) not run, with the reason (valid, and too slow for the sweep)
 NOT_RUN: dict = {
     ("site.soils.soil_layer", "site", "None"): "None is the default site (documented); building it takes ~7 s",
+    ("site.soils.key_sheets", "site", "None"): "None is the default site (documented); building it takes ~7 s",
 }
 
 #: (name, parameter, mutation label or kind or '*') → why that bad-looking input is valid there

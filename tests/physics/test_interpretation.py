@@ -99,8 +99,9 @@ def test_site_has_table_10_objects(isite):
     d = t[-1] - t[-2]
     angle = math.degrees(math.atan2(-d[1], d[0]))
     assert d[0] > 0 and 20 < angle < 50
-    # canopies: spruce uneven and pointed, pine even
-    can = isite.site.objects.canopy_dm.astype(float) / 10
+    # canopies: spruce uneven and pointed, pine even (the canopy at the class map's texel centres)
+    rows, cols = np.indices(isite.classes.shape)
+    can = isite.site.objects.canopy_at(cols + 0.5, rows + 0.5)
     pine = can[isite.classes == cover.CLASS_CODES["pine forest"]]
     spruce = can[isite.classes == cover.CLASS_CODES["spruce forest"]]
     assert np.percentile(pine[pine > 0], 90) - np.percentile(pine[pine > 0], 50) < 3.0
@@ -110,8 +111,10 @@ def test_site_has_table_10_objects(isite):
 def test_site_is_deterministic():
     a = cover.build_interpretation_site(0)
     b = cover.interpretation_site(0)
-    assert np.array_equal(a.classes, b.classes) and np.array_equal(a.grain, b.grain)
+    assert np.array_equal(a.classes, b.classes) and np.array_equal(a.under_roads, b.under_roads)
     assert np.array_equal(a.site.objects.canopy_dm, b.site.objects.canopy_dm)
+    assert np.array_equal(a.crowns.index, b.crowns.index) and np.array_equal(a.crowns.tone, b.crowns.tone)
+    assert np.array_equal(a.site.objects.planes, b.site.objects.planes)
 
 
 # ----------------------------------------------------------------------------------------------- rendering
@@ -349,11 +352,12 @@ def test_conditions_demo_updates_in_place_and_resets():
     from aerophoto import book
 
     ch = next(c for c in book.CHAPTERS if c.number == "08")
-    for d in ch.demos:
-        cls = d.cls.rsplit(".", 1)[-1]
-        from aerophoto.demos import interpretation as di
+    import importlib
 
-        assert {label for label, _ in d.sliders} <= {p.label for p in getattr(di, cls).params}
+    for d in ch.demos:  # every demo of the chapter, wherever it lives (the loupe has its own module)
+        mod, cls = d.cls.rsplit(".", 1)
+        demo_cls = getattr(importlib.import_module(mod if mod.startswith("aerophoto") else f"aerophoto.demos.{mod}"), cls)
+        assert {label for label, _ in d.sliders} <= {p.label for p in demo_cls.params}
     assert "V (visibility), km" in labels
 
 
@@ -363,7 +367,7 @@ def test_key_demo_shows_each_row():
     demo = KeyDemo()
     first = np.asarray(demo.view.im.get_array()).copy()
     assert "Длина" in demo.table.value
-    demo.set(row=10)  # spruce
+    demo.set(row=12)  # spruce (the slider counts table 10's rows from 1)
     assert "Еловый" in demo.table.value
     assert not np.array_equal(first, np.asarray(demo.view.im.get_array()))
     with pytest.raises(ValueError, match="row"):
@@ -408,3 +412,97 @@ def test_tilt_condition_tilts_the_camera(isite):
     tilted = colour.render_colour(isite, g.Camera(), pose, 64, ip.Conditions(alpha_deg=5.0, speed_kmh=0.0))
     assert flat.photo.pose.alpha_deg == 0.0 and tilted.photo.pose.alpha_deg == 5.0
     assert not np.array_equal(flat.bands, tilted.bands)
+
+
+# ----------------------------------------------------------------------------------------------- the marks on the photo
+def _window(isite, X, Y, side_mm, n, m=8300.0, **cond):
+    pose = _vertical(isite, X, Y, m)
+    return colour.render_colour(isite, g.Camera(), pose, n, ip.Conditions(speed_kmh=0.0, **cond),
+                                window_mm=(0.0, 0.0, side_mm))
+
+
+def test_pine_is_even_and_spruce_mottled_and_darker_under_a_glass(isite):
+    """Table 10: pine an even grey tone, spruce mottled and darker — on a 1:8 300 photo seen at ×6 (0.1 mm pixels).
+
+    The tone's evenness is that of the stand, at the scale of groups of trees (blocks of 20 pixels, 17 m): the
+    crowns and gaps of both are finer texture."""
+    nir = sp.BAND_NAMES.index("nir")
+    stats = {}
+    for name, (X, Y) in (("pine", (160.0, 1320.0)), ("spruce", (670.0, 1360.0))):
+        b = _window(isite, X, Y, 20.0, 200).bands[..., nir]
+        blocks = b.reshape(10, 20, 10, 20).mean(axis=(1, 3))
+        stats[name] = (float(b.mean()), float(blocks.std() / blocks.mean()), float(b.std() / b.mean()))
+    assert stats["spruce"][0] < 0.85 * stats["pine"][0]
+    assert stats["spruce"][1] > 1.2 * stats["pine"][1]
+    assert stats["pine"][2] > 0.15 and stats["spruce"][2] > 0.15  # crowns and gaps: texture, not a flat tone
+
+
+def test_a_crop_shows_its_tramlines_every_18_m(isite):
+    """Across a crop field under the glass, the soil of the wheel tracks repeats at the tramlines' 18 m."""
+    cp = _window(isite, 1264.0, 150.0, 24.0, 320)  # the crop south of the pond, its rows along y (north)
+    red = cp.band("red")
+    inside = cp.classes == cover.CLASS_CODES["crop"]
+    full = inside.mean(axis=0) > 0.9
+    runs = np.split(np.arange(len(full)), np.flatnonzero(np.diff(full.astype(int))) + 1)
+    cols = max((r for r in runs if full[r[0]]), key=len)  # the widest stretch of columns all in the crop
+    profile = np.array([red[inside[:, c], c].mean() for c in cols])
+    step = float(np.mean(np.diff(cp.photo.ground_m[0, cols, 0])))
+    a = profile - profile.mean()
+    acf = np.correlate(a, a, "full")[len(a) - 1:] / (a @ a)
+    lags = np.arange(len(acf)) * step
+    near = (lags > 10.0) & (lags < 26.0)
+    best = lags[near][np.argmax(acf[near])]
+    assert abs(best - 18.0) < 1.5 and acf[near].max() > 0.3
+
+
+def test_houses_cast_shadows_and_their_roof_slopes_take_the_light_differently(isite):
+    cp = _window(isite, 480.0, 400.0, 30.0, 300, sun_elevation_deg=35.0, sun_azimuth_deg=150.0)
+    geo = cp.geometry
+    roof = geo.photo.surface == 1
+    assert roof.sum() > 200
+    from scipy.ndimage import binary_dilation
+
+    near_roof = binary_dilation(roof, iterations=6) & ~roof
+    assert geo.shadow[near_roof].mean() > 0.1  # shadows beside the houses …
+    assert geo.shadow[geo.photo.surface == 0].mean() < geo.shadow[near_roof].mean() / 3  # … not everywhere
+    lit = geo.illumination[roof]
+    assert np.percentile(lit, 90) - np.percentile(lit, 10) > 0.3  # the sunny slope and the shaded one
+
+
+def test_the_magnifier_shows_what_the_photo_shows_finer():
+    from aerophoto.labs import ch08
+
+    i = 57
+    lab = ch08._lab_photo(i)
+    x, y, side = -20.0, 30.0, 180.0 / 1024 * 64
+    win = ch08.photo_window(i, x, y, side, 256)
+    r0 = int(round((90.0 - (y + side / 2)) / lab.pixel_mm))
+    c0 = int(round((x - side / 2 + 90.0) / lab.pixel_mm))
+    part = lab.bands[r0:r0 + 64, c0:c0 + 64]
+    block = win.bands.reshape(64, 4, 64, 4, 6).mean(axis=(1, 3))
+    assert np.allclose(win.photo.extent_mm, (x - side / 2, x + side / 2, y - side / 2, y + side / 2))
+    assert abs(float(block.mean()) / float(part.mean()) - 1.0) < 0.03
+    assert np.corrcoef(block.ravel(), part.ravel())[0, 1] > 0.9
+    assert float(win.bands.std()) > float(part.std())  # finer: more detail than the photo's pixels hold
+    with pytest.raises(ValueError, match="x_mm"):
+        ch08.photo_window(i, 85.0, 0.0, 20.0)
+    with pytest.raises(ValueError, match="side_mm"):
+        ch08.photo_window(i, 0.0, 0.0, 0.2)
+
+
+def test_the_key_shows_a_preview_first_and_the_full_close_up_when_it_rests():
+    from aerophoto.demos.interpretation import KEY_PREVIEW_PX, KEY_PX, KeyDemo, key_model
+
+    r = key_model(10, n_px=KEY_PREVIEW_PX)  # pine: 180 mm × 1 200 of the ground, on a 1:8 000 photo
+    assert r.image.shape == (KEY_PREVIEW_PX, KEY_PREVIEW_PX, 3) and r.ground_m == pytest.approx(1200 * 0.18)
+    assert "Сосновый" in r.row[2]
+    demo = KeyDemo()
+    demo._preview = True
+    demo.values["row"] = 3
+    preview = demo.compute(**demo.values)
+    demo._preview = False
+    assert preview.image.shape[0] == KEY_PREVIEW_PX and (3, "colour film") not in demo._seen
+    demo.set(row=3)  # from code: always the full close-up, and kept
+    assert demo.result.image.shape[0] == KEY_PX and (3, "colour film") in demo._seen
+    assert "current" in {row[5] for row in __import__("aerophoto").guide.ch08.TABLE_10}
+    demo.close()

@@ -532,9 +532,9 @@ def test_finished_sheet_exports_valid_png_and_pdf(tmp_path):
     fig = sheet_figure(fs, img, ext, made_by="Student S.", checked_by="Teacher T.", year=2025)
     texts = " ".join(t.get_text() for t in fig.texts)
     assert "ФОТОСХЕМА" in texts and "Photo mosaic" in texts
-    from aerophoto.i18n.numfmt import fmt_scale
+    from aerophoto.i18n.numfmt import fmt_count
 
-    assert f"М {fmt_scale(fs.scale.m_rounded)}" in texts  # the book's format: 1:12 000 with U+202F
+    assert f"М 1:{fmt_count(fs.scale.m_rounded, lang='ru')}" in texts  # the book's format: 1:12 000, narrow space
     assert "2025" in texts and "Student S." in texts and "Teacher T." in texts
     paper = fig.aerophoto_paper
     w_mm, h_mm = PAPER_MM[paper]

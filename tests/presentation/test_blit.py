@@ -20,6 +20,8 @@ pytestmark = pytest.mark.usefixtures("plot_style")
 #: (module, class, moves): each move a dict for demo.set and whether it must be blitted (False: something static
 #: changes — limits beyond the rounding, ticks — so it is a full draw; the picture must be right either way)
 DEMOS = [
+    # the floor of the browser benchmark: every move one blitted line
+    ("ray", "RayDemo", [({"x_mm": 41.0}, True), ({"x_mm": -90.0}, True), ({"x_mm": 90.0}, True)]),
     # the plan's half-width is a round value (2, 2.5, 3.2 km …) around N: a move that outgrows it is a full draw
     ("footprint", "FootprintDemo", [({"f_mm": 150}, True), ({"alpha_deg": 8}, False), ({"m": 15000}, False),
                                     ({"lambda_deg": 30}, True), ({"kappa_deg": 45}, True), ({"alpha_deg": 8.5}, True)]),
@@ -29,6 +31,9 @@ DEMOS = [
     ("reduction", "ReductionDemo", [({"f_mm": 150}, True), ({"max_tilt_deg": 0.5}, True), ({"m": 14000}, False),
                                     ({"f_mm": 160}, True), ({"pricking_mm": 0.3}, None), ({"seed": 3}, None)]),
     ("interpretation", "KeyDemo", [({"row": 1}, True), ({"row": 5}, True), ({"camera": "colour-infrared film"}, True)]),
+    # the glass: its field's outline over the photo and its picture move; another film redraws the whole photo
+    ("loupe", "LoupeDemo", [({"x_mm": 20}, True), ({"power": 6}, True), ({"mark": "P"}, True),
+                            ({"camera": "colour-infrared film"}, False), ({"y_mm": -10, "mark": "free"}, True)]),
     ("displacement", "ReliefDemo", [({"relief_m": 80}, None), ({"f_mm": 150}, None), ({"alpha_deg": 5}, None),
                                     ({"show": "relief"}, None)]),
     ("displacement", "TiltDemo", [({"alpha_deg": 4}, None), ({"lambda_deg": -30}, None), ({"f_mm": 200}, None)]),
@@ -140,8 +145,8 @@ def test_figure_size_change_falls_back_to_a_full_draw():
     demo.close()
 
 
-#: the first three, and demos that animate an axis of their own (its limits follow the data)
-SAVED = DEMOS[:3] + [d for d in DEMOS if d[1] in ("BaseHeightDemo", "ResectionDemo")]
+#: the first four (the floor's ray among them), and demos that animate an axis of their own (its limits follow the data)
+SAVED = DEMOS[:4] + [d for d in DEMOS if d[1] in ("BaseHeightDemo", "ResectionDemo")]
 
 
 def _registry_demos():

@@ -187,16 +187,21 @@ def test_lecture_view_lays_the_demo_out_for_one_screen():
 
     demo = QualityDemo()
     try:
+        import ipywidgets as w
+
         view = lecture_view(demo, "02 · Quality", "Rough mosaic", full_screen=True)
-        top, band, main = view.children
-        assert "aerophoto-demo" in view._dom_classes and view.layout.min_height == "780px"
+        sensor, top, band, main = view.children   # the page sensor first (aerophoto.fit)
+        assert "aerophoto-demo" in view._dom_classes and view.layout.min_height == "max(780px, 100vh)"
+        assert "aerophoto-main" in main._dom_classes and "aerophoto-band" in band._dom_classes
         cols = band.children
-        assert all(len(col.children) - 1 <= MAX_PER_COLUMN for col in cols)
-        sliders = [w for col in cols for w in col.children[1:]]
+        # a column holds at most MAX_PER_COLUMN + 1 rows: a heading and its sliders, or small groups together
+        assert all(len(col.children) <= MAX_PER_COLUMN + 1 for col in cols)
+        sliders = [c for col in cols for c in col.children if not isinstance(c, w.HTML)]
         assert len(sliders) == len(QualityDemo.params)
-        assert demo.table in main.children[1].children
+        assert demo.table in main.children[1].children and demo.legend in main.children[1].children
         demo.set(f_mm=200)
-        top.children[1].click()   # Reset, at the right of the title line
+        assert top.children[1].description == "Projector"
+        top.children[2].click()   # Reset, at the right of the title line
         assert demo.values["f_mm"] == 100
     finally:
         demo.close()

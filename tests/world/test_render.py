@@ -408,3 +408,48 @@ def test_a_site_without_objects_renders_bare_ground(hilly):
     assert not ph.objects and ph.surface is None and ph.object_id is None
     bare = R.render(hilly, CAM, POSES[0], 48, objects=False)
     assert not bare.objects and bare.surface is None
+
+
+# ----------------------------------------------------------------------------------------------- windows
+def test_a_window_is_the_frames_own_pixels_when_its_grid_matches(hilly):
+    """A window whose pixels fall on the frame's is the same photo there: same rays, ground, surfaces, shadows."""
+    site = S.get_site(width_m=4000, height_m=3000, relief_m=120.0, base_height_m=100.0, seed=5)
+    pose = POSES[1]
+    sun = R.Sun(200.0, 40.0)
+    full = R.render(site, CAM, pose, 256, sun=sun, keep_ground=True, fiducials=False, keep_normals=True)
+    p = 180.0 / 256
+    r0, c0, n = 40, 150, 48
+    x0, y0 = -90.0 + c0 * p, 90.0 - r0 * p
+    win = R.render(site, CAM, pose, n, sun=sun, keep_ground=True, fiducials=False, keep_normals=True,
+                   window_mm=(x0 + n * p / 2, y0 - n * p / 2, n * p))
+    part = (slice(r0, r0 + n), slice(c0, c0 + n))
+    assert win.pixel_mm == pytest.approx(p)
+    assert np.allclose(win.pixel_centres_mm(), full.pixel_centres_mm()[part])
+    assert np.allclose(win.ground_m, full.ground_m[part], atol=2e-3)
+    assert np.allclose(win.image, full.image[part], atol=1e-4)
+    assert np.array_equal(win.surface, full.surface[part]) and np.array_equal(win.shadow, full.shadow[part])
+    assert np.allclose(win.normal, full.normal[part], atol=1e-6)
+    # its own pixel convention: extent, mm ↔ pixel
+    left, right, bottom, top = win.extent_mm
+    assert (right - left, top - bottom) == pytest.approx((n * p, n * p))
+    assert np.allclose(win.pixel_to_mm([0, 0]), full.pixel_to_mm([r0, c0]))
+    assert np.allclose(win.mm_to_pixel(win.pixel_to_mm([[3.0, 7.5]])), [[3.0, 7.5]])
+    # a finer window: the same ground, four pixels to one
+    fine = R.render(site, CAM, pose, 4 * n, sun=sun, keep_ground=True, fiducials=False,
+                    window_mm=(x0 + n * p / 2, y0 - n * p / 2, n * p))
+    assert fine.pixel_mm == pytest.approx(p / 4)
+    assert np.allclose(g.ground_to_photo(CAM, pose, fine.ground_m.reshape(-1, 3)),
+                       fine.pixel_centres_mm().reshape(-1, 2), atol=1e-5)
+    block = fine.image.reshape(n, 4, n, 4).mean(axis=(1, 3))
+    assert np.corrcoef(block.ravel(), full.image[part].ravel())[0, 1] > 0.95
+
+
+def test_a_window_must_lie_in_the_frame(hilly):
+    for window, name in (((0.0, 0.0, 0.1), "side"), ((85.0, 0.0, 20.0), "x"), ((0.0, -95.0, 10.0), "y"),
+                         ((0.0, 0.0), "window_mm"), ((np.nan, 0.0, 10.0), "window_mm"), ("abc", "window_mm")):
+        with pytest.raises(ValueError, match=name):
+            R.render(hilly, CAM, POSES[0], 16, window_mm=window)
+    # the fiducial marks show where a window holds them
+    top = R.render(hilly, CAM, POSES[0], 64, window_mm=(0.0, 82.0, 16.0))
+    assert (top.image == 0.0).mean() > 0.02
+    assert "window 16 mm" in repr(top)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 
 _SUBMODULES = (
+    "ray",  # one ray of a vertical photo (chapter 00): the cheapest live figure, the browser benchmark's floor
     "footprint",  # camera footprint with o, n, c (chapter 00)
     "displacement",  # relief and tilt displacement explorer (chapters 03, 04)
     "flight_plan",  # survey plan: strips, photos, footprints, timing (chapter 01)
@@ -27,6 +28,7 @@ _SUBMODULES = (
     "dem_contours",  # contours from a DEM of the site against the true ground (chapter 16)
     "error_budget",  # the live error budget of map updating (chapter 17)
     "interpretation",  # what makes a photo readable; table 10 as an interactive key (chapter 08)
+    "loupe",  # a magnifier on chapter 08's photo: a chosen spot at 3–6× from its full-resolution render
     "stereo",  # the floating mark over a stereo pair's anaglyph; base, height and focal length (chapter 07)
     "stereo_figures",  # the stereoscope and its check, parallax profile, height model, prints at true size (07)
     "site_views",  # views of the virtual world: the site as a map, a rendered photo (PhotoView)

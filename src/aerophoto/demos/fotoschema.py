@@ -415,6 +415,7 @@ class FotoschemaDemo(LiveDemo):
     ``demo.set(..., preview=True)`` at the preview one.
     """
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "The single-strip fotoschema (одномаршрутная фотосхема)"
     hint = ("Raise the relief or the tilt and watch cut-outs (−, vermillion) and duplicates (+, blue) appear along "
             "the cuts; a longer focal length flies higher at the same scale and shrinks the relief mismatches.")
@@ -471,8 +472,9 @@ class FotoschemaDemo(LiveDemo):
             notes.insert(0, "⚠ " + result.note)
         return (plots.html_table(result.table(), caption="Seams and scale (guide §6)", float_format="{:.3g}",
                                  notes=notes)
-                + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm", float_format="{:.2f}")
-                + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000", float_format="{:.1f}"))
+                + plots.html_table(fs.seams_table(), caption="Mismatches by cut, mm", float_format="{:.2f}", fold=True)
+                + plots.html_table(fs.scale.table(), caption="Partial scales (6.1), M = 10 000", float_format="{:.1f}",
+                                   fold=True))
 
     # ---- preview / full resolution
     def update(self, preview: bool = False) -> None:
@@ -621,7 +623,8 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
     "ФОТОСХЕМА" (and "Photo mosaic" if ``english``) and the mean scale
     "М 1:m" rounded to hundreds as in the guide's appendix ("M 1: 13000"); under
     it a scale bar, the year it was made and "Выполнил / made by",
-    "Проверил / checked by".
+    "Проверил / checked by".  With ``english=False`` every text is Russian (the scale bar in "м", no footer),
+    as the guide's sample.
 
     Parameters
     ----------
@@ -707,8 +710,9 @@ def sheet_figure(fs: mo.Fotoschema, image, extent_mm, *, made_by: str = "", chec
              fontsize=11, ha="right", va="center")
     fig.text(fx(rx), fy(by - 12), f"Проверил{' (checked by)' if english else ''}: {checked_by or '________________'}",
              fontsize=11, ha="right", va="center")
-    fig.text(1 - fx(6), fy(5), f"{name}, mosaic drawn at 1:{m_txt}", fontsize=7, ha="right", va="bottom",
-             color="#777777")
+    if english:  # the guide's sample (appendix) has no such line: the Russian sheet leaves it out
+        fig.text(1 - fx(6), fy(5), f"{name}, mosaic drawn at 1:{m_txt}", fontsize=7, ha="right", va="bottom",
+                 color="#777777")
     fig.aerophoto_paper = name
     return fig
 

@@ -420,6 +420,7 @@ class QualityDemo(LiveDemo):
     The prints lie on a fixed board (:func:`board_extent_m`), so a move of an imperfection slider is blitted.
     """
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "Is the survey fit for use? The rough mosaic and the checks of guide §3"
     hint = ("Push an imperfection past its tolerance — crab, tilt, height scatter, a bent route, a small overlap — "
             "and watch the print, pair or strip turn vermillion and the verdict change.")

@@ -21,6 +21,7 @@ base 1:5000 (K_t = 3).
 from __future__ import annotations
 
 import functools
+import html
 import math
 from dataclasses import dataclass
 
@@ -267,6 +268,7 @@ class TransformerView:
 class TransformerDemo(LiveDemo):
     """Walk through the photo transformer's motions until the points fall within 0.4 mm."""
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "The photo transformer: matching four points (guide §12)"
     hint = ("Move 'step' to follow the operator: centre, scale, draw hh through the crossings of corresponding "
             "lines, turn it onto the screen's axis, tilt the screen. The arrows (lengthened ×k) are the misses; "
@@ -280,6 +282,7 @@ class TransformerDemo(LiveDemo):
         Param("sigma_mm", "pricking σ, mm", 0.0, 0.2, 0.01, 0.03, group="Photo",
               help="RMS error of the pricked points on the photo"),
     )
+    noted = ("step",)  # the motion a step is, under the slider
 
     def build(self):
         self.view = TransformerView()
@@ -298,6 +301,8 @@ class TransformerDemo(LiveDemo):
         self.view.update(result)
         self._shown = dict(self.values)
         self.table.value = plots.html_table(result.table(), caption="The screen")
+        s = result.current
+        self.notes["step"].value = html.escape(_t("= {name}, cycle {cycle}", name=_t(s.name), cycle=s.cycle))
 
     def on_slider(self) -> str:
         """Photo sliders: a preview render at once, the full resolution when the slider rests.  The step slider is

@@ -27,7 +27,7 @@ from ..i18n import t
 from ..widgets import LiveDemo, Param
 
 __all__ = ["REFERENCE", "ExplorerResult", "explore", "SpectralView", "SpectralExplorerDemo", "plot_soil_facts",
-           "plot_soil_map", "plot_patch", "demo_patch"]
+           "plot_soil_map", "plot_patch", "demo_patch", "overlay_figure", "OVERLAY_EXTENT_M"]
 
 #: the soil the sliders start from: the leached chernozem of the site (aerophoto.site.soils, class 0)
 REFERENCE = {"moisture_pct": 18.0, "humus_pct": 7.5, "particle_mm": 1.0}
@@ -112,12 +112,7 @@ class SpectralView:
     """Reflectance curve with the camera's bands (left) and the patch's composite (right); ``update`` moves them."""
 
     def __init__(self, result: ExplorerResult | None = None, ax=None):
-        if ax is None:
-            fig = plots.figure(figsize=(8.9, 4.1))
-            ax_curve, ax_img = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.3, 1]})
-        else:
-            ax_curve, ax_img = ax
-            fig = ax_curve.figure
+        fig, (ax_curve, ax_img) = plots.panels(ax, 2, figsize=(8.9, 4.1), width_ratios=(1.3, 1))
         self.fig, self.ax_curve, self.ax_img = fig, ax_curve, ax_img
         C = plots.COLORS
         a = ax_curve
@@ -311,3 +306,90 @@ def plot_soil_map(layer=None, ax=None):
     ax.figure.legend(handles=[_P(color=c.colour, label=f"{c.name} ({c.ru})") for c in SOIL_CLASSES.values()],
                      fontsize=9, loc="outside lower center", ncol=2)
     return ax.figure
+
+
+#: the overlay figure's example area: 1.6 km square of the site (X0, X1, Y0, Y1, m) — forest, floodplain, slopes
+#: and hollows, on no student's patch exactly (the patches are chapter 13's tasks)
+OVERLAY_EXTENT_M = (2000.0, 3600.0, 2300.0, 3900.0)
+#: the sheets' colours (Okabe–Ito): tone, relief, vegetation and land use
+_SHEET_COLOURS = ("#E69F00", "#0072B2", "#009E73")
+
+
+def _outline(ax, labels, extent, colour, lw=1.2, sure=None):
+    """Draw the boundaries of a map of areas as contour lines (solid; dashed where ``sure`` is False)."""
+    X0, X1, Y0, Y1 = extent
+    ny, nx = labels.shape
+    xs = np.linspace(X0, X1, nx)
+    ys = np.linspace(Y0, Y1, ny)
+    for k in np.unique(labels):
+        style = "solid" if sure is None or sure[k] else (0, (3, 2))
+        ax.contour(xs, ys, (labels == k).astype(float), levels=[0.5], colors=[colour], linewidths=lw,
+                   linestyles=[style])
+
+
+def overlay_figure(layer=None, *, k: int = 4, ax=None):
+    """The overlay technique of guide §14 (the Delft training centre's method) on a patch of the site's bare soil.
+
+    Three transparent sheets over the colour-infrared photo: (1) the areas of one tone
+    (:func:`aerophoto.soilmap.segment_tones`, ``k`` areas of the photo smoothed over two cells), (2) the relief — level ground, slopes, hollows — and
+    (3) the vegetation and land use (:func:`aerophoto.site.soils.key_sheets`), each in its own colour; then the
+    sheets laid together (:func:`aerophoto.soilmap.overlay`): the candidate soil contours, solid where the keys
+    agree and dashed where they do not; and last the field survey's soil map with the same contours.
+    ``layer`` a :class:`aerophoto.site.soils.SoilLayer` (default: :data:`OVERLAY_EXTENT_M` at 10 m cells);
+    ``ax`` six Axes (2 × 3) or None.
+    """
+    from matplotlib.colors import ListedColormap
+
+    from .. import soilmap
+    from ..site.soils import COVER_SHEET, RELIEF_SHEET, SOIL_CLASSES, key_sheets, soil_layer
+
+    layer = soil_layer(extent_m=OVERLAY_EXTENT_M, spacing_m=10.0) if layer is None else layer
+    if ax is None:
+        fig = plots.figure(figsize=(11.0, 7.8), layout="constrained")
+        ax = fig.subplots(2, 3).ravel()
+    axes = list(np.ravel(ax))
+    if len(axes) != 6:
+        raise ValueError(f"ax holds {len(axes)} Axes; give six (2 × 3) or None")
+    fig = axes[0].figure
+    ext = tuple(e / 1000.0 for e in layer.extent_m)
+    from scipy.ndimage import gaussian_filter
+
+    photo = layer.composite("colour-infrared film")
+    # the interpreter generalises: tone areas of the photo smoothed over about two cells (no single-cell specks)
+    tone = soilmap.segment_tones(gaussian_filter(photo, sigma=(2.0, 2.0, 0.0)), k, seed=0)
+    keys = key_sheets(layer)
+    areas, sure = soilmap.overlay([tone, keys["relief"], keys["cover"]])
+    faded = 0.45 + 0.55 * photo  # the photo seen through the sheets
+    sheets = ((tone, f"sheet 1: tone ({k} areas)"), (keys["relief"], "sheet 2: relief"),
+              (keys["cover"], "sheet 3: vegetation, land use"))
+    axes[0].imshow(photo, origin="lower", extent=ext, interpolation="nearest")
+    axes[0].set_title("the photo, colour infrared")
+    for a, (lab, title), colour in zip(axes[1:4], sheets, _SHEET_COLOURS):
+        a.imshow(faded, origin="lower", extent=ext, interpolation="nearest")
+        _outline(a, lab, ext, colour, lw=1.6)
+        a.set_title(title, color=colour)
+    for j, names in ((2, RELIEF_SHEET), (3, COVER_SHEET)):
+        present = np.unique(sheets[j - 1][0])
+        axes[j].text(0.02, 0.02, "\n".join(names[i] for i in present), transform=axes[j].transAxes, fontsize=8,
+                     va="bottom", bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+    a = axes[4]
+    a.imshow(faded, origin="lower", extent=ext, interpolation="nearest")
+    for lab, colour in zip((tone, keys["relief"], keys["cover"]), _SHEET_COLOURS):
+        _outline(a, lab, ext, colour, lw=0.8)
+    a.set_title("the sheets laid together")
+    a = axes[5]
+    cmap = ListedColormap([c.colour for c in SOIL_CLASSES.values()])
+    a.imshow(layer.code, origin="lower", extent=ext, cmap=cmap, vmin=-0.5, vmax=len(SOIL_CLASSES) - 0.5,
+             interpolation="nearest", alpha=0.85)
+    _outline(a, areas, ext, "black", lw=1.0, sure=sure)
+    a.set_title("contours: solid sure, dashed doubtful;\nbeneath: the field survey's soil map", fontsize=10)
+    for a in axes:
+        a.set_xticks([])
+        a.set_yticks([])
+        a.grid(False)
+        a.set_aspect("equal")
+    from matplotlib.patches import Patch as _P
+
+    fig.legend(handles=[_P(color=c.colour, label=f"{c.name} ({c.ru})") for c in SOIL_CLASSES.values()],
+               fontsize=8, loc="outside lower center", ncol=3)
+    return fig

@@ -169,8 +169,9 @@ class FloatingMarkDemo(LiveDemo):
     ----------
     lab : :class:`aerophoto.labs.ch07.StereoLab` or None
         The pair; None is the guide's example.
-    n_px : int
-        The photos' pixels a side (1536: 0.12 mm pixels, 1.4 m on the ground at 1:12 000).
+    n_px : int or None
+        The photos' pixels a side; None: :data:`aerophoto.labs.ch07.PAIR_PX` (1536: 0.15 mm pixels, 1.8 m on the
+        ground at 1:12 000), the pair the chapter's figures and prints use — one rendering for both.
     measure_only : bool
         Show the mark's coordinates and parallax only (for the student's own pair: no heights).
     """
@@ -181,11 +182,11 @@ class FloatingMarkDemo(LiveDemo):
     hint = ("Red–cyan glasses, red over the LEFT eye. Move p (the parallax bar's drum) until the two crosses "
             "fuse into one mark resting on the surface; then read its height. Larger p lifts the mark.")
 
-    def __init__(self, lab=None, n_px: int = 1536, *, measure_only: bool = False, **values):
+    def __init__(self, lab=None, n_px: int | None = None, *, measure_only: bool = False, **values):
         from ..labs import ch07
 
         self.lab = ch07.example_lab() if lab is None else lab
-        self.images = ch07.lab_images(self.lab, n_px)
+        self.images = ch07.lab_images(self.lab, ch07.PAIR_PX if n_px is None else n_px)
         self.measure_only = bool(measure_only)
         self.areas = areas(self.lab)
         default_area = "village" if "village" in self.areas else next(iter(self.areas))

@@ -183,8 +183,24 @@ def profile(lab, images, y_mm: float, *, step_px: int = 2, half_window: int = 7)
     """Parallaxes along the epipolar line y of the normalised pair: matched (NCC) and true, and the heights.
 
     Returns arrays ``x_mm``, ``p_mm`` (matched), ``peak``, ``p_true_mm`` and ``Z_mm``-free heights
-    ``Z_m`` (from the matched parallax), ``Z_true_m`` (what the left photo sees there).
+    ``Z_m`` (from the matched parallax), ``Z_true_m`` (what the left photo sees there).  The same for everyone
+    on the same pair and line (the guide's example): computed once, then read from the user's disk cache
+    (:mod:`aerophoto.cache`).
     """
+    from .. import cache
+
+    import hashlib
+
+    pieces = hashlib.sha256()
+    for im in (images.left, images.right):
+        pieces.update(np.ascontiguousarray(im.image).tobytes())
+        pieces.update(repr((im.x0_mm, im.y_top_mm, im.pixel_mm, im.image.shape)).encode())
+    inputs = {"f_mm": lab.f_mm, "m": lab.m, "seed": lab.seed, "images": pieces.hexdigest(), "y_mm": float(y_mm),
+              "step_px": int(step_px), "half_window": int(half_window)}
+    return cache.load_or_build("stereo-profile", inputs, lambda: _profile(lab, images, y_mm, step_px, half_window))
+
+
+def _profile(lab, images, y_mm: float, step_px: int, half_window: int) -> dict:
     from ..render import trace
     from ..site import get_site
 
@@ -242,7 +258,7 @@ def height_model_figure(hm):
 
     fig = plots.figure(figsize=(11.0, 5.2))
     axs = fig.subplots(1, 3)
-    ex = hm.images.left.extent_mm
+    ex = hm.extent_mm
     rel = hm.reliable
     zt = hm.Z_true_m
     lo, hi = np.nanpercentile(zt, 1), np.nanpercentile(zt, 99.5)
@@ -316,7 +332,9 @@ def stereo_print(images, path, *, mode: str = "free viewing", centre_mm=None, si
 
     def place(x_mm, img, cmap=None):
         ax = fig.add_axes([x_mm / width, foot / height, wmm / width, hmm / height])
-        ax.imshow(img, cmap=cmap, vmin=0, vmax=1, aspect="auto", interpolation="nearest")
+        # "none": the photo's own pixels go into the PDF as they are (no resampling to the dpi: a third of the
+        # pixels to write, the same picture)
+        ax.imshow(img, cmap=cmap, vmin=0, vmax=1, aspect="auto", interpolation="none")
         ax.set_axis_off()
 
     if sep is None:

@@ -94,7 +94,7 @@ TABLE_10 = (
     ("rivers", "speed of flow", "Скорость течения",
      "from the pattern of the currents: the sharper the pattern, the faster; at high speed foam shows below an island",
      "По рисунку струй: более отчетливый рисунок – скорость выше; при высокой скорости с низовой стороны острова "
-     "видна пена", None),
+     "видна пена", "current"),
     ("lakes", "shape and size", "Форма и размеры", "from the outlines and shape of the shores; sizes by the scale",
      "По контурам и конфигурации берегов; размеры по масштабу аэрофотоснимков", "lake"),
     ("ponds", "shape and size", "Форма и размеры", "from the outlines and shape of the shores; sizes by the scale",

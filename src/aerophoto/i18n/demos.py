@@ -383,6 +383,10 @@ _WIDGETS = {
     # aerophoto.widgets.LiveDemo
     "Reset": "Сброс",
     "Back to the starting values": "Вернуть начальные значения",
+    # aerophoto.demos.lecture.lecture_view: the projector mode
+    "Projector": "Проектор",
+    "Larger text, lines and markers for the back row (remembered)":
+        "Крупнее текст, линии и маркеры для задних рядов (запоминается)",
     # aerophoto.widgets.pending_html: the status line while the full picture waits for the slider to rest
     "preview — full resolution when the slider rests": "предпросмотр — полное разрешение, когда ползунок остановится",
     "preview (10 m raster) — full resolution when the slider rests":
@@ -444,3 +448,50 @@ _BLOCK_ADJUSTMENT = {
     "critical |w| = 4": "критический |w| = 4",
 }
 MESSAGES = {**MESSAGES, **_BLOCK_ADJUSTMENT}
+
+# the ray of a vertical photo (chapter 00; the browser benchmark's floor, aerophoto.demos.ray)
+_RAY = {
+    "x, mm": "x, мм",
+    "Photo point": "Точка снимка",
+    "the point on the photo, from o along the flight": "точка на снимке, от o вдоль маршрута",
+    "One ray of a vertical photo": "Один луч горизонтального снимка",
+    "Move x: the ray from S turns, its ground point X = x·m slides along the footprint.":
+        "Двигайте x: луч из S поворачивается, его точка на местности X = x·m скользит по границам снимка.",
+    "f = {f} mm, 1:{m}: H = f·m = {H} m": "f = {f} мм, 1:{m}: H = f·m = {H} м",
+    "footprint's edge rays": "лучи на края снимка",
+    "footprint": "покрытие снимка",
+    "the ray of x": "луч точки x",
+    "X on the ground, m": "X на местности, м",
+    "Z above the ground, m": "Z над местностью, м",
+    "One ray": "Один луч",
+    "x on the photo": "x на снимке",
+    "X = x·m on the ground": "X = x·m на местности",
+    "θ = arctan(x/f) from the vertical": "θ = arctg(x/f) от отвесной линии",
+}
+MESSAGES = {**MESSAGES, **{k: v for k, v in _RAY.items() if k not in MESSAGES}}
+# aerophoto.demos.loupe and the table-10 key's close-ups (chapter 08)
+_LOUPE = {
+    "A magnifier on the photo (лупа)": "Лупа на снимке",
+    "Put the glass on a mark or click on the photo; at ×5–×6 you see the crowns of a stand, the rows and wheel "
+    "tracks of a field, a road's shoulders and ditches, the rails.":
+        "Наведите лупу на метку или щёлкните по снимку; при ×5–×6 видны кроны деревьев, рядки и колеи на поле, "
+        "обочины и кюветы дороги, рельсы.",
+    "x (glass centre), mm": "x (центр лупы), мм",
+    "y (glass centre), mm": "y (центр лупы), мм",
+    "centre on": "навести на",
+    "power, ×": "увеличение, ×",
+    "Where the glass is": "Где лупа",
+    "Glass": "Лупа",
+    "photo x of the glass's centre": "координата x центра лупы на снимке",
+    "photo y of the glass's centre": "координата y центра лупы на снимке",
+    "put the glass over one of the photo's marks": "навести лупу на одну из меток снимка",
+    "how many times larger than the print": "во сколько раз крупнее отпечатка",
+    "— (use x, y)": "— (по x, y)",
+    "mark 1": "метка 1", "mark 2": "метка 2", "mark 3": "метка 3", "mark 4": "метка 4", "mark 5": "метка 5",
+    "mark 6": "метка 6",
+    "stand P": "насаждение P", "stand Q": "насаждение Q",
+    "bank point A": "точка берега A", "bank point B": "точка берега B",
+    "the glass: full detail when the slider rests": "лупа: все подробности, когда ползунок остановится",
+    "the close-up: full detail when the slider rests": "участок: все подробности, когда ползунок остановится",
+}
+MESSAGES = {**MESSAGES, **_LOUPE}

@@ -421,4 +421,16 @@ _LEGENDS = {
 }
 
 #: English → Russian
-MESSAGES = {**_CAPTIONS, **_HEADERS, **_ROWS, **_FIGURES, **_CELLS, **_LEGENDS}
+# aerophoto.demos.loupe and the table-10 key (chapter 08)
+_LOUPE = {
+    "the photo: click to move the glass": "снимок: щёлкните, чтобы передвинуть лупу",
+    "under the magnifier (лупа)": "под лупой",
+    "the site on a 1:8000 photo, magnified (north up)": "участок на снимке 1:8000 под лупой (север вверху)",
+    "The magnifier": "Лупа",
+    "power": "увеличение",
+    "centre of the glass, photo x, y": "центр лупы, x, y на снимке",
+    "field of the glass, on the photo": "поле зрения лупы на снимке",
+    "field of the glass, on the ground": "поле зрения лупы на местности",
+    "one pixel of the glass, on the ground": "пиксель лупы на местности",
+}
+MESSAGES = {**_CAPTIONS, **_HEADERS, **_ROWS, **_FIGURES, **_CELLS, **_LEGENDS, **_LOUPE}

@@ -45,6 +45,7 @@ _TEMPLATES = {
     "H = f·m = {H} m above the mean ground": "H = f·m = {H} м над средней плоскостью",
     "ΔI from truth: the ground each neighbour shows at a point of the cut, along the strip":
         "ΔI по истине: местность, которую каждый соседний снимок показывает в точке пореза, вдоль маршрута",
+    "= {name}, cycle {cycle}": "= {name}, цикл {cycle}",
     "Step {step}: {name} — misses ×{k}, largest {largest} mm":
         "Шаг {step}: {name} — невязки ×{k}, наибольшая {largest} мм",
     "triangles ×{k:g}": "треугольники ×{k:g}",

@@ -20,10 +20,23 @@ from .. import geometry as g
 from .. import quality as q
 from .. import simulate as sim
 
-__all__ = ["MEASUREMENT_KEYS", "strip_measurements", "measurement_table"]
+__all__ = ["MEASUREMENT_KEYS", "lab_strip", "strip_measurements", "measurement_table"]
 
 #: the measurements the student is given, in the order shown
 MEASUREMENT_KEYS = ("a_mm", "b_mm", "b1_mm", "b2_mm", "L_mm", "l_mm", "crab_deg", "bubble_div", "f_mm", "H_m")
+
+
+def lab_strip(variant):
+    """The student's strip of five photos (:class:`aerophoto.simulate.Strip`, flat ground at the mean of Z_min and
+    Z_max) with the imperfections drawn from the variant number i — what :func:`strip_measurements` measures."""
+    i = int(variant.i)
+    rng = np.random.default_rng([2014, i])
+    # tilts shift the principal points by about f·tan α on the photo: long-focus cameras fly stabilised
+    tilt = min(3.5, math.degrees(math.atan(6.0 / variant.f_mm)))
+    imp = sim.Imperfections(max_tilt_deg=tilt, crab_deg=float(rng.uniform(-12.0, 12.0)), max_crab_jitter_deg=1.0,
+                            max_height_percent=4.0, curvature_percent=float(rng.uniform(-3.0, 3.0)),
+                            max_base_percent=8.0, seed=i)
+    return sim.variant_strip(variant, 5, imperfections=imp)
 
 
 def strip_measurements(variant) -> dict:
@@ -49,14 +62,7 @@ def strip_measurements(variant) -> dict:
         level's bubble on photo 3, divisions of 30′), ``f_mm``, ``H_m``,
         ``numbers`` (photo numbers 1–5).
     """
-    i = int(variant.i)
-    rng = np.random.default_rng([2014, i])
-    # tilts shift the principal points by about f·tan α on the photo: long-focus cameras fly stabilised
-    tilt = min(3.5, math.degrees(math.atan(6.0 / variant.f_mm)))
-    imp = sim.Imperfections(max_tilt_deg=tilt, crab_deg=float(rng.uniform(-12.0, 12.0)), max_crab_jitter_deg=1.0,
-                            max_height_percent=4.0, curvature_percent=float(rng.uniform(-3.0, 3.0)),
-                            max_base_percent=8.0, seed=i)
-    st = sim.variant_strip(variant, 5, imperfections=imp)
+    st = lab_strip(variant)
     cam = st.camera
     dem = g.FlatTerrain(st.ground_Z_m)
     s = st.shots

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -38,7 +38,7 @@ from .. import stereo as st
 from .._validate import check_int_range, check_positive
 
 __all__ = ["SIGMA_READ_MM", "SIGMA_PRICK_MM", "OBJECT_LABELS", "EXAMPLE_SEED", "PX_PERCENT", "StereoLab", "lab_for",
-           "stereo_lab", "example_lab", "PairImages", "SUN", "lab_images", "HM_CLASSES", "HeightModel",
+           "stereo_lab", "example_lab", "PairImages", "SUN", "PAIR_PX", "lab_images", "HM_CLASSES", "HeightModel",
            "height_model"]
 
 #: reading error of one coordinate on the normalised pair, mm (a parallax bar reads parallaxes to ~0.01 mm)
@@ -97,8 +97,16 @@ class StereoLab:
     window_mm: tuple
     principal: pd.DataFrame
     control: pd.Series
-    points: pd.DataFrame
     seed: int
+    _measure_objects: object = field(default=None, repr=False)
+
+    @functools.cached_property
+    def points(self) -> pd.DataFrame:
+        """The objects' tops and feet (see the class notes), measured on first use: finding four objects with a
+        visible foot is most of a lab's cost, and task 07.1 (and the search for another variant's answer) needs
+        the principal points and A only.  The same numbers as measuring them at once (the readings' noise is
+        drawn in the same order)."""
+        return self._measure_objects()
 
     # ---- geometry
     @property
@@ -275,7 +283,8 @@ def lab_for(f_mm: float, m: float, seed: int) -> StereoLab:
     ctl = cat[cat["control"]]
     P = ctl[["X_m", "Y_m", "Z_m"]].to_numpy(float)
     xl, _ = normal(P)
-    ok = _in_window(xl, w, 8.0) & _visible_in_both(site, cam, poses, P)
+    ok = _in_window(xl, w, 8.0)
+    ok[ok] = _visible_in_both(site, cam, poses, P[ok])  # only the points in the overlap: fewer rays
     if not ok.any():  # pragma: no cover - the site's control lattice always reaches the overlap
         raise RuntimeError("no control point in the pair's overlap")
     mid = np.array([(w[0] + w[1]) / 2, (w[2] + w[3]) / 2])
@@ -284,48 +293,79 @@ def lab_for(f_mm: float, m: float, seed: int) -> StereoLab:
     A = read(P[a])[0]
     control = pd.Series({"x left": A[0], "y left": A[1], "x right": A[2], "y right": A[3], "Z, m": round(P[a, 2], 2),
                          "id": int(ctl["id"].iloc[a])})
-    # the four objects and a ground point beside each, seen on both photos
+    return StereoLab(cam, float(m), left, right, R_n, B, round(B, 1), float(p0), w, principal, control, int(seed),
+                     functools.partial(_measure_objects, site, cam, poses, normal, rng, w))
+
+
+def _object_feet(site, objs, kind, top, k) -> np.ndarray:
+    """Candidate ground points beside an object's top (24: eight directions × three distances), in search order."""
+    c = objs.centre_m[k]
+    away = top[:2] - c if np.hypot(*(top[:2] - c)) > 0.5 else np.array([1.0, 0.0])
+    away = away / np.hypot(*away)
+    reach = 3.0 if kind == "roof corner" else (objs.ell_radii[k - objs.n_polyhedra, 0] + 1.5
+                                              if kind == "tree top" else 4.0)
+    feet = []
+    for ang in np.radians([0, 45, -45, 90, -90, 135, -135, 180]):
+        ca, sa = math.cos(ang), math.sin(ang)
+        d = np.array([ca * away[0] - sa * away[1], sa * away[0] + ca * away[1]])
+        for r in (reach, reach + 2.0, reach + 4.0):
+            q = top[:2] + r * d
+            feet.append([q[0], q[1], float(site.height(q[0], q[1]))])
+    return np.array(feet)
+
+
+def _measure_objects(site, cam, poses, normal, rng, w) -> pd.DataFrame:
+    """The four objects of :data:`OBJECT_LABELS` and a ground point beside each, seen on both photos, measured.
+
+    Per kind: the tops inside the overlap and seen by both photos, in an order drawn from ``rng``; the first whose
+    foot search (:func:`_object_feet`, the first foot seen by both) succeeds.  The random draws do not depend on
+    what the rays hit, so they are drawn first (per kind: the order, then the top's and the foot's reading
+    noise, as :func:`lab_for` reads a point), and the ray casts are batched: every kind's tops in one, every
+    kind's first candidate's feet in one (a later candidate only where the first has no visible foot).
+    """
     objs = site.objects
     pts = site.object_points
-    rows = []
-    for label, kind in zip(OBJECT_LABELS, ("roof corner", "tree top", "chimney top", "mast top")):
-        cand = pts[pts["kind"] == kind]
-        T = cand[["X_m", "Y_m", "Z_m"]].to_numpy(float)
-        tl, _ = normal(T)
-        good = np.flatnonzero(_in_window(tl, w, 4.0) & _visible_in_both(site, cam, poses, T))
+    kinds = ("roof corner", "tree top", "chimney top", "mast top")
+    tops = [pts[pts["kind"] == kind] for kind in kinds]
+    T_all = [c[["X_m", "Y_m", "Z_m"]].to_numpy(float) for c in tops]
+    inside = [_in_window(normal(T)[0], w, 4.0) for T in T_all]
+    seen = _visible_in_both(site, cam, poses, np.concatenate([T[i] for T, i in zip(T_all, inside)]))
+    orders, noise, at = [], [], 0
+    for kind, T, i in zip(kinds, T_all, inside):
+        ok = np.zeros(len(T), bool)
+        ok[np.flatnonzero(i)] = seen[at:at + int(i.sum())]
+        at += int(i.sum())
+        good = np.flatnonzero(ok)
         if not len(good):
-            raise RuntimeError(f"no {kind} in the overlap of the pair f = {f_mm:g} mm, 1:{m:g}")
-        order = rng.permutation(good)
-        for j in order:
-            top = T[j]
-            k = int(cand["object"].iloc[j])
-            c = objs.centre_m[k]
-            away = top[:2] - c if np.hypot(*(top[:2] - c)) > 0.5 else np.array([1.0, 0.0])
-            away = away / np.hypot(*away)
-            reach = 3.0 if kind == "roof corner" else (objs.ell_radii[k - objs.n_polyhedra, 0] + 1.5
-                                                      if kind == "tree top" else 4.0)
-            feet = []
-            for ang in np.radians([0, 45, -45, 90, -90, 135, -135, 180]):
-                ca, sa = math.cos(ang), math.sin(ang)
-                d = np.array([ca * away[0] - sa * away[1], sa * away[0] + ca * away[1]])
-                for r in (reach, reach + 2.0, reach + 4.0):
-                    q = top[:2] + r * d
-                    feet.append([q[0], q[1], float(site.height(q[0], q[1]))])
-            feet = np.array(feet)
-            fl, _ = normal(feet)
-            seen = np.flatnonzero(_in_window(fl, w, 2.0) & _visible_in_both(site, cam, poses, feet))
-            if len(seen):
-                foot = feet[seen[0]]
-                break
-        else:  # pragma: no cover
-            raise RuntimeError(f"no {kind} with a visible foot in the pair f = {f_mm:g} mm, 1:{m:g}")
-        for part, Q in (("top", top), ("foot", foot)):
-            r = read(Q)[0]
+            raise RuntimeError(f"no {kind} in the overlap of the pair f = {cam.f_mm:g} mm")
+        orders.append(list(rng.permutation(good)))
+        noise.append([rng.normal(0.0, SIGMA_READ_MM, (1, 4)) for _part in ("top", "foot")])
+    found: list = [None] * len(kinds)
+    tried = [0] * len(kinds)
+    while any(f is None for f in found):
+        todo = [q for q in range(len(kinds)) if found[q] is None]
+        for q in todo:
+            if tried[q] >= len(orders[q]):  # pragma: no cover - every kind has a top with a visible foot
+                raise RuntimeError(f"no {kinds[q]} with a visible foot in the pair f = {cam.f_mm:g} mm")
+        cands = [(q, orders[q][tried[q]]) for q in todo]
+        feet = [_object_feet(site, objs, kinds[q], T_all[q][j], int(tops[q]["object"].iloc[j])) for q, j in cands]
+        F = np.concatenate(feet)
+        vis = _in_window(normal(F)[0], w, 2.0)
+        vis[vis] = _visible_in_both(site, cam, poses, F[vis])
+        for (q, j), part in zip(cands, np.split(vis, np.cumsum([len(f) for f in feet])[:-1])):
+            ok = np.flatnonzero(part)
+            if len(ok):
+                found[q] = (T_all[q][j], feet[cands.index((q, j))][ok[0]])
+            else:
+                tried[q] += 1
+    rows = []
+    for label, (top, foot), nz in zip(OBJECT_LABELS, found, noise):
+        for part, Q, e in (("top", top, nz[0]), ("foot", foot, nz[1])):
+            xl, xr = normal(np.atleast_2d(Q))
+            r = (np.round(np.column_stack([xl, xr]) + e, 2) + 0.0)[0]
             rows.append({"object": label, "point": part, "x left, mm": r[0], "y left, mm": r[1], "x right, mm": r[2],
                          "y right, mm": r[3], "X, m": Q[0], "Y, m": Q[1], "Z, m": Q[2]})
-    points = pd.DataFrame(rows)
-    return StereoLab(cam, float(m), left, right, R_n, B, round(B, 1), float(p0), w, principal, control, points,
-                     int(seed))
+    return pd.DataFrame(rows)
 
 
 @functools.lru_cache(maxsize=128)
@@ -346,7 +386,12 @@ def example_lab() -> StereoLab:
 # =========================================================================== the pair's pictures
 @dataclass(frozen=True, eq=False)
 class PairImages:
-    """The rendered pair and its normalised pieces over the overlap (left window; right shifted by p₀)."""
+    """The rendered pair and its normalised pieces over the overlap (left window; right shifted by p₀).
+
+    ``photos`` are the two rendered :class:`aerophoto.render.Photo` up to 1024 pixels a side (with every pixel's
+    surface point: the height model's truth); above that it is empty — only the normalised pieces are kept (the
+    photos of a 1536-pixel pair would hold 50 MB more) and they come from the disk cache (:func:`lab_images`).
+    """
 
     lab: StereoLab
     photos: tuple
@@ -365,30 +410,48 @@ class PairImages:
 
 #: the sun of the pair's photos (the site texture's light: south-west, 40° high)
 SUN = (225.0, 40.0)
+#: the pixels a side of the pair the chapter shows, measures on and prints (0.15 mm, 1.8 m on the ground at
+#: 1:12 000): one rendering per pair serves the floating mark, the figures and the prints
+PAIR_PX = 1536
+#: above this size the photos' surface points are not kept and the pair is cached on disk
+KEEP_GROUND_PX = 1024
 
 
-@functools.lru_cache(maxsize=3)
-def _images(f_mm: float, m: float, seed: int, n_px: int) -> PairImages:
+def _render_pair(lab: StereoLab, n_px: int, keep_ground: bool) -> tuple:
     from ..render import Sun, render_shot
     from ..site import get_site
 
-    lab = _lab(f_mm, m, seed)
     site = get_site()
-    keep = n_px <= 1024
-    photos = tuple(render_shot(site, s, n_px, vignetting=0.0, fiducials=False, sun=Sun(*SUN), keep_ground=keep)
-                   for s in (lab.left, lab.right))
+    photos = tuple(render_shot(site, s, n_px, vignetting=0.0, fiducials=False, sun=Sun(*SUN),
+                               keep_ground=keep_ground) for s in (lab.left, lab.right))
     px = lab.camera.frame_mm / n_px
     x0, x1, y0, y1 = lab.window_mm
     L = st.normalise_image(photos[0].image, lab.camera, lab.left.pose, lab.R_n, (x0, x1, y0, y1), px)
     R = st.normalise_image(photos[1].image, lab.camera, lab.right.pose, lab.R_n,
                            (x0 - lab.p0_mm, x1 - lab.p0_mm, y0, y1), px)
-    return PairImages(lab, photos, L, R)
+    return photos, L, R
 
 
-def lab_images(lab: StereoLab, n_px: int = 2048) -> PairImages:
+@functools.lru_cache(maxsize=3)
+def _images(f_mm: float, m: float, seed: int, n_px: int) -> PairImages:
+    from .. import cache
+
+    lab = _lab(f_mm, m, seed)
+    if n_px <= KEEP_GROUND_PX:
+        return PairImages(lab, *_render_pair(lab, n_px, keep_ground=True))
+    # the same for everyone who asks for this pair (the guide's example: every student): rendered once on the
+    # machine, then read from the user's disk cache (aerophoto.cache — verified, keyed by the code and inputs)
+    inputs = {"f_mm": f_mm, "m": m, "seed": seed, "n_px": n_px, "sun": list(SUN)}
+    L, R = cache.load_or_build("stereo-pair", inputs, lambda: _render_pair(lab, n_px, keep_ground=False)[1:],
+                               types=(st.NormalImage,))
+    return PairImages(lab, (), L, R)
+
+
+def lab_images(lab: StereoLab, n_px: int = PAIR_PX) -> PairImages:
     """Render the lab's pair (``n_px`` a side, cached; sun in the south-west, 40° high) and normalise the overlap.
 
-    Up to 1024 pixels the photos keep every pixel's surface point (``ground_m``, for the height model).
+    Up to 1024 pixels the photos keep every pixel's surface point (``ground_m``, for the height model); larger
+    pairs keep the normalised pieces only and are cached on disk (:mod:`aerophoto.cache`).
     """
     return _images(lab.camera.f_mm, lab.m, lab.seed, int(n_px))
 
@@ -404,8 +467,11 @@ class HeightModel:
 
     Attributes
     ----------
-    images : PairImages
-        The pair it was matched on.
+    lab : StereoLab
+        The pair it was matched on, rendered at ``n_px`` (:attr:`images`).
+    n_px : int
+    extent_mm : tuple
+        (left, right, bottom, top) of the maps on the left normalised photo, mm.
     match : :class:`aerophoto.stereo.DenseParallax`
     p_mm, Z_m : ndarray (rows, cols)
         Parallax of each left pixel and the height it gives (parallax equations), NaN where unmatched.
@@ -417,7 +483,9 @@ class HeightModel:
         In a cast shadow; hidden from the right photo (seen by the left only).
     """
 
-    images: PairImages
+    lab: StereoLab
+    n_px: int
+    extent_mm: tuple
     match: st.DenseParallax
     p_mm: np.ndarray
     Z_m: np.ndarray
@@ -425,6 +493,11 @@ class HeightModel:
     klass: np.ndarray
     shadow: np.ndarray
     occluded: np.ndarray
+
+    @property
+    def images(self) -> PairImages:
+        """The rendered pair it was matched on (:func:`lab_images`; rendered again if it is not in memory)."""
+        return lab_images(self.lab, self.n_px)
 
     @property
     def error_m(self) -> np.ndarray:
@@ -465,8 +538,30 @@ class HeightModel:
                                            "errors > 5 m, %"]).set_index("part of the overlap")
 
 
+#: the arrays of a :class:`HeightModel` (what the disk cache keeps of it)
+_HM_ARRAYS = ("p_mm", "Z_m", "Z_true_m", "klass", "shadow", "occluded")
+
+
 def height_model(lab: StereoLab, n_px: int = 512, *, half_window: int = 9) -> HeightModel:
-    """Match the lab's pair rendered at ``n_px`` along its epipolar lines and compare the heights with the truth."""
+    """Match the lab's pair rendered at ``n_px`` along its epipolar lines and compare the heights with the truth.
+
+    The same for everyone who asks for the same pair (the guide's example): computed once on a machine, then read
+    from the user's disk cache (:mod:`aerophoto.cache`; the same arrays bit for bit).
+    """
+    from .. import cache
+
+    inputs = {"f_mm": lab.f_mm, "m": lab.m, "seed": lab.seed, "n_px": int(n_px), "half_window": int(half_window),
+              "sun": list(SUN)}
+
+    def build():
+        hm = _height_model(lab, int(n_px), half_window)
+        return {"extent_mm": hm.extent_mm, "match": hm.match, **{k: getattr(hm, k) for k in _HM_ARRAYS}}
+
+    got = cache.load_or_build("height-model", inputs, build, types=(st.DenseParallax,))
+    return HeightModel(lab, int(n_px), tuple(got["extent_mm"]), got["match"], *(got[k] for k in _HM_ARRAYS))
+
+
+def _height_model(lab: StereoLab, n_px: int, half_window: int) -> HeightModel:
     from ..site import COVER_CODES as C
     from ..site import get_site
 
@@ -509,4 +604,4 @@ def height_model(lab: StereoLab, n_px: int = 512, *, half_window: int = 9) -> He
     Gr = right.ground_m[rcr[..., 0], rcr[..., 1]]
     tol = 1.5 * right.pixel_mm * (lab.Z_S_m - site.mean_height_m) / lab.f_mm  # a pixel and a half on the ground
     occluded = inside & (~in_r | (np.linalg.norm(Gr - G, axis=-1) > tol))
-    return HeightModel(im, d, p, Z, Zt, klass, shadow, occluded)
+    return HeightModel(lab, n_px, L.extent_mm, d, p, Z, Zt, klass, shadow, occluded)

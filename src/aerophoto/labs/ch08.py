@@ -23,11 +23,11 @@ import pandas as pd
 from .. import geometry as g
 from .. import interpretation as ip
 from ..site import cover as cv
-from .._validate import check_int_range
+from .._validate import check_int_range, check_range
 
 __all__ = ["OBJECT_NAMES", "FLOW_OPTIONS", "STAND_OPTIONS", "N_OBJECTS", "F_MM", "N_PX", "LabSetup", "setup_for",
            "lab_setup", "EXAMPLE_I", "example_setup", "REASONS", "example_photo", "example_key", "truth", "LabPhoto",
-           "lab_photo"]
+           "lab_photo", "photo_window", "LOUPE_PX"]
 #: the names a numbered object can have (table 10's objects), English with Russian
 OBJECT_NAMES = ("river (река)", "lake (озеро)", "pond (пруд)", "raised bog (верховое болото)",
                 "low bog (низинное болото)", "pine forest (сосновый лес)", "spruce forest (еловый лес)",
@@ -38,6 +38,8 @@ STAND_OPTIONS = ("P", "Q")
 N_OBJECTS = 6
 F_MM = 100.0
 N_PX = 1024
+#: pixels across a magnifier's window (:func:`photo_window`)
+LOUPE_PX = 400
 
 # ground points of each object (m), several per object: a variant picks one inside its photo
 _CANDIDATES = {
@@ -256,7 +258,7 @@ class LabPhoto:
 
         if camera not in sp.CAMERAS:
             raise ValueError(f"camera = {camera!r} is not one of {list(sp.CAMERAS)}")
-        return to_display(self.bands[..., [sp.BAND_NAMES.index(b) for b in sp.CAMERAS[camera]]])
+        return to_display(self.bands[..., [sp.BAND_NAMES.index(b) for b in sp.CAMERAS[camera]]], camera)
 
     @property
     def extent_mm(self) -> tuple:
@@ -288,3 +290,29 @@ def _lab_photo(i: int) -> LabPhoto:
 def lab_photo(v) -> LabPhoto:
     """The student's photo (rendered once per variant, about 1 s)."""
     return _lab_photo(int(v.i))
+
+
+@functools.lru_cache(maxsize=48)
+def _window(i: int, window: tuple, n_px: int):
+    from ..site.colour import render_colour
+
+    su = setup_for(i)
+    isite = cv.interpretation_site(0)
+    return render_colour(isite, su.camera, su.pose(isite), n_px, su.conditions, window_mm=window)
+
+
+def photo_window(i: int, x_mm: float, y_mm: float, side_mm: float, n_px: int = LOUPE_PX):
+    """A square of variant ``i``'s photo (or the worked example's, :data:`EXAMPLE_I`) seen through a magnifier.
+
+    The same photo as :func:`lab_photo` — the same rays, light, air and image motion — rendered over the square
+    centred at photo (x, y) mm with side ``side_mm`` (1…180 mm, inside the frame) at ``n_px`` pixels across
+    (16…1024), so that finer detail than the photo's own 1024 pixels shows: crowns, rows, wheel tracks, rails.
+    Returns a :class:`aerophoto.site.colour.ColourPhoto` (its ``photo.extent_mm`` is the square).  Cached.
+    """
+    i = check_int_range("i", i, 0, 10**6)
+    side = check_range("side_mm", side_mm, 1.0, 180.0, unit="mm")
+    lim = 90.0 - side / 2.0
+    x = check_range("x_mm", x_mm, -lim, lim, unit="mm")
+    y = check_range("y_mm", y_mm, -lim, lim, unit="mm")
+    n = check_int_range("n_px", n_px, 16, 1024)
+    return _window(int(i), (round(x, 6), round(y, 6), round(side, 6)), int(n))

@@ -16,7 +16,9 @@ assignments are evaluated by a tiny evaluator that knows only
 * names assigned earlier in the answer cells of the same notebook.
 
 Anything else — a call of package code, an import, a loop, a name from a non-answer cell — makes the
-variables it assigns *not readable without running* (:data:`UNREADABLE`), with the reason.  Sizes are
+variables it assigns *not readable without running* (:data:`UNREADABLE`), with the reason; for those the
+values the task's check cell recorded in the saved notebook are used when there is such a record for the
+student's variant (:func:`check_records`, read as untrusted plain data).  Sizes are
 bounded (source length, sequence length, exponents), so a hostile cell cannot make the reader run long.
 """
 
@@ -31,7 +33,7 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 __all__ = ["Unreadable", "UNREADABLE", "NotebookAnswers", "read_notebook", "evaluate_cells", "record_book_of",
-           "MAX_NOTEBOOK_BYTES"]
+           "check_records", "RECORDED", "MAX_NOTEBOOK_BYTES"]
 
 #: a notebook file larger than this is not read (MB-sized outputs of a workbook are normal; 50 MB is not)
 MAX_NOTEBOOK_BYTES = 50_000_000
@@ -464,20 +466,111 @@ class NotebookAnswers:
     """What one notebook says, read without running it.
 
     ``answer_cells``: task id → the answer cell's source (tasks whose cell was found);
-    ``record_book``: the setup cell's number (or None); ``problem``: why the file could not be read.
+    ``records``: task id → ``(variant index, {name: value})``, the values its check cell recorded in the saved
+    notebook (:func:`check_records`); ``record_book``: the setup cell's number (or None); ``problem``: why the
+    file could not be read.
     """
 
     path: Path
     record_book: str | None = None
     answer_cells: dict = field(default_factory=dict)
     order: list = field(default_factory=list)
+    records: dict = field(default_factory=dict)
     problem: str = ""
 
     def values(self, variant) -> dict:
-        """task id → the variables right after its answer cell, evaluated for ``variant`` (:func:`evaluate_cells`)."""
+        """task id → the variables right after its answer cell, evaluated for ``variant`` (:func:`evaluate_cells`).
+
+        A variable the evaluator cannot read (an answer computed with package code) takes the value the task's
+        check cell recorded when the notebook was run, if that record is for this variant; such names are
+        listed under the key ``RECORDED`` of the task's variables.
+        """
         snaps: list = []
         evaluate_cells([self.answer_cells[t] for t in self.order], variant, snapshots=snaps)
-        return dict(zip(self.order, snaps))
+        out = dict(zip(self.order, snaps))
+        for task, env in out.items():
+            rec = self.records.get(task)
+            if rec is None or rec[0] != int(variant.i):
+                continue
+            taken = [n for n, x in env.items() if isinstance(x, _Unreadable) and n in rec[1]]
+            for n in taken:
+                env[n] = rec[1][n]
+            if taken:
+                env[RECORDED] = tuple(sorted(taken))
+        return out
+
+
+#: the key under which :meth:`NotebookAnswers.values` lists the names taken from a check cell's record
+RECORDED = "__recorded__"
+_MAX_RECORD_LIST = 2000
+
+
+def _plain_value(x):
+    """A recorded value if it is plain data the report can show (a number, a bool, short text, a list of
+    those), else None.  Records are untrusted: nothing else is kept."""
+    if isinstance(x, bool):
+        return x
+    if isinstance(x, int):
+        return x if x.bit_length() <= 64 else None
+    if isinstance(x, float):
+        return x if math.isfinite(x) else None
+    if isinstance(x, str):
+        return x if len(x) <= 200 else None
+    if isinstance(x, list) and len(x) <= _MAX_RECORD_LIST:
+        items = [_plain_value(e) for e in x]
+        return items if all(e is not None and not isinstance(e, list) for e in items) else None
+    return None
+
+
+def check_records(nb, task_ids) -> dict:
+    """task id → ``(variant index, {name: value})`` of the last answer record each task's check cell left in the
+    saved notebook (:func:`aerophoto.course.trusted.answer_records`), read as untrusted data.
+
+    A record is taken from an output's ``data`` or its ``metadata`` under :data:`aerophoto.course.wire.ANSWERS_MIME`;
+    only plain values are kept (:func:`_plain_value`), and a record of another task is ignored.
+    """
+    from ..course.trusted import answer_records
+    from ..course.wire import ANSWERS_MIME, decode_answers
+
+    wanted = {f"{t}-check": t for t in task_ids}
+    clean = []
+    for cell in _cells(nb):
+        gid = _grade_id(cell)
+        outputs = cell.get("outputs")
+        if gid not in wanted or not isinstance(outputs, list):
+            continue
+        outs = []
+        for o in outputs:
+            if not isinstance(o, dict):
+                continue
+            data, meta = o.get("data"), o.get("metadata")
+            rec = data.get(ANSWERS_MIME) if isinstance(data, dict) else None
+            if rec is None and isinstance(meta, dict):
+                rec = meta.get(ANSWERS_MIME)
+            if isinstance(rec, (dict, str)) and (not isinstance(rec, str) or len(rec) <= 300_000):
+                outs.append({"data": {ANSWERS_MIME: rec}})
+        meta = cell.get("metadata") if isinstance(cell.get("metadata"), dict) else {}
+        clean.append({"cell_type": "code", "metadata": {"nbgrader": dict(meta.get("nbgrader") or {})},
+                      "outputs": outs, "source": ""})
+    try:
+        found = answer_records({"cells": clean})
+    except (TypeError, ValueError, AttributeError, KeyError, RecursionError):
+        return {}
+    out = {}
+    for gid, recs in found.items():
+        task = wanted.get(gid)
+        if task is None or not recs:
+            continue
+        try:
+            rec_task, values = decode_answers(recs[-1])
+            variant = int(recs[-1].get("variant"))
+        except (TypeError, ValueError, AttributeError):
+            continue
+        if rec_task != task:
+            continue
+        kept = {str(k): _plain_value(x) for k, x in values.items() if isinstance(k, str) and k.isidentifier()}
+        out[task] = (variant, {k: x for k, x in kept.items() if x is not None})
+    return out
 
 
 def read_notebook(path, task_ids) -> NotebookAnswers:
@@ -507,4 +600,5 @@ def read_notebook(path, task_ids) -> NotebookAnswers:
             found[wanted[key]] = (k, _source(cell))
     out.order = [t for t, _ in sorted(found.items(), key=lambda kv: kv[1][0])]
     out.answer_cells = {t: src for t, (_, src) in found.items()}
+    out.records = check_records(nb, task_ids)
     return out

@@ -1,49 +1,52 @@
-"""Assemble the student's course report from their workbook (see :mod:`aerophoto.report`)."""
+"""Assemble the student's explanatory note from their workbook (see :mod:`aerophoto.report`).
+
+Reading (:func:`read_workbook`): every chapter's notebook is read as JSON, its answer cells evaluated without
+running (:mod:`aerophoto.report.answers`, with the values the check cells recorded where an answer needed package
+code), and each task checked by the visible checks (:func:`aerophoto.report.facts.visible_checks`).  Writing
+(:func:`build`): the title page, the contents, the introduction, §15's 13 sections and the articles' four, the
+conclusion, the sources and the appendices (:mod:`aerophoto.report.frame`), typeset by Typst; the fotoschema sheet
+at true size (:mod:`aerophoto.report.sheet`).  On the student's machine the slow parts — the reference worlds
+behind the checks, the tasks' data, the figures and the sheet — come from a verified cache
+(:mod:`aerophoto.diskcache`), so a second build takes seconds.
+"""
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
 import re
 import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .answers import UNREADABLE, read_notebook
-from .document import Document, compile_pdf, write_html
-from .sections import ASSIGNMENT, SECTIONS, chapters_by_section
+from .answers import RECORDED, UNREADABLE, read_notebook
 
-__all__ = ["build", "Report", "TaskStatus", "ChapterStatus", "read_workbook", "DEFAULTS"]
+__all__ = ["build", "Report", "TaskStatus", "ChapterStatus", "read_workbook", "DEFAULTS", "NOT_DONE"]
 
 #: the title page's defaults (the guide's university and department; every one can be given to build())
 DEFAULTS = {
     "ministry": "Министерство науки и высшего образования Российской Федерации",
-    "university": "Пензенский государственный университет архитектуры и строительства",
+    "university_form": "Федеральное государственное бюджетное образовательное учреждение высшего образования",
+    "university": "«Пензенский государственный университет архитектуры и строительства»",
     "department": "Кафедра «Землеустройство и геодезия»",
     "course": "Фотограмметрия",
+    "topic": "Фотограмметрическая обработка материалов аэрофотосъёмки участка землепользования",
     "place": "Пенза",
 }
 
-NOT_DONE = "не выполнено (not done)"
+NOT_DONE = "не выполнено"
 #: the folder beside report.pdf with the figures, report.json and the Typst source (rewritten on every build)
 BUILD_DIR = "report_files"
 _MARKER = ".aerophoto-report"
 
-_STATE_RU = {
-    "passed": "выполнено (passed)",
-    "failed": "ошибка (the check fails)",
-    "partial": "частично (partly answered)",
-    "unreadable": "не читается без запуска (not readable without running)",
-    "not_started": NOT_DONE,
-}
-
 
 @dataclass(frozen=True)
 class TaskStatus:
-    """One task of the student's workbook, read without running and checked by the trusted check.
+    """One task of the student's workbook, read without running and checked by the visible checks.
 
-    ``state``: passed, failed, partial, unreadable or not_started.  ``values``: the student's readable
-    answers; ``unreadable``: name → what it needs; ``checks``: name → (ok, message) of the visible checks;
-    ``message``: the first failing visible check's message.
+    ``state``: passed, failed, partial, unreadable or not_started.  ``values``: the student's readable answers;
+    ``recorded``: names whose value the check cell recorded; ``unreadable``: name → what it needs; ``checks``:
+    name → (ok, message); ``message``: the first failing check's message.
     """
 
     task: str
@@ -54,6 +57,7 @@ class TaskStatus:
     unreadable: dict = field(default_factory=dict)
     checks: dict = field(default_factory=dict)
     message: str = ""
+    recorded: tuple = ()
 
     @property
     def attempted(self) -> bool:
@@ -62,12 +66,13 @@ class TaskStatus:
 
 @dataclass(frozen=True)
 class ChapterStatus:
-    """A chapter of the registry in the student's workbook: its notebook (or None) and its tasks' status."""
+    """A chapter of the registry in the student's workbook: its notebook (or None), its tasks and their specs."""
 
     chapter: object
     notebook: Path | None
     tasks: tuple = ()
     problem: str = ""
+    specs: tuple = ()
 
     @property
     def number(self) -> str:
@@ -99,6 +104,8 @@ class Report:
     record_book: str
     variant: object
     chapters: tuple
+    figures: tuple = ()
+    leftover: tuple = ()
 
     def __repr__(self) -> str:
         states = [t.state for ch in self.chapters for t in ch.tasks]
@@ -132,18 +139,6 @@ def _chapter_notebook(workbook: Path, ch) -> Path | None:
     return cands[0] if cands else None
 
 
-def _registry_tasks(number: str) -> tuple[tuple, str]:
-    """The chapter's graded tasks and, when they cannot be loaded (a chapter being written), why."""
-    from .. import gradebook
-
-    if not gradebook.has_tasks(number):
-        return (), ""
-    try:
-        return tuple(gradebook.chapter_tasks(number)), ""
-    except Exception as exc:  # one broken chapter must not keep the student from the rest of the report
-        return (), f"the chapter's tasks could not be loaded ({type(exc).__name__})"
-
-
 def _resolve_record_book(record_book, books: dict) -> str:
     from ..variants import index_from_record_book
 
@@ -168,84 +163,70 @@ def _resolve_record_book(record_book, books: dict) -> str:
     return usable[0]
 
 
-def _task_status(t, v, env: dict) -> TaskStatus:
-    from ..course.score import grade_task
+def _task_status(t: dict, chapter: str, v, env: dict, lang: str) -> TaskStatus:
+    from .facts import visible_checks
 
-    raw = {n: env.get(n, Ellipsis) for n in t.names}
+    names = [a["name"] for a in t["spec"]]
+    raw = {n: env.get(n, Ellipsis) for n in names}
+    recorded = tuple(n for n in env.get(RECORDED, ()) if n in names)
     unread = {n: x.reason for n, x in raw.items() if isinstance(x, UNREADABLE)}
     values = {n: x for n, x in raw.items() if x is not Ellipsis and not isinstance(x, UNREADABLE)}
     if not values and not unread:
-        return TaskStatus(t.id, t.title, t.chapter, "not_started")
+        return TaskStatus(t["id"], t["title"], chapter, "not_started")
     if unread:
-        return TaskStatus(t.id, t.title, t.chapter, "unreadable", values, unread,
-                          message="; ".join(f"{n}: needs {r}" for n, r in unread.items()))
-    grade = grade_task(t.id, v, {n: values.get(n, Ellipsis) for n in t.names})
-    checks = {name: (ok, _clean(msg)) for name, ok, msg, hidden in grade.checks if not hidden}
-    visible_ok = grade.visible_ok
+        return TaskStatus(t["id"], t["title"], chapter, "unreadable", values, unread,
+                          message="; ".join(f"{n}: needs {r}" for n, r in unread.items()), recorded=recorded)
+    res = visible_checks(t["id"], v, {n: values.get(n, Ellipsis) for n in names}, lang)["checks"]
+    checks = {n: (bool(ok), str(msg)) for n, (ok, msg) in res.items()}
     first = next((msg for ok, msg in checks.values() if not ok), "")
-    if len(values) < len(t.names):
+    if len(values) < len(names):
         state = "partial"
     else:
-        state = "passed" if visible_ok else "failed"
-    return TaskStatus(t.id, t.title, t.chapter, state, values, {}, checks, first)
+        state = "passed" if all(ok for ok, _ in checks.values()) else "failed"
+    return TaskStatus(t["id"], t["title"], chapter, state, values, {}, checks, first, recorded)
 
 
-def _clean(msg: str) -> str:
-    return re.sub(r"\x1b\[[0-9;]*m", "", str(msg or "")).strip()
-
-
-def read_workbook(workbook_dir, record_book=None, *, chapters=None) -> tuple:
+def read_workbook(workbook_dir, record_book=None, *, chapters=None, lang: str = "ru") -> tuple:
     """Read and check every chapter of a workbook: ``(record_book, variant, (ChapterStatus, …))``.
 
-    Nothing of the workbook is run: see :mod:`aerophoto.report.answers`.  The variant is the one of
-    ``record_book`` (default: the notebooks' own ``RECORD_BOOK``, which must agree).
+    Nothing of the workbook is run (:mod:`aerophoto.report.answers`).  The variant is the one of ``record_book``
+    (default: the notebooks' own ``RECORD_BOOK``, which must agree); ``lang`` is the language of the checks'
+    messages.
     """
     from ..book import CHAPTERS
     from ..variants import variant
+    from .facts import registry
 
     workbook = _folder("workbook_dir", workbook_dir)
     chapters = tuple(CHAPTERS if chapters is None else chapters)
+    reg = registry([ch.number for ch in chapters])
     read = {}
     for ch in chapters:
         nb = _chapter_notebook(workbook, ch)
-        tasks, why = _registry_tasks(ch.number)
-        read[ch.number] = (nb, tasks, read_notebook(nb, [t.id for t in tasks]) if nb else None, why)
+        tasks = reg[ch.number]["tasks"]
+        read[ch.number] = (nb, tasks, read_notebook(nb, [t["id"] for t in tasks]) if nb else None,
+                           reg[ch.number]["problem"])
     books = {r[0].name: r[2].record_book for r in read.values() if r[2] is not None and r[2].record_book}
     rb = _resolve_record_book(record_book, books)
     v = variant(rb)
     out = []
     for ch in chapters:
         nb, tasks, ans, why = read[ch.number]
+        specs = tuple(tasks)
         if why:
-            out.append(ChapterStatus(ch, nb, (), why))
+            out.append(ChapterStatus(ch, nb, (), why, specs))
             continue
         if ans is None:
-            out.append(ChapterStatus(ch, None, tuple(TaskStatus(t.id, t.title, t.chapter, "not_started")
-                                                     for t in tasks), "no notebook in the workbook"))
+            out.append(ChapterStatus(ch, None, tuple(TaskStatus(t["id"], t["title"], ch.number, "not_started")
+                                                     for t in tasks), "no notebook in the workbook", specs))
             continue
         envs = ans.values(v) if not ans.problem else {}
-        out.append(ChapterStatus(ch, nb, tuple(_task_status(t, v, envs.get(t.id, {})) for t in tasks), ans.problem))
+        out.append(ChapterStatus(ch, nb, tuple(_task_status(t, ch.number, v, envs.get(t["id"], {}), lang)
+                                               for t in tasks), ans.problem, specs))
     return rb, v, tuple(out)
 
 
-# =========================================================================== formatting
-def fmt(x) -> str:
-    """A student's value as text: up to 6 significant digits, lists joined with "; "."""
-    if isinstance(x, bool):
-        return "да (True)" if x else "нет (False)"
-    if isinstance(x, int):
-        return str(x)
-    if isinstance(x, float):
-        return f"{x:.6g}"
-    if isinstance(x, (list, tuple)):
-        items = [fmt(e) for e in x[:60]]
-        return "; ".join(items) + (" …" if len(x) > 60 else "")
-    if x is None:
-        return "None"
-    s = str(x)
-    return s if len(s) <= 200 else s[:200] + "…"
-
-
+# =========================================================================== checking the options
 def _folder(name: str, path) -> Path:
     if path is None or str(path).strip() == "":
         raise ValueError(f"{name} = {path!r}: give the folder")
@@ -279,224 +260,6 @@ def _text(name: str, value, limit: int = 200) -> str:
     return s
 
 
-# =========================================================================== the document
-def _title_page(opts: dict, rb: str, v, date: _dt.date) -> dict:
-    rows = [["Выполнил (student)", opts["student"] or "________________"]]
-    if opts["group"]:
-        rows.append(["Группа (group)", opts["group"]])
-    rows += [["Зачётная книжка (record book)", rb], ["Вариант (variant)", f"{v.i:02d}"],
-             ["Проверил (checked by)", opts["checked_by"] or "________________"],
-             ["Дата (date)", date.isoformat()]]
-    return {
-        "ministry": opts["ministry"], "university": opts["university"], "department": opts["department"],
-        "work_ru": "КУРСОВАЯ РАБОТА", "discipline_ru": f"по дисциплине «{opts['course']}»",
-        "note_ru": "Пояснительная записка", "work_en": f"Course design in {opts['course_en']}: explanatory note",
-        "rows": rows, "place": f"{opts['place']} {date.year}",
-        "generated": "Составлено из рабочей тетради студента пакетом aerophoto "
-                     "(assembled from the student's own workbook)",
-    }
-
-
-def _inputs_table(doc: Document, t, v) -> None:
-    """The task's inputs when they are a small table (what the student works from; never an answer)."""
-    import pandas as pd
-
-    from .. import gradebook
-
-    try:
-        inp = gradebook.task_inputs(t.task, v)
-    except Exception:  # an input the package cannot give is left out, never guessed
-        return
-    if isinstance(inp, pd.Series):
-        inp = inp.to_frame()
-    if not isinstance(inp, pd.DataFrame) or inp.empty or len(inp) > 40 or inp.shape[1] > 7:
-        return
-    df = inp.reset_index() if inp.index.name or not isinstance(inp.index, pd.RangeIndex) else inp
-    rows = [[fmt(x.item() if hasattr(x, "item") else x) for x in r] for r in df.itertuples(index=False)]
-    aligns = ["right" if pd.api.types.is_numeric_dtype(df[c]) else "left" for c in df.columns]
-    doc.table(f"Задача {_label(t.task)}: исходные данные (inputs)", [str(c) for c in df.columns], rows,
-              align=aligns)
-
-
-def _label(task_id: str) -> str:
-    p = task_id.split("-")
-    return f"{p[1]}.{p[2]}" if len(p) >= 3 else task_id
-
-
-def _task_block(doc: Document, t: TaskStatus, v) -> None:
-    from .. import gradebook
-
-    task = gradebook.task(t.task)
-    doc.heading(3, f"Задача {_label(t.task)}", t.title)
-    if not t.attempted:
-        doc.par(NOT_DONE, "missing")
-        return
-    _inputs_table(doc, t, v)
-    rows = []
-    for a in task.spec:
-        if a.name in t.values:
-            val = fmt(t.values[a.name])
-        elif a.name in t.unreadable:
-            val = "не читается без запуска (not readable without running)"
-        else:
-            val = "нет ответа (no answer yet)"
-        ok = t.checks.get(a.name)
-        mark = "—" if ok is None else ("✓" if ok[0] else "✗")
-        rows.append([a.name, a.text, a.unit, val, mark])
-    doc.table(f"Задача {_label(t.task)}: ваши ответы (your answers) — {_STATE_RU[t.state]}",
-              ["Величина (quantity)", "Что это (what)", "Ед. (unit)", "Ваше значение (your value)",
-               "Проверка (check)"], rows, align=["left", "left", "left", "right", "left"], widths=[14, 30, 7, 26, 9])
-    if t.state == "passed":
-        doc.par(f"✓ Задача {_label(t.task)} проверена (passed the check).", "ok")
-    elif t.state == "unreadable":
-        for name, why in t.unreadable.items():
-            doc.par(f"{name}: не читается без запуска — нужен {why} (not readable without running; write the "
-                    "value or an expression of numbers, math.* and v.*)", "bad")
-    elif t.message:
-        doc.par(f"✗ {t.message}", "bad")
-
-
-def _chapter_block(doc: Document, cs: ChapterStatus, v, build_dir: Path, figures: bool) -> None:
-    from .figures import CHAPTER_FIGURES
-
-    ch = cs.chapter
-    doc.heading(2, f"Глава {ch.number}: {ch.title_ru}", ch.title)
-    if not cs.tasks:
-        if cs.problem:
-            doc.par(f"{NOT_DONE} — {cs.problem}", "missing")
-        else:
-            doc.par("В этой главе нет оцениваемых задач (no graded tasks in this chapter).", "note")
-        return
-    if not cs.attempted:
-        why = " — нет файла в рабочей тетради (no notebook in the workbook)" if cs.notebook is None else ""
-        doc.par(NOT_DONE + why, "missing")
-        for t in cs.tasks:
-            doc.par(f"Задача {_label(t.task)} — {t.title}: {NOT_DONE}", "note")
-        return
-    doc.par(f"Тетрадь (notebook): {cs.notebook.name}. Задачи выполнены (tasks passed): "
-            f"{sum(t.state == 'passed' for t in cs.tasks)} из {len(cs.tasks)}.", "note")
-    if figures and ch.number in CHAPTER_FIGURES:
-        folder = build_dir / "figures"
-        folder.mkdir(exist_ok=True)
-        try:
-            drawn = CHAPTER_FIGURES[ch.number](v, folder)
-        except Exception as exc:  # a figure that cannot be drawn must not cost the student the report
-            drawn = []
-            doc.par(f"Рисунки главы не построены (the chapter's figures could not be drawn: {type(exc).__name__}).",
-                    "note")
-        for src, caption, width in drawn:
-            doc.figure(src, caption, width)
-    for t in cs.tasks:
-        _task_block(doc, t, v)
-
-
-def _section(doc: Document, sec, chapters, statuses: dict, v, build_dir: Path, figures: bool) -> None:
-    num = f"{sec.number}." if sec.number else ""
-    doc.heading(1, sec.ru, sec.en, num)
-    if not chapters:
-        doc.par(NOT_DONE + " — в книге пока нет главы к этому разделу (the book has no chapter for this "
-                "section yet)", "missing")
-        return
-    if sec.formula and any(statuses[c.number].attempted for c in chapters):
-        doc.math(*sec.formula)
-    for ch in chapters:
-        _chapter_block(doc, statuses[ch.number], v, build_dir, figures)
-
-
-def _summary(doc: Document, statuses) -> None:
-    doc.heading(1, "Сводка выполнения", "Summary of the work")
-    names = {"done": "выполнено (done)", "in_progress": "частично (in progress)", "not_done": NOT_DONE,
-             "no_tasks": "нет задач (no graded tasks)"}
-    rows = []
-    for cs in statuses:
-        if not cs.tasks:
-            continue
-        passed = sum(t.state == "passed" for t in cs.tasks)
-        rows.append([cs.number, cs.chapter.title_ru, f"{passed} / {len(cs.tasks)}", names[cs.state]])
-    doc.table("Задачи по главам (tasks passed, chapter by chapter)",
-              ["Глава (chapter)", "Тема (topic)", "Задачи (passed)", "Состояние (state)"], rows,
-              align=["left", "left", "right", "left"], widths=[9, 40, 10, 20])
-
-
-def build(workbook_dir, out_dir=None, *, student: str = "", record_book=None, group: str = "",
-          checked_by: str = "", date=None, university: str | None = None, department: str | None = None,
-          ministry: str | None = None, place: str | None = None, sheet: bool = True, figures: bool = True,
-          formats=("pdf", "html")) -> Report:
-    """Assemble the student's course report (guide §15) and fotoschema sheet from their workbook.
-
-    Parameters
-    ----------
-    workbook_dir : the folder of the student's notebooks (``workbook/``); read, never run
-    out_dir : where to write (default ``<workbook_dir>/report``): ``report.pdf``, ``report.html``,
-        ``fotoschema.pdf`` (the sheet at true size) and ``report_files/`` (the figures, the JSON, the Typst
-        source; rewritten on every build)
-    student, group, checked_by : names for the title page and the sheet's marginalia
-    record_book : the record-book number whose variant is graded (default: the notebooks' RECORD_BOOK)
-    date : the report's date (``datetime.date`` or ``"YYYY-MM-DD"``; default today) — fix it for
-        reproducible files
-    university, department, ministry, place : the title page (defaults: :data:`DEFAULTS`, the guide's)
-    sheet, figures : whether to draw the fotoschema sheet and the chapters' figures
-    formats : any of ``"pdf"``, ``"html"``
-
-    Returns a :class:`Report`.  Bad input raises ValueError naming the parameter.
-    """
-    workbook = _folder("workbook_dir", workbook_dir)
-    formats = tuple(formats)
-    bad = [f for f in formats if f not in ("pdf", "html")]
-    if bad or not formats:
-        raise ValueError(f"formats = {formats!r}; the valid values are 'pdf' and 'html' (at least one)")
-    day = _date(date)
-    opts = {"student": _text("student", student), "group": _text("group", group),
-            "checked_by": _text("checked_by", checked_by),
-            "university": _text("university", university) or DEFAULTS["university"],
-            "department": _text("department", department) or DEFAULTS["department"],
-            "ministry": _text("ministry", ministry) or DEFAULTS["ministry"],
-            "place": _text("place", place) or DEFAULTS["place"],
-            "course": DEFAULTS["course"], "course_en": "photogrammetry"}
-    out = Path(out_dir) if out_dir is not None else workbook / "report"
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"out_dir = {str(out)!r} is a file, not a folder")
-    rb, v, statuses = read_workbook(workbook, record_book)
-    build_dir = _fresh_build_dir(out)
-    by_number = {cs.number: cs for cs in statuses}
-
-    doc = Document(_title_page(opts, rb, v, day),
-                   {"title": f"Курсовая работа по фотограмметрии — {opts['student'] or rb}",
-                    "author": opts["student"] or rb, "date": [day.year, day.month, day.day]})
-    by_section, others = chapters_by_section([cs.chapter for cs in statuses])
-    # the assignment: the variant's inputs (the student's own data) and chapter 00
-    doc.heading(1, ASSIGNMENT.ru, ASSIGNMENT.en)
-    doc.par(f"Вариант {v.i:02d} — последние две цифры номера зачётной книжки {rb} (guide §1: the variant is the "
-            "last two digits of the record-book number).")
-    vt = v.table()
-    doc.table("Исходные данные варианта (the inputs of your variant, guide §1)",
-              ["Величина (quantity)", "Ед.", "Значение"],
-              [[str(q), str(r["unit"]), fmt(r["value"].item() if hasattr(r["value"], "item") else r["value"])]
-               for q, r in vt.iterrows()], align=["left", "left", "right"], widths=[40, 6, 14])
-    for ch in by_section.get(ASSIGNMENT.guide, []):
-        _chapter_block(doc, by_number[ch.number], v, build_dir, figures)
-    for sec in SECTIONS:
-        _section(doc, sec, by_section.get(sec.guide, []), by_number, v, build_dir, figures)
-    if others:
-        doc.heading(1, "Дополнительные главы", "Further chapters (articles)")
-        for ch in others:
-            _chapter_block(doc, by_number[ch.number], v, build_dir, figures)
-    _summary(doc, statuses)
-
-    # the graphic material: the fotoschema sheet (guide §15, appendix 1)
-    sheet_info = _sheet(doc, by_number.get("05"), v, out, build_dir, opts, day, sheet)
-
-    pdf = html = None
-    if "pdf" in formats:
-        pdf = compile_pdf(doc, build_dir, out / "report.pdf")
-    else:
-        (build_dir / "report.json").write_text(doc.as_json() + "\n", encoding="utf-8")
-    if "html" in formats:
-        html = write_html(doc, out / "report.html", prefix=f"{BUILD_DIR}/")
-    return Report(pdf, html, sheet_info.get("pdf"), sheet_info.get("png"), sheet_info.get("paper"), build_dir, rb,
-                  v, statuses)
-
-
 def _fresh_build_dir(out: Path) -> Path:
     """``<out>/report_files``, emptied — only when this command wrote it (its marker file is there)."""
     out.mkdir(parents=True, exist_ok=True)
@@ -511,36 +274,71 @@ def _fresh_build_dir(out: Path) -> Path:
     return build_dir
 
 
-def _sheet(doc: Document, cs, v, out: Path, build_dir: Path, opts: dict, day: _dt.date, want: bool) -> dict:
-    doc.pagebreak()
-    doc.heading(1, "Приложение 1. Фотосхема", "Appendix 1: the fotoschema sheet")
-    task = None if cs is None else next((t for t in cs.tasks if t.task == "task-05-2"), None)
-    m_mean = None if task is None else task.values.get("m_mean")
-    usable = isinstance(m_mean, (int, float)) and not isinstance(m_mean, bool) and 1000 <= float(m_mean) <= 1e6
-    if not want:
-        doc.par("Лист фотосхемы не строился (the sheet was not drawn: sheet=False).", "note")
-        return {}
-    if task is None or not usable:
-        doc.par(NOT_DONE + " — фотосхема подписывается средним масштабом из задачи 05.2; ответьте на неё "
-                "(the sheet is signed with the mean scale of task 05.2: answer it first)", "missing")
-        return {}
-    figs = build_dir / "figures"
-    figs.mkdir(exist_ok=True)
-    info = _sheet_files(v, float(m_mean), figs, opts, day)
-    pdf = Path(shutil.copy2(info["pdf"], out / "fotoschema.pdf"))
-    w, h = info["size_mm"]
-    m_txt = f"{int(round(float(m_mean) / 100.0) * 100):,}".replace(",", " ")
-    state = "" if task.state == "passed" else \
-        " Внимание: задача 05.2 не прошла проверку (task 05.2 does not pass its check)."
-    doc.par(f"Фотосхема вашего маршрута подписана вашим средним масштабом М 1:{m_txt}; лист формата {info['paper']} "
-            f"({w:g} × {h:g} мм) в натуральную величину — файл fotoschema.pdf (print it at 100 %, the sheet is at "
-            f"true size).{state}")
-    doc.figure("figures/fotoschema.png", f"Фотосхема (уменьшено), лист {info['paper']} (the sheet, reduced)", 1.0)
-    return {"pdf": pdf, "png": info["png"], "paper": info["paper"]}
+# =========================================================================== the note
+def build(workbook_dir, out_dir=None, *, student: str = "", record_book=None, group: str = "",
+          checked_by: str = "", date=None, university: str | None = None, department: str | None = None,
+          ministry: str | None = None, place: str | None = None, topic: str | None = None, lang: str = "ru",
+          sheet: bool = True, figures: bool = True, formats=("pdf", "html"), cache=True) -> Report:
+    """Assemble the student's explanatory note (guide §15) and fotoschema sheet from their workbook.
 
+    Parameters
+    ----------
+    workbook_dir : the folder of the student's notebooks (``workbook/``); read, never run
+    out_dir : where to write (default ``<workbook_dir>/report``): ``report.pdf``, ``report.html``,
+        ``fotoschema.pdf`` (the sheet at true size) and ``report_files/`` (the figures, the JSON, the Typst
+        source; rewritten on every build)
+    student, group, checked_by : the title page and the sheet's marginalia (``checked_by``: the supervisor)
+    record_book : the record-book number whose variant is graded (default: the notebooks' RECORD_BOOK)
+    date : the note's date (``datetime.date`` or ``"YYYY-MM-DD"``; default today) — fix it for reproducible files
+    university, department, ministry, place, topic : the title page (defaults: :data:`DEFAULTS`, the guide's)
+    lang : ``"ru"`` (the note the guide asks for) or ``"en"``
+    sheet, figures : whether to draw the fotoschema sheet and the sections' figures
+    formats : any of ``"pdf"``, ``"html"``
+    cache : keep the slow parts in the student's verified cache (True: the default folder,
+        :func:`aerophoto.diskcache.default_folder`; a path: that folder; False: compute everything)
 
-def _sheet_files(v, m_mean: float, folder: Path, opts: dict, day: _dt.date) -> dict:
-    from .figures import sheet_files
+    Returns a :class:`Report`.  Bad input raises ValueError naming the parameter.
+    """
+    from .. import diskcache
+    from ..i18n import language
 
-    made_by = opts["student"] + (f", ст. гр. {opts['group']}" if opts["group"] else "")
-    return sheet_files(v, m_mean, folder, made_by=made_by, checked_by=opts["checked_by"], year=day.year)
+    workbook = _folder("workbook_dir", workbook_dir)
+    formats = tuple(formats)
+    bad = [f for f in formats if f not in ("pdf", "html")]
+    if bad or not formats:
+        raise ValueError(f"formats = {formats!r}; the valid values are 'pdf' and 'html' (at least one)")
+    if lang not in ("ru", "en"):
+        raise ValueError(f"lang = {lang!r} is not a language of the note; expected one of ['ru', 'en']")
+    day = _date(date)
+    opts = {"student": _text("student", student), "group": _text("group", group),
+            "checked_by": _text("checked_by", checked_by), "topic": _text("topic", topic) or DEFAULTS["topic"],
+            "university": _text("university", university) or DEFAULTS["university"],
+            "department": _text("department", department) or DEFAULTS["department"],
+            "ministry": _text("ministry", ministry) or DEFAULTS["ministry"],
+            "place": _text("place", place) or DEFAULTS["place"]}
+    out = Path(out_dir) if out_dir is not None else workbook / "report"
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"out_dir = {str(out)!r} is a file, not a folder")
+    if cache is True:
+        opened = diskcache.enabled()
+    elif cache:
+        opened = diskcache.enabled(Path(cache))
+    else:
+        opened = contextlib.nullcontext()
+    with opened, language(lang):
+        rb, v, statuses = read_workbook(workbook, record_book, lang=lang)
+        build_dir = _fresh_build_dir(out)
+        from .frame import write_note
+
+        doc, info = write_note(statuses, v, rb, opts, day, lang, build_dir, out, figures=figures, sheet=sheet)
+        from .document import compile_pdf, write_html
+
+        pdf = html = None
+        if "pdf" in formats:
+            pdf = compile_pdf(doc, build_dir, out / "report.pdf")
+        else:
+            (build_dir / "report.json").write_text(doc.as_json() + "\n", encoding="utf-8")
+        if "html" in formats:
+            html = write_html(doc, out / "report.html", prefix=f"{BUILD_DIR}/")
+    return Report(pdf, html, info.get("sheet_pdf"), None, info.get("paper"), build_dir, rb, v, statuses,
+                  tuple(info.get("figures", ())), tuple(info.get("leftover", ())))

@@ -16,7 +16,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--group", default="", help="your group (\"ЗиК 31\")")
     p.add_argument("--record-book", default=None,
                    help="the record-book number (default: RECORD_BOOK in the notebooks' first cell)")
-    p.add_argument("--checked-by", default="", help="the teacher who checks it (the sheet's «Проверил»)")
+    p.add_argument("--checked-by", default="", help="the supervisor who checks it (the title page, the sheet's «Проверил»)")
+    p.add_argument("--topic", default=None, help="the title page's topic (default: the course's)")
+    p.add_argument("--lang", default="ru", choices=("ru", "en"), help="the note's language (default: ru)")
+    p.add_argument("--no-cache", action="store_true",
+                   help="compute everything afresh (default: keep the slow parts in your own verified cache)")
     p.add_argument("--date", default=None, help="the report's date, YYYY-MM-DD (default: today)")
     p.add_argument("--university", default=None, help="the title page's university (default: the guide's, PGUAS)")
     p.add_argument("--department", default=None, help="the title page's department")
@@ -32,7 +36,8 @@ def run(args, out=print) -> int:
     try:
         r = build(args.workbook, args.out, student=args.student, group=args.group, record_book=args.record_book,
                   checked_by=args.checked_by, date=args.date, university=args.university,
-                  department=args.department, place=args.place, sheet=not args.no_sheet,
+                  department=args.department, place=args.place, topic=args.topic, lang=args.lang,
+                  cache=not args.no_cache, sheet=not args.no_sheet,
                   formats=("html",) if args.html_only else ("pdf", "html"))
     except (ValueError, RuntimeError) as exc:
         out(f"aerophoto-course report: {exc}")

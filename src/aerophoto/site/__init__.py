@@ -120,7 +120,7 @@ texture pixels) and cached.
 from __future__ import annotations
 
 import functools
-from dataclasses import replace
+from dataclasses import asdict, replace
 
 from .build import build_site
 from .model import COVER, COVER_CODES, KINDS, MAX_PIXELS, Site, SiteParams
@@ -144,7 +144,11 @@ __all__ = [
 
 @functools.lru_cache(maxsize=4)
 def _cached(params: SiteParams) -> Site:
-    return build_site(params)
+    # built once on a machine, then read from the user's disk cache (aerophoto.cache: verified, keyed by the
+    # package's code and the parameters; the same arrays bit for bit)
+    from .. import cache
+
+    return cache.load_or_build("site", asdict(params), lambda: build_site(params), types=(Site, SiteObjects, SiteParams))
 
 
 def get_site(params: SiteParams | None = None, **changes) -> Site:

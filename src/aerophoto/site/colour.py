@@ -11,13 +11,19 @@
    (:func:`aerophoto.site.raycast.light_factor`), cast shadows (:func:`aerophoto.site.raycast.in_shadow`) down to
    0.35; level ground further shaded by the DEM's slope and exposure (the formula of
    :func:`aerophoto.interpretation.slope_illumination` on the DEM's normal).  A new sun costs only the shadows.
-   The ground point of each pixel gives its land-cover class.
+   The ground point of each pixel gives its land-cover class (:func:`aerophoto.site.texture.pixel_classes`:
+   boundaries interpolated between texels, roads drawn from their centre lines), an object's pixel its object's
+   class (a roof, a haystack; a wall, a canopy pixel its crown's stand), and the cover's texture there
+   (:func:`aerophoto.site.texture.ground_texture`; a crown's own tone on canopy pixels).
 2. **Colour** (:func:`colour_photo`, cheap): per pixel, the class's band reflectance in the season
-   (:func:`aerophoto.spectral.cover_bands`; the soil of arable land per texel from its humus and moisture through
-   :class:`aerophoto.spectral.SoilBandTable`) × the class's grain × illumination; then the haze of the air below the
-   camera (:func:`aerophoto.interpretation.haze`) and the image motion blur δ = W·t/m along the photo's x
-   (:func:`aerophoto.interpretation.motion_blur`).  No vignetting: level, lit ground of a class shows its
-   reflectance.
+   (:func:`aerophoto.spectral.cover_bands`; the soil of arable land per pixel from its humus and moisture through
+   :class:`aerophoto.spectral.SoilBandTable`, its share moved by the texture's bare patches and wheel tracks) ×
+   the texture × illumination; then the haze of the air below the camera (:func:`aerophoto.interpretation.haze`)
+   and the image motion blur δ = W·t/m along the photo's x (:func:`aerophoto.interpretation.motion_blur`).
+   No vignetting: level, lit ground of a class shows its reflectance (the texture's mean is 1).
+
+A **window** of the frame (``window_mm``, :func:`aerophoto.render.render`) is the same photo through a magnifier:
+the same rays, finer pixels, the texture filtered to the finer footprint.
 
 The other chapters' greyscale photos do not pass through here and are unchanged.  Data only (layer 3).
 """
@@ -36,11 +42,15 @@ from .. import spectral as sp
 from .cover import CLASSES, CLASS_CODES, InterpretationSite
 
 __all__ = ["ColourGeometry", "ColourPhoto", "colour_geometry", "colour_photo", "render_colour", "class_band_table",
-           "GAIN", "GAMMA", "to_display", "vertical_pose"]
+           "GAIN", "GAMMA", "CAMERA_GAIN", "to_display", "vertical_pose"]
 
 #: the display stretch of every composite: value = (gain·ρ*)^(1/γ), the same for all conditions (no auto-stretch)
 GAIN = 2.6
 GAMMA = 1.8
+#: the gain of each camera's three layers (red, green, blue of the picture), where it differs from :data:`GAIN`: a
+#: colour-infrared film's infrared layer is exposed for vegetation's bright near infrared (ρ ≈ 0.4), which at
+#: :data:`GAIN` would clip to one flat pink and lose its texture
+CAMERA_GAIN = {"colour-infrared film": (1.8, GAIN, GAIN)}
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,11 +62,13 @@ class ColourGeometry:
     classes: np.ndarray  # (n, n) uint8
     humus_pct: np.ndarray
     moisture_pct: np.ndarray
-    grain: np.ndarray
+    texture: np.ndarray  # (n, n) float32: the cover's texture, mean 1 per class (site.texture)
     H_m: float  # height of the camera above the mean ground, m
     shadow: np.ndarray  # (n, n) bool: in an object's or the canopy's cast shadow
     sun_elevation_deg: float
     sun_azimuth_deg: float
+    soil_shift: np.ndarray | None = None  # (n, n) float32: bare soil's share moved (mean 0), or None
+    footprint_m: float = 0.0  # a pixel's size on the ground, m
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,7 +99,7 @@ class ColourPhoto:
         if camera not in sp.CAMERAS:
             raise ValueError(f"camera = {camera!r} is not one of {list(sp.CAMERAS)}")
         idx = [sp.BAND_NAMES.index(b) for b in sp.CAMERAS[camera]]
-        return to_display(self.bands[..., idx])
+        return to_display(self.bands[..., idx], camera)
 
     def natural_colour(self) -> np.ndarray:
         return self.composite("colour film")
@@ -102,9 +114,13 @@ class ColourPhoto:
 
 
 @V.checked(rho=V.image(2, 3))
-def to_display(rho) -> np.ndarray:
-    """Reflectance → display value: (GAIN·ρ)^(1/GAMMA), clipped to 0…1 (float32)."""
-    a = np.clip(np.asarray(rho, np.float32) * np.float32(GAIN), 0.0, 1.0)
+def to_display(rho, camera: str | None = None) -> np.ndarray:
+    """Reflectance → display value: (gain·ρ)^(1/GAMMA), clipped to 0…1 (float32); the gain :data:`GAIN`, or per
+    layer the ``camera``'s (:data:`CAMERA_GAIN`) for a composite (…, 3)."""
+    rho = np.asarray(rho, np.float32)
+    gain = CAMERA_GAIN.get(camera) if rho.ndim == 3 and rho.shape[-1] == 3 else None
+    k = np.asarray(gain, np.float32) if gain is not None else np.float32(GAIN)
+    a = np.clip(rho * k, 0.0, 1.0)
     return np.power(a, np.float32(1.0 / GAMMA))
 
 
@@ -116,31 +132,63 @@ def _dem_normals(site):
 
 
 @functools.lru_cache(maxsize=8)
-def _base(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int, objects: bool) -> tuple:
-    """What does not depend on the sun: the render (no sun), and the surface normals of the object pixels."""
-    from ..render import render, trace
+def _base(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int, objects: bool,
+          window: tuple | None = None) -> tuple:
+    """What does not depend on the sun: the render (no sun) with the surface normals of the object pixels, and
+    each pixel's class and texture (see the module notes)."""
+    from ..render import render
+    from .texture import ground_texture, pixel_classes
 
     site = isite.site
     photo = render(site, camera, pose, n_px, vignetting=0.0, fiducials=False, level=0, keep_ground=True,
-                   objects=objects, sun=None, background=0.0)
+                   objects=objects, sun=None, background=0.0, window_mm=window, keep_normals=True)
     obj_pix = np.flatnonzero(photo.surface.ravel() != 0) if photo.surface is not None else np.zeros(0, np.int64)
-    normals = np.zeros((0, 3))
-    if len(obj_pix):  # the rays of the pixel centres hit exactly what the pixels show (render.trace)
-        xy = photo.pixel_centres_mm().reshape(-1, 2)[obj_pix]
-        normals = trace(site, camera, pose, xy).normal
-    return photo, obj_pix, normals
+    normals = photo.normal.reshape(-1, 3)[obj_pix].astype(float)
+    Xg, Yg = photo.ground_m[..., 0], photo.ground_m[..., 1]
+    cls, lines = pixel_classes(isite, Xg, Yg)
+    cls = cls.ravel()
+    H = float(pose.Z_m - site.mean_height_m)
+    footprint = photo.pixel_mm * H / camera.f_mm
+    gain, soil = ground_texture(isite, cls, Xg.ravel(), Yg.ravel(), footprint, lines)
+    tone = np.ones(len(obj_pix), np.float32)
+    if len(obj_pix):  # what an object's pixel shows: its object's class, a wall, a crown's stand and tone
+        surf = photo.surface.ravel()[obj_pix]
+        oid = photo.object_id.ravel()[obj_pix]
+        oc = isite.features["object_class"]
+        own = oid >= 0
+        cls[obj_pix[own]] = oc[oid[own]]
+        cls[obj_pix[surf == 2]] = CLASS_CODES["wall"]
+        can = np.flatnonzero(surf == 4)
+        crowns = isite.crowns
+        if len(can) and crowns is not None:
+            from .crowns import DEPTH_M
+
+            xc, yc = Xg.ravel()[obj_pix[can]], Yg.ravel()[obj_pix[can]]
+            k, _, _ = crowns.lookup(xc, yc)
+            got = k >= 0
+            cls[obj_pix[can[got]]] = crowns.cls[k[got]]
+            # the crown's own tone, and the foliage deeper in the canopy in its neighbours' shade
+            depth = crowns.surface_depth(xc, yc, photo.ground_m[..., 2].ravel()[obj_pix[can]] - site.height(xc, yc))
+            tone[can] = np.where(got, crowns.tone[np.maximum(k, 0)], 1.0) * np.exp(-depth / DEPTH_M)
+        gain[obj_pix] = tone * np.where(surf == 2, 1.0, gain[obj_pix])
+        soil[obj_pix] = 0.0
+    cls = cls.reshape(n_px, n_px)
+    cls[~photo.valid] = 0
+    for a in (cls, gain, soil, normals):
+        a.flags.writeable = False
+    return photo, obj_pix, normals, cls, gain.reshape(n_px, n_px), soil.reshape(n_px, n_px), footprint
 
 
 @functools.lru_cache(maxsize=24)
 def _geometry(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int, sun_el: float, sun_az: float,
-              objects: bool, relief_shading: bool) -> ColourGeometry:
+              objects: bool, relief_shading: bool, window: tuple | None = None) -> ColourGeometry:
     from scipy.ndimage import map_coordinates
 
     from ..render import Sun
     from .raycast import AMBIENT, in_shadow, light_factor
 
     site = isite.site
-    photo, obj_pix, normals = _base(isite, camera, pose, n_px, objects)
+    photo, obj_pix, normals, cls, gain, soil, footprint = _base(isite, camera, pose, n_px, objects, window)
     sun = Sun(sun_az % 360.0, sun_el)
     L = sun.direction
     n = n_px
@@ -163,34 +211,37 @@ def _geometry(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: i
     if objects and site.objects is not None:  # cast shadows: down to the ambient light
         Zg = photo.ground_m[..., 2].ravel()
         shadow = in_shadow(site.objects, site, Xg.ravel(), Yg.ravel(), Zg, photo.object_id.ravel().astype(np.int64),
-                           L, camera, pose, n)
+                           L, camera, pose, n, photo.raster)
         illum[shadow] = np.float32(AMBIENT)
     illum = illum.reshape(n, n)
     illum[~photo.valid] = 0.0
-    cls = isite.class_at(Xg, Yg)
-    cls[~photo.valid] = 0
     t = isite.texel_m
-    nt = isite.classes.shape[0]
-    r = np.clip((Yg / t).astype(np.int64), 0, nt - 1)
-    c = np.clip((Xg / t).astype(np.int64), 0, nt - 1)
+    crd = [Yg.ravel() / t - 0.5, Xg.ravel() / t - 0.5]  # the soil's humus and moisture between texels
+    humus = map_coordinates(isite.humus_pct, crd, order=1, mode="nearest").reshape(n, n).astype(np.float32)
+    moist = map_coordinates(isite.moisture_pct, crd, order=1, mode="nearest").reshape(n, n).astype(np.float32)
     H = float(pose.Z_m - site.mean_height_m)
     shadow = shadow.reshape(n, n)
-    for a in (illum, cls, shadow):
+    for a in (illum, shadow, humus, moist):
         a.flags.writeable = False
-    return ColourGeometry(photo=photo, illumination=illum, classes=cls, humus_pct=isite.humus_pct[r, c],
-                          moisture_pct=isite.moisture_pct[r, c], grain=isite.grain[r, c], H_m=H, shadow=shadow,
-                          sun_elevation_deg=float(sun_el), sun_azimuth_deg=float(sun_az))
+    return ColourGeometry(photo=photo, illumination=illum, classes=cls, humus_pct=humus, moisture_pct=moist,
+                          texture=gain, H_m=H, shadow=shadow, sun_elevation_deg=float(sun_el),
+                          sun_azimuth_deg=float(sun_az), soil_shift=soil, footprint_m=float(footprint))
 
 
 def colour_geometry(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int = 512, *,
                     sun_elevation_deg: float = 45.0, sun_azimuth_deg: float = 150.0, objects: bool = True,
-                    relief_shading: bool = True) -> ColourGeometry:
-    """The geometry step (cached for the last 24 calls): see the module notes."""
+                    relief_shading: bool = True, window_mm: tuple | None = None) -> ColourGeometry:
+    """The geometry step (cached for the last 24 calls): see the module notes.
+
+    ``window_mm`` ``(x, y, side)``: only that square of the frame, ``n_px`` pixels across it (a magnifier's view;
+    :func:`aerophoto.render.render`).
+    """
     if not isinstance(isite, InterpretationSite):
         raise ValueError(f"isite = {isite!r} must be an InterpretationSite (aerophoto.site.cover.interpretation_site)")
     ip.Conditions(sun_elevation_deg=sun_elevation_deg, sun_azimuth_deg=sun_azimuth_deg)  # validates
+    window = None if window_mm is None else tuple(float(a) for a in np.asarray(window_mm, float).ravel())
     return _geometry(isite, camera, pose, int(n_px), float(sun_elevation_deg), float(sun_azimuth_deg), bool(objects),
-                     bool(relief_shading))
+                     bool(relief_shading), window)
 
 
 # =========================================================================== colour
@@ -224,13 +275,19 @@ def colour_photo(geom: ColourGeometry, conditions: ip.Conditions | None = None) 
     if has_soil.any():
         theta = geom.moisture_pct[has_soil] + sp.SEASON_MOISTURE_PCT[cond.season] + cond.moisture_pct
         sb = sp.soil_band_table().bands(theta, geom.humus_pct[has_soil], 0.1, sp.PARENTS["loam"])
-        refl[has_soil] += fs[has_soil, None] * sb
+        share = fs[has_soil]
+        if geom.soil_shift is not None:  # bare patches and wheel tracks: more soil, less of the rest (mean 0)
+            d = np.clip(geom.soil_shift[has_soil], -share, 1.0 - share)
+            keep = np.where(share < 1.0, (1.0 - share - d) / np.maximum(1.0 - share, 1e-6), 1.0)
+            refl[has_soil] *= keep[:, None]
+            share = share + d
+        refl[has_soil] += share[:, None] * sb
     if cond.moisture_pct > 0:  # standing water on wet meadows and bogs
         w = np.float32(min(cond.moisture_pct / 100.0, 0.3))
         water = np.asarray(sp.ENDMEMBERS["shallow water"][2], np.float32)
         wet = np.isin(cls, [CLASS_CODES[c] for c in _WET])
         refl[wet] = (1 - w) * refl[wet] + w * water
-    refl *= (geom.grain * geom.illumination)[..., None]
+    refl *= (geom.texture * geom.illumination)[..., None]
     if cond.visibility_km is not None:
         for k, b in enumerate(sp.BAND_NAMES):
             refl[..., k] = ip.haze(refl[..., k], b, cond.visibility_km, geom.H_m)
@@ -244,8 +301,8 @@ def colour_photo(geom: ColourGeometry, conditions: ip.Conditions | None = None) 
 
 def render_colour(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_px: int = 512,
                   conditions: ip.Conditions | None = None, *, objects: bool = True,
-                  relief_shading: bool = True) -> ColourPhoto:
-    """A multispectral photo of the interpretation site under ``conditions``.
+                  relief_shading: bool = True, window_mm: tuple | None = None) -> ColourPhoto:
+    """A multispectral photo of the interpretation site under ``conditions`` (or a window of it, ``window_mm``).
 
     The tilt α of ``conditions`` (§9, condition 6), when not 0, replaces the pose's; otherwise the pose's stands.
     """
@@ -253,7 +310,8 @@ def render_colour(isite: InterpretationSite, camera: g.Camera, pose: g.Pose, n_p
     if cond.alpha_deg:
         pose = pose.with_(alpha_deg=cond.alpha_deg)
     geom = colour_geometry(isite, camera, pose, n_px, sun_elevation_deg=cond.sun_elevation_deg,
-                           sun_azimuth_deg=cond.sun_azimuth_deg, objects=objects, relief_shading=relief_shading)
+                           sun_azimuth_deg=cond.sun_azimuth_deg, objects=objects, relief_shading=relief_shading,
+                           window_mm=window_mm)
     return colour_photo(geom, cond)
 
 

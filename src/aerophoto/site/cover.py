@@ -24,12 +24,13 @@ pond with a dam (пруд,         a brook flowing north into the river; the pon
 raised bog (верховое болото)   on the northern watershed, far from streams, mottled tone, bog lakelets and
                                small sparse pines
 low bog (низинное болото)      a ribbon along the river's valley floor, sedge and reed, shrub at its edges
-pine / spruce / deciduous      stands of crowns on the canopy height field: pine — even height, convex
+pine / spruce / deciduous      stands of crowns (:mod:`aerophoto.site.cover_objects`): pine — even height, convex
 forest (лес)                   crowns; spruce — pointed cones of uneven height (mottled, darker, long thin
                                shadows); deciduous — broad soft crowns, lighter
-shrub (кустарник)              small low crowns (shorter shadows, finer grain)
+shrub (кустарник)              small low crowns (shorter shadows, finer grain); sparse bushes on the meadow
 meadow with haystacks          floodplain meadow, mown strips, wet patches; haystacks are ellipsoids
 (луг, стога сена)              (r 2.5–3 m, 3–4 m high) that cast shadows
+village (деревня)              houses with gabled roofs along the gravel road, sheds, gardens, a farm
 arable land (пашня)            straight-edged fields: ploughed (furrows), crops, stubble; their soil from
                                :mod:`aerophoto.site.soils` when it exists, else :func:`default_soil`
 railway (железная дорога)      long straights joined by a curve of radius 700 m; ballast 8 m, two rail lines
@@ -38,9 +39,12 @@ roads (автомобильные дороги)   an asphalt road (dark) winding
 =============================  ============================================================================
 
 The site's greyscale ``texture`` is white (255): :func:`aerophoto.render.render` of this site therefore gives the
-**illumination** of every pixel (shadows, the shading of crowns and haystacks), which :mod:`aerophoto.site.colour`
-multiplies by the class reflectance.  ``grain`` is a multiplicative texture (furrows, mowing stripes, the bog's
-mottling, ripples), mean 1 within each class.  Data only (layer 3); deterministic from the seed.
+**illumination** of every pixel (shadows, the shading of crowns, roofs and haystacks), which
+:mod:`aerophoto.site.colour` multiplies by the class reflectance and by the cover's texture at the pixel's ground
+point (:mod:`aerophoto.site.texture`: furrows, tramlines, mowing strips, currents, wheel paths …, each a zero-mean
+variation around the class's tone).  What the texture needs is kept here: each field's frame, the river's
+coordinates (``river``), the class map before the roads were painted (``under_roads``) and the roads' centre
+lines with their half-widths (:data:`LINEAR`).  Data only (layer 3); deterministic from the seed.
 """
 
 from __future__ import annotations
@@ -55,15 +59,19 @@ import pandas as pd
 from .. import spectral as sp
 from .._validate import check_int_range, check_range
 from .model import Site, SiteParams
-from .objects import OBJECT_KINDS, SiteObjects
+from .cover_objects import build_cover_objects, paint_village, village_layout
 
 __all__ = ["CLASSES", "CLASS_CODES", "CLASS_RU", "FLOW_AZIMUTH_DEG", "InterpretationSite", "interpretation_site",
-           "build_interpretation_site", "default_soil", "SIZE_M"]
+           "build_interpretation_site", "default_soil", "SIZE_M", "LINEAR"]
 
 #: the land-cover classes of the interpretation site (code = index + 1; 0 = nothing)
 CLASSES = ("deep water", "shallow water", "sand bank", "ploughed field", "crop", "stubble", "meadow",
            "mown meadow", "wet meadow", "haystack", "pine forest", "spruce forest", "deciduous forest", "shrub",
-           "raised bog", "low bog", "asphalt road", "gravel road", "dirt road", "railway", "ditch", "dam")
+           "raised bog", "low bog", "asphalt road", "gravel road", "dirt road", "railway", "ditch", "dam",
+           "garden", "slate roof", "red iron roof", "wall")
+#: the lines painted from centre lines: class → (its centre line in ``features``, half-width m); a road has a 1 m
+#: shoulder (dirt road) and a 2 m ditch beyond it, the railway's ballast a ditch 1–3 m beyond its edge
+LINEAR = {"gravel road": ("gravel", 3.0), "asphalt road": ("asphalt", 3.5), "railway": ("railway", 4.0)}
 CLASS_CODES = {name: k + 1 for k, name in enumerate(CLASSES)}
 CLASS_RU = {name: sp.COVERS[name][0] for name in CLASSES}
 #: the river flows east: azimuth of the flow, degrees clockwise from north
@@ -94,8 +102,11 @@ class InterpretationSite:
         :func:`aerophoto.render.render` ray-casts.
     classes : ndarray (n, n) uint8
         Land-cover code per texel (:data:`CLASS_CODES`), row 0 at the south edge, texel ``texel_m``.
-    grain : ndarray (n, n) float32
-        Multiplicative texture, mean ≈ 1 per class.
+    under_roads : ndarray (n, n) uint8
+        The class map before the roads and the railway were painted over it (what lies beside them).
+    river : dict of ndarray (n, n) float32
+        The river's frame at each texel near it: ``s`` arc length along the centre line (downstream), ``off`` the
+        signed offset from it (north +), ``half`` the half-width of the water (m).
     humus_pct, moisture_pct : ndarray (n, n) float32
         The topsoil's humus and moisture where soil shows (arable land): tied to relief (more humus and moisture
         low down), from :mod:`aerophoto.site.soils` if available.
@@ -104,12 +115,14 @@ class InterpretationSite:
         ``islands`` (list of dicts: head, tail, outline), ``tributary`` (k, 2) in flow order, ``lake`` (centre,
         axes, angle), ``pond`` (outline), ``dam`` (2, 2), ``brook`` (k, 2) in flow order, ``railway``,
         ``asphalt``, ``gravel`` (k, 2), ``stands`` (dict name → (x0, x1, y0, y1)), ``bogs``, ``haystacks`` (n, 3)
-        X, Y, height.
+        X, Y, height, ``fields`` (kind, x0, x1, y0, y1, phase), ``village`` (its layout), ``object_class`` (the
+        class code of each of ``site.objects``).
     """
 
     site: Site
     classes: np.ndarray
-    grain: np.ndarray
+    under_roads: np.ndarray
+    river: dict
     humus_pct: np.ndarray
     moisture_pct: np.ndarray
     features: dict
@@ -121,6 +134,11 @@ class InterpretationSite:
     @property
     def texel_m(self) -> float:
         return self.site.params.texture_m
+
+    @property
+    def crowns(self):
+        """The crowns of the stands, bushes and fruit trees (:class:`aerophoto.site.crowns.Crowns`)."""
+        return self.site.objects.crowns
 
     def class_at(self, X, Y) -> np.ndarray:
         """Class code of the texel holding each ground point (0 off the site)."""
@@ -223,7 +241,7 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     n = int(SIZE_M / _T)
     x = _grid(n)
     X, Y = np.meshgrid(x, x)
-    c = _Canvas(X=X, Y=Y, cls=np.full((n, n), _C["meadow"], np.uint8), grain=np.ones((n, n), np.float32), rng=rng)
+    c = _Canvas(X=X, Y=Y, cls=np.full((n, n), _C["meadow"], np.uint8), rng=rng)
     feats: dict = {}
     # the painting order matters: later classes paint over earlier ones, and the seeded draws follow it
     rv = _river_course(c, feats)
@@ -233,11 +251,13 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     stacks = _paint_meadows(c, rv, feats)
     _paint_lake_brook_tributary(c, rv, feats)
     _paint_river_water(c, rv)
+    feats["gravel"] = _gravel_line()
+    layout = village_layout(feats["gravel"], seed)
+    paint_village(X, Y, c.cls, _C, layout)
+    feats["village"] = layout
+    under = c.cls.copy()
     _paint_roads_and_railway(c, rv, feats)
-    cls, grain = c.cls, c.grain
-
-    # ---- fine grain everywhere (±3 %), seeded
-    grain *= (1.0 + 0.03 * rng.standard_normal((n, n))).astype(np.float32)
+    cls = c.cls
 
     # ---- soil: humus and moisture tied to relief (low ground: more of both)
     from scipy.ndimage import map_coordinates
@@ -246,8 +266,10 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
     low_ness = np.clip((Zt.max() - Zt) / (Zt.max() - Zt.min() + 1e-9), 0, 1)
     humus, moist = _soil_fields(low_ness, X, Y)
 
-    # ---- objects: the canopy of crowns, haystacks, bog pines
-    objs = _objects(rng, cls, dem, s_dem, stacks, raised)
+    # ---- objects: the crowns, the village's houses, haystacks, bog pines
+    avoid = np.array([p for pts in _candidate_points(feats) for p in pts], float).reshape(-1, 2)
+    objs, feats["object_class"] = build_cover_objects(rng, cls, _C, dem, s_dem, stacks, raised, layout,
+                                                      feats["river"], avoid, seed)
     params = SiteParams(width_m=SIZE_M, height_m=SIZE_M, relief_m=float(dem.max() - dem.min()),
                         base_height_m=float(dem.min()), seed=int(seed), texture_m=_T, dem_spacing_m=s_dem)
     tex = np.full((n, n), 255, np.uint8)
@@ -256,21 +278,31 @@ def build_interpretation_site(seed: int = 0) -> InterpretationSite:
                         "Z_m": pd.Series([], dtype=float), "control": pd.Series([], dtype=bool)})
     site = Site(params=params, dem=dem, texture=tex, cover=cls, catalogue=cat, features=feats, _levels=[],
                 objects=objs)
-    for arr in (cls, grain, humus, moist):
+    river = {"s": rv.s.astype(np.float32), "off": rv.off.astype(np.float32), "half": rv.half.astype(np.float32)}
+    for arr in (cls, under, humus, moist, *river.values()):
         arr.flags.writeable = False
-    return InterpretationSite(site=site, classes=cls, grain=grain, humus_pct=humus, moisture_pct=moist,
-                              features=feats, seed=int(seed))
+    return InterpretationSite(site=site, classes=cls, under_roads=under, river=river, humus_pct=humus,
+                              moisture_pct=moist, features=feats, seed=int(seed))
+
+
+def _candidate_points(feats) -> list:
+    """Where chapter 08's lab may put a mark (the haystacks, the lines' points): the meadow's bushes keep clear."""
+    out = [feats["haystacks"][:, :2] + [12.0, 0.0]]
+    for key in ("railway", "asphalt", "gravel"):
+        if key in feats:
+            line = feats[key]
+            out.append(np.array([line[int(k * (len(line) - 1))] for k in (0.2, 0.35, 0.5, 0.65)]))
+    return out
 
 
 @dataclass(frozen=True, eq=False)
 class _Canvas:
     """What the painters of :func:`build_interpretation_site` share: the texel centres ``X``, ``Y`` (m, shape
-    (n, n)), the class map ``cls`` and the multiplicative ``grain`` they paint in place, and the seeded ``rng``."""
+    (n, n)), the class map ``cls`` they paint in place, and the seeded ``rng``."""
 
     X: np.ndarray
     Y: np.ndarray
     cls: np.ndarray
-    grain: np.ndarray
     rng: np.random.Generator
 
 
@@ -315,7 +347,7 @@ def _river_course(c: _Canvas, feats: dict) -> _River:
         tail_mask |= tail & ~inside & (d_r < 200)
         x_tail = float(np.interp(s_head + L, s_river, rx))
         islands.append({"head_m": (x_head, float(_river_y(x_head))), "tail_m": (x_tail, float(_river_y(x_tail))),
-                        "length_m": L, "width_m": 2 * B * 0.96})
+                        "length_m": L, "width_m": 2 * B * 0.96, "s_tail_m": s_head + L})
     feats["river"] = river
     feats["river_width_m"] = width
     feats["islands"] = islands
@@ -340,7 +372,7 @@ def _valley_dem() -> tuple:
 def _paint_fields(c: _Canvas, feats: dict) -> None:
     """Arable fields, south-east and two north of the river: straight edges, furrows, stubble rows (``feats``:
     fields, as (kind, x0, x1, y0, y1) in metres)."""
-    X, Y, cls, grain, rng = c.X, c.Y, c.cls, c.grain, c.rng
+    X, Y, cls, rng = c.X, c.Y, c.cls, c.rng
     fields = []
     kinds = ("ploughed field", "crop", "stubble", "crop", "ploughed field", "stubble", "crop", "ploughed field")
     k = 0
@@ -351,25 +383,19 @@ def _paint_fields(c: _Canvas, feats: dict) -> None:
             kind = kinds[k % len(kinds)]
             k += 1
             cls[m] = _C[kind]
-            phase = rng.uniform(0, 2 * np.pi)
-            if kind == "ploughed field":
-                grain[m] = (1.0 + 0.12 * np.sin(2 * np.pi * X[m] / 3.0 + phase)).astype(np.float32)
-            elif kind == "stubble":
-                grain[m] = (1.0 + 0.06 * np.sin(2 * np.pi * Y[m] / 6.0 + phase)).astype(np.float32)
-            fields.append((kind, fx0, fx1, fy0, fy1))
-    for kind, fx0, fx1 in (("ploughed field", 600.0, 722.0), ("crop", 730.0, 860.0)):  # north of the river
+            phase = float(rng.uniform(0, 2 * np.pi))  # the tramlines' and swaths' phase (site.texture)
+            fields.append((kind, fx0, fx1, fy0, fy1, phase))
+    for k, (kind, fx0, fx1) in enumerate((("ploughed field", 600.0, 722.0), ("crop", 730.0, 860.0))):  # north
         m = (X > fx0) & (X < fx1) & (Y > 905.0) & (Y < 1120.0)
         cls[m] = _C[kind]
-        if kind == "ploughed field":
-            grain[m] = (1.0 + 0.12 * np.sin(2 * np.pi * Y[m] / 3.0)).astype(np.float32)
-        fields.append((kind, fx0, fx1, 905.0, 1120.0))
+        fields.append((kind, fx0, fx1, 905.0, 1120.0, 1.3 + 2.1 * k))
     feats["fields"] = fields
 
 
 def _paint_forests_and_bogs(c: _Canvas, rv: _River, feats: dict) -> np.ndarray:
     """Forest stands, the raised bog with its lakelets (seeded), the low bog edged by shrub (``feats``: stands,
     bogs).  Returns the raised bog's mask (its pines are objects, :func:`_objects`)."""
-    X, Y, cls, grain, rng = c.X, c.Y, c.cls, c.grain, c.rng
+    X, Y, cls, rng = c.X, c.Y, c.cls, c.rng
     n = X.shape[0]
     off_r, half = rv.off, rv.half
     stands = {"pine forest": (40.0, 270.0, 1090.0, 1560.0), "spruce forest": (480.0, 860.0, 1150.0, 1570.0),
@@ -383,8 +409,6 @@ def _paint_forests_and_bogs(c: _Canvas, rv: _River, feats: dict) -> np.ndarray:
     bog_rho = bog_rho + 0.06 * np.sin(X / 23.0) * np.cos(Y / 31.0)
     raised = bog_rho < 1.0
     cls[raised] = _C["raised bog"]
-    mott = (np.sin(X / 9.0 + np.cos(Y / 13.0)) * np.cos(Y / 11.0 - np.sin(X / 17.0))).astype(np.float32)
-    grain[raised] = 1.0 + 0.18 * mott[raised]
     lakelets = []
     for _ in range(6):
         while True:
@@ -407,12 +431,11 @@ def _paint_forests_and_bogs(c: _Canvas, rv: _River, feats: dict) -> np.ndarray:
 def _paint_meadows(c: _Canvas, rv: _River, feats: dict) -> list:
     """Meadows on the floodplain: mown strips, wet patches, and 14 haystacks (seeded; ``feats``: haystacks).
     Returns the haystacks as (X, Y, height, radius) in metres."""
-    X, Y, cls, grain, rng = c.X, c.Y, c.cls, c.grain, c.rng
+    X, Y, cls, rng = c.X, c.Y, c.cls, c.rng
     off_r, half = rv.off, rv.half
     mead = (X > 80) & (X < 820) & (off_r < -half - 20) & (off_r > -half - 230) & (cls == _C["meadow"])
     mown = mead & (((X - 80) // 60) % 3 == 1)
     cls[mown] = _C["mown meadow"]
-    grain[mown] = (1.0 + 0.05 * np.sin(2 * np.pi * Y[mown] / 4.0)).astype(np.float32)
     wet = mead & (off_r > -half - 60) & (np.sin(X / 35.0) > 0.2)
     cls[wet] = _C["wet meadow"]
     stacks = []
@@ -465,8 +488,8 @@ def _paint_lake_brook_tributary(c: _Canvas, rv: _River, feats: dict) -> None:
 
 def _paint_river_water(c: _Canvas, rv: _River) -> None:
     """The river's water over everything: deep with a shallow margin; the islands (meadow, shrub in the middle),
-    the shallows and sand spits below them; ripples on the water's grain."""
-    cls, grain = c.cls, c.grain
+    the shallows and sand spits below them."""
+    cls = c.cls
     water, d_r, off_r, half = rv.water, rv.d, rv.off, rv.half
     cls[water] = _C["deep water"]
     cls[water & (d_r > half - 4.0)] = _C["shallow water"]
@@ -475,36 +498,34 @@ def _paint_river_water(c: _Canvas, rv: _River) -> None:
     cls[rv.islands & (np.abs(off_r) < 0.5 * np.max(half))] = _C["shrub"]
     spit = rv.tails & (np.abs(off_r) < 2.0)
     cls[spit] = _C["sand bank"]
-    ripple = water & (d_r < half - 4.0)
-    grain[ripple] = (1.0 + 0.05 * np.sin(2 * np.pi * rv.s[ripple] / 7.0 + off_r[ripple] / 3.0)).astype(np.float32)
+
+
+def _gravel_line() -> np.ndarray:
+    """The gravel road's centre line (m): from the asphalt road westwards, three tight bends, then a long straight."""
+    return _arc_polyline((1000.0, 400.0), 180.0, [("s", 120), ("a", 60, 40), ("s", 90), ("a", 50, -70),
+                                                  ("s", 100), ("a", 70, 35), ("s", 700)])
 
 
 def _paint_roads_and_railway(c: _Canvas, rv: _River, feats: dict) -> None:
-    """The roads with shoulders and ditches, then the railway with its two rails, painted last (``feats``:
-    asphalt, gravel, railway, railway_radius_m, flow_azimuth_deg)."""
-    cls, grain = c.cls, c.grain
+    """The roads with shoulders and ditches, then the railway, painted last, by :data:`LINEAR`'s widths
+    (``feats``: asphalt, gravel, railway, railway_radius_m, flow_azimuth_deg).  The same rules, at a pixel's
+    point, are :func:`aerophoto.site.texture.pixel_classes`."""
+    cls = c.cls
     n = cls.shape[0]
     yy = np.arange(-5.0, SIZE_M + 6.0, 5.0)
-    asphalt = np.column_stack([1000.0 + 38.0 * np.sin(yy / 55.0) + 20.0 * np.sin(yy / 23.0), yy])
-    d_a, _, _ = _polyline_sn(asphalt, n, 20.0)
-    gravel = _arc_polyline((1000.0, 400.0), 180.0, [("s", 120), ("a", 60, 40), ("s", 90), ("a", 50, -70),
-                                                     ("s", 100), ("a", 70, 35), ("s", 700)])
-    d_g, _, _ = _polyline_sn(gravel, n, 20.0)
-    rail = _arc_polyline((-10.0, 560.0), 0.0, [("s", 460), ("a", 700, -25), ("s", 1300)])
-    d_rl, _, _ = _polyline_sn(rail, n, 20.0)
+    feats["asphalt"] = np.column_stack([1000.0 + 38.0 * np.sin(yy / 55.0) + 20.0 * np.sin(yy / 23.0), yy])
+    feats["gravel"] = _gravel_line()
+    feats["railway"] = _arc_polyline((-10.0, 560.0), 0.0, [("s", 460), ("a", 700, -25), ("s", 1300)])
+    d = {name: _polyline_sn(feats[key], n, 20.0)[0] for name, (key, _) in LINEAR.items()}
     not_water = ~rv.water
-    for d, w, road in ((d_g, 3.0, "gravel road"), (d_a, 3.5, "asphalt road")):
-        cls[(d >= w + 1.0) & (d < w + 3.0) & not_water] = _C["ditch"]
-        cls[(d < w + 1.0) & not_water] = _C["dirt road"]  # shoulders
-        cls[d < w] = _C[road]  # the asphalt crosses the river by a bridge
-    cls[(d_rl >= 5.0) & (d_rl < 7.0) & not_water & (cls != _C["asphalt road"])] = _C["ditch"]
-    cls[(d_rl < 4.0)] = _C["railway"]
-    rails = (np.abs(d_rl - 0.76) < 0.2)
-    grain[cls == _C["railway"]] = 1.0
-    grain[rails & (cls == _C["railway"])] = 0.55
-    feats["asphalt"] = asphalt
-    feats["gravel"] = gravel
-    feats["railway"] = rail
+    for road in ("gravel road", "asphalt road"):
+        w = LINEAR[road][1]
+        cls[(d[road] >= w + 1.0) & (d[road] < w + 3.0) & not_water] = _C["ditch"]
+        cls[(d[road] < w + 1.0) & not_water] = _C["dirt road"]  # shoulders
+        cls[d[road] < w] = _C[road]  # the asphalt crosses the river by a bridge
+    w = LINEAR["railway"][1]
+    cls[(d["railway"] >= w + 1.0) & (d["railway"] < w + 3.0) & not_water & (cls != _C["asphalt road"])] = _C["ditch"]
+    cls[d["railway"] < w] = _C["railway"]
     feats["railway_radius_m"] = 700.0
     feats["flow_azimuth_deg"] = FLOW_AZIMUTH_DEG
 
@@ -529,79 +550,6 @@ def _soil_fields(low_ness, X, Y):
     h = (base["humus_pct"] - 1.0 + 4.0 * low_ness).astype(np.float32)
     m = (base["moisture_pct"] - 2.0 + 14.0 * low_ness ** 2).astype(np.float32)
     return h, m
-
-
-def _stamp(canopy, cx, cy, R, top, shape):
-    """Raise the canopy (m) to a crown: ``shape`` 'cone' (spruce), 'dome' (pine), 'round' (deciduous, shrub)."""
-    n = canopy.shape[0]
-    r0, r1 = max(int(cy - R), 0), min(int(cy + R) + 2, n)
-    c0, c1 = max(int(cx - R), 0), min(int(cx + R) + 2, n)
-    if r0 >= r1 or c0 >= c1:
-        return
-    yy = (np.arange(r0, r1) + 0.5)[:, None] - cy
-    xx = (np.arange(c0, c1) + 0.5)[None, :] - cx
-    q = np.sqrt(xx * xx + yy * yy) / R
-    if shape == "cone":
-        h = top - 0.75 * top * q
-    elif shape == "dome":
-        h = top - 3.0 * q ** 2
-    else:
-        h = top - 0.35 * top * q ** 2
-    h = np.where(q <= 1.0, h, 0.0)
-    win = canopy[r0:r1, c0:c1]
-    np.maximum(win, h, out=win)
-
-
-_STANDS = {  # class: (spacing m, crown radius m, heights m, shape)
-    "pine forest": (5.0, (2.3, 2.9), (21.0, 23.0), "dome"),
-    "spruce forest": (4.2, (1.7, 2.3), (14.0, 25.0), "cone"),
-    "deciduous forest": (7.5, (3.4, 4.6), (15.0, 21.0), "round"),
-    "shrub": (3.0, (1.0, 1.6), (1.8, 3.5), "round"),
-}
-
-
-def _objects(rng, cls, dem, s_dem, stacks, raised) -> SiteObjects:
-    n = cls.shape[0]
-    canopy = np.zeros((n, n), np.float32)
-    for name, (sp_m, (r_lo, r_hi), (h_lo, h_hi), shape) in _STANDS.items():
-        mask = cls == _C[name]
-        ys, xs = np.nonzero(mask[::int(sp_m), ::int(sp_m)]) if sp_m >= 1 else (None, None)
-        cx = xs * int(sp_m) + rng.uniform(-0.35, 0.35, len(xs)) * sp_m + 0.5
-        cy = ys * int(sp_m) + rng.uniform(-0.35, 0.35, len(ys)) * sp_m + 0.5
-        R = rng.uniform(r_lo, r_hi, len(xs))
-        H = rng.uniform(h_lo, h_hi, len(xs))
-        for i in range(len(xs)):
-            _stamp(canopy, cx[i], cy[i], R[i], H[i], shape)
-    canopy[~np.isin(cls, [_C[k] for k in _STANDS])] = 0.0
-    canopy_dm = np.clip(np.round(canopy * 10.0), 0, 255).astype(np.uint8)
-
-    def ground(xy):
-        from scipy.ndimage import map_coordinates
-
-        xy = np.atleast_2d(xy)
-        return map_coordinates(dem, [xy[:, 1] / s_dem, xy[:, 0] / s_dem], order=1, mode="nearest")
-
-    ell = [(x, y, h, r) for x, y, h, r in stacks]
-    names = [f"haystack {k + 1}" for k in range(len(stacks))]
-    ys, xs = np.nonzero(raised[::9, ::9])
-    pick = rng.random(len(xs)) < 0.12
-    for x, y in zip(xs[pick] * 9.0 + 4.5, ys[pick] * 9.0 + 4.5):
-        if cls[int(y), int(x)] == _C["raised bog"]:
-            ell.append((float(x), float(y), float(rng.uniform(3.0, 5.0)), float(rng.uniform(0.8, 1.3))))
-            names.append(f"bog pine {len(names) + 1}")
-    E = np.array(ell, float)
-    gz = ground(E[:, :2])
-    c = E[:, 2] / 2.0
-    centre = np.column_stack([E[:, 0], E[:, 1], gz + c])
-    radii = np.column_stack([E[:, 3], c])
-    top = gz + 2 * c
-    bbox = np.column_stack([E[:, 0] - E[:, 3], E[:, 0] + E[:, 3], E[:, 1] - E[:, 3], E[:, 1] + E[:, 3], gz - 0.5, top])
-    tree = OBJECT_KINDS.index("tree")
-    objs = SiteObjects(planes=np.zeros((0, 14, 4)), face=np.zeros((0, 14), np.uint8), textured=np.zeros((0, 14), bool),
-                       albedo=np.zeros((0, 2), np.float32), kind=np.full(len(E), tree, np.int64), centre_m=E[:, :2].copy(),
-                       ground_Z_m=gz, top_Z_m=top, bbox=bbox, ell_centre=centre, ell_radii=radii,
-                       ell_albedo=np.ones(len(E), np.float32), canopy_dm=canopy_dm, texel_m=_T, names=tuple(names))
-    return objs
 
 
 @functools.lru_cache(maxsize=2)

@@ -49,6 +49,7 @@ use them.  Data and geometry only (layer 3).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -106,6 +107,9 @@ class SiteObjects:
         Size of a canopy texel (the texture's), metres.
     names : tuple of str
         A name per object ("house 12", "chimney", …).
+    crowns : :class:`aerophoto.site.crowns.Crowns` or None
+        The crowns the canopy was stamped from, when the site keeps them (the interpretation site of chapter 08):
+        the renderer then shades a canopy pixel by its crown's surface normal instead of the raster's slope.
     """
 
     planes: np.ndarray
@@ -124,6 +128,7 @@ class SiteObjects:
     texel_m: float
     names: tuple
     points: pd.DataFrame = field(default=None)
+    crowns: object = None
     _index: dict = field(default_factory=dict, repr=False)
 
     def __repr__(self) -> str:
@@ -143,10 +148,12 @@ class SiteObjects:
     def __len__(self) -> int:
         return self.n_polyhedra + self.n_ellipsoids
 
-    @property
+    @functools.cached_property
     def canopy_max_m(self) -> float:
-        """The tallest canopy, metres."""
-        return float(self.canopy_dm.max()) * 0.1 if self.canopy_dm.size else 0.0
+        """The tallest canopy, metres (found once: the raster is read-only)."""
+        if "canopy_max" not in self._index:
+            self._index["canopy_max"] = float(self.canopy_dm.max()) * 0.1 if self.canopy_dm.size else 0.0
+        return self._index["canopy_max"]
 
     @property
     def height_m(self) -> np.ndarray:

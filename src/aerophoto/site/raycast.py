@@ -242,15 +242,23 @@ def project_boxes(boxes, camera, pose) -> np.ndarray:
     return out
 
 
-def box_pixel_pairs(boxes, camera, pose, n) -> tuple:
-    """(box, pixel) pairs: the pixel centres of an n×n photo inside each box's projected rectangle."""
+def box_pixel_pairs(boxes, camera, pose, n, raster=None) -> tuple:
+    """(box, pixel) pairs: the pixel centres of an n×n photo inside each box's projected rectangle.
+
+    ``raster`` ``(x_left, y_top, p)`` mm: the pixel grid of a window of the frame (:func:`aerophoto.render.render`'s
+    ``window_mm``); None: the whole frame.
+    """
     rect = project_boxes(boxes, camera, pose)
-    h, p = camera.half_mm, camera.frame_mm / n
+    if raster is None:
+        h, p = camera.half_mm, camera.frame_mm / n
+        x0, y0 = -h, h
+    else:
+        x0, y0, p = raster
     ok = np.all(np.isfinite(rect), axis=1)
-    c0 = np.ceil((rect[:, 0] + h) / p - 0.5)
-    c1 = np.floor((rect[:, 1] + h) / p - 0.5)
-    r0 = np.ceil((h - rect[:, 3]) / p - 0.5)
-    r1 = np.floor((h - rect[:, 2]) / p - 0.5)
+    c0 = np.ceil((rect[:, 0] - x0) / p - 0.5)
+    c1 = np.floor((rect[:, 1] - x0) / p - 0.5)
+    r0 = np.ceil((y0 - rect[:, 3]) / p - 0.5)
+    r1 = np.floor((y0 - rect[:, 2]) / p - 0.5)
     c0, r0 = np.clip(np.nan_to_num(c0, nan=n), 0, n), np.clip(np.nan_to_num(r0, nan=n), 0, n)
     c1, r1 = np.clip(np.nan_to_num(c1, nan=-1), -1, n - 1), np.clip(np.nan_to_num(r1, nan=-1), -1, n - 1)
     nc = np.where(ok, c1 - c0 + 1, 0).clip(0).astype(np.int64)
@@ -397,6 +405,8 @@ def canopy_hits(site, objs, S, ax, ay, u_near, u_ground, march, Xg=None, Yg=None
     idx = cand[hit]
     u = uc[hit]
     P = S + u[:, None] * D[hit]
+    if getattr(objs, "crowns", None) is not None:  # the crowns' own surfaces (aerophoto.site.crowns)
+        return idx, u, objs.crowns.normal_at(P[:, 0], P[:, 1], P[:, 2] - site.height(P[:, 0], P[:, 1]))
     d = objs.texel_m  # the canopy's normal from its slope over ± one texel (the gentle ground's slope left out)
     c = objs.canopy_at
     gx = (c(P[:, 0] + d, P[:, 1]) - c(P[:, 0] - d, P[:, 1])) / (2 * d)
@@ -405,8 +415,11 @@ def canopy_hits(site, objs, S, ax, ay, u_near, u_ground, march, Xg=None, Yg=None
     return idx, u, nrm / np.linalg.norm(nrm, axis=1, keepdims=True)
 
 
-def in_shadow(objs, site, Xs, Ys, Zs, obj, light, camera, pose, n) -> np.ndarray:
-    """Which pixels' surface points lie in the shadow of an object or of the canopy (the sun along ``light``)."""
+def in_shadow(objs, site, Xs, Ys, Zs, obj, light, camera, pose, n, raster=None) -> np.ndarray:
+    """Which pixels' surface points lie in the shadow of an object or of the canopy (the sun along ``light``).
+
+    The pixels are those of an n×n photo of the frame, or of a window's ``raster`` (:func:`box_pixel_pairs`).
+    """
     N = len(Zs)
 
     def P_at(i):
@@ -420,7 +433,7 @@ def in_shadow(objs, site, Xs, Ys, Zs, obj, light, camera, pose, n) -> np.ndarray
     sx, sy = -L[0] * drop, -L[1] * drop
     vol = np.column_stack([b[:, 0] + np.minimum(sx, 0), b[:, 1] + np.maximum(sx, 0), b[:, 2] + np.minimum(sy, 0),
                            b[:, 3] + np.maximum(sy, 0), b[:, 4] - 5.0, b[:, 5]])
-    k, pix = box_pixel_pairs(vol, camera, pose, n)
+    k, pix = box_pixel_pairs(vol, camera, pose, n, raster)
     keep = obj[pix] != k  # a face's own object shades it through the face's turn, not as a cast shadow
     k, pix = k[keep], pix[keep]
     eps = 0.05

@@ -62,7 +62,7 @@ from .. import spectral
 from .._validate import check_int_range, check_range
 
 __all__ = ["SoilClass", "SOIL_CLASSES", "SOIL_NAMES", "SoilLayer", "soil_layer", "ERODED_SLOPE_DEG",
-           "HOLLOW_SHARE", "FLOODPLAIN_M"]
+           "HOLLOW_SHARE", "FLOODPLAIN_M", "RELIEF_SHEET", "COVER_SHEET", "key_sheets"]
 
 
 @dataclass(frozen=True)
@@ -394,3 +394,45 @@ def soil_layer(site=None, *, extent_m=None, spacing_m: float | None = None, seed
                          f"4 000 000 cells (spacing_m ≥ {math.sqrt((X1 - X0) * (Y1 - Y0) / 4e6):.2f} m)")
     seed = check_int_range("seed", seed, 0, 2**32 - 1)
     return _cached(site, (X0, X1, Y0, Y1), float(s), seed)
+
+
+#: the areas of the relief sheet (:func:`key_sheets`)
+RELIEF_SHEET = ("level ground (ровные участки)", "slopes (склоны)", "hollows (западины)")
+#: the areas of the vegetation and land-use sheet (:func:`key_sheets`)
+COVER_SHEET = ("arable land (пашня)", "forest (лес)", "meadow (луг)", "water (вода)")
+
+
+def key_sheets(layer: SoilLayer, site=None) -> dict:
+    """The indirect keys of a soil layer's area as an interpreter outlines them on transparent sheets (guide §14).
+
+    * ``relief`` (ny, nx) int: :data:`RELIEF_SHEET` — level ground, slopes steeper than :data:`ERODED_SLOPE_DEG`,
+      closed hollows deeper than :data:`HOLLOW_SHARE` of the site's relief (read from the stereo model);
+    * ``cover`` (ny, nx) int: :data:`COVER_SHEET` — arable land, forest, meadow, water (from the photo; roads,
+      field boundaries, shelter belts and buildings are left out, as they are no soil boundaries).
+
+    ``site`` is the layer's site (default :func:`aerophoto.site.get_site`).
+    """
+    from .model import COVER_CODES
+
+    if not isinstance(layer, SoilLayer):
+        raise TypeError(f"layer = {layer!r:.60} must be a SoilLayer (aerophoto.site.soils.soil_layer)")
+    if site is None:
+        from . import get_site
+
+        site = get_site()
+    V.check_type("site", site, object, what="a Site (aerophoto.site.get_site())")
+    if not all(hasattr(site, a) for a in ("z_max_m", "z_min_m", "cover_at", "params")):
+        raise TypeError(f"site = {site!r:.60} is not a Site; expected aerophoto.site.get_site() or None")
+    relief = np.zeros(layer.shape, np.int64)
+    relief[layer.slope_deg > ERODED_SLOPE_DEG] = 1
+    span = max(site.z_max_m - site.z_min_m, 1e-9)
+    relief[layer.hollow_m > HOLLOW_SHARE * span] = 2
+    X0, _, Y0, _ = layer.extent_m
+    s = layer.spacing_m
+    ny, nx = layer.shape
+    cov = _ground_cover(site, X0 + (np.arange(nx) + 0.5) * s, Y0 + (np.arange(ny) + 0.5) * s, s)
+    cover = np.zeros(layer.shape, np.int64)
+    cover[cov == COVER_CODES["forest"]] = 1
+    cover[cov == COVER_CODES["meadow"]] = 2
+    cover[np.isin(cov, [COVER_CODES["water"], COVER_CODES["sand bank"]])] = 3
+    return {"relief": relief, "cover": cover}

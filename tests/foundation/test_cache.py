@@ -1,0 +1,184 @@
+"""aerophoto.cache: a read entry equals the built value bit for bit, and an entry is read only when it is verified."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from aerophoto import cache
+
+
+@dataclasses.dataclass(frozen=True)
+class Thing:
+    a: np.ndarray
+    label: str
+    inner: tuple = ()
+
+
+@dataclasses.dataclass(frozen=True)
+class Other:
+    x: int
+
+
+@pytest.fixture
+def cdir(tmp_path, monkeypatch):
+    d = tmp_path / "cache"
+    monkeypatch.setenv("AEROPHOTO_CACHE_DIR", str(d))
+    monkeypatch.delenv("AEROPHOTO_GRADING", raising=False)
+    monkeypatch.setenv("AEROPHOTO_CACHE", "1")
+    return d
+
+
+def _value():
+    ro = np.arange(12, dtype=np.uint8).reshape(3, 4)
+    ro.flags.writeable = False
+    frame = pd.DataFrame({"id": np.array([3, 1, 2]), "kind": pd.array(["a", None, "c"], dtype="str"),
+                          "X_m": [1.5, np.nan, -0.0], "ok": [True, False, True]})
+    named = pd.DataFrame({"v": [1.0, 2.0]}, index=pd.Index(["p", "q"], name="point"))
+    return {"f64": np.linspace(0, 1, 7), "f32": np.float32([1e-8, np.inf]), "ro": ro, "bools": np.eye(3, dtype=bool),
+            "frame": frame, "named": named, "series": pd.Series([1.0, 2.0], index=pd.RangeIndex(5, 7), name="s"),
+            "scalars": (np.float64(0.1), np.int64(-3), np.bool_(True), 0.1 + 0.2, 7, None, "ж", float("nan")),
+            (1, "k"): [Thing(np.zeros(2), "t", (Thing(np.ones(1), "u"),))], 4: {"nested": [1, [2, 3.5]]}}
+
+
+def _same(a, b):
+    assert type(a) is type(b), (type(a), type(b))
+    if isinstance(a, np.ndarray):
+        assert a.dtype == b.dtype and a.shape == b.shape and a.flags.writeable == b.flags.writeable
+        assert np.array_equal(a, b, equal_nan=a.dtype.kind in "fc")
+    elif isinstance(a, pd.DataFrame):
+        pd.testing.assert_frame_equal(a, b, check_exact=True)
+    elif isinstance(a, pd.Series):
+        pd.testing.assert_series_equal(a, b, check_exact=True)
+    elif isinstance(a, dict):
+        assert list(a) == list(b)
+        for k in a:
+            _same(a[k], b[k])
+    elif isinstance(a, (list, tuple)):
+        assert len(a) == len(b)
+        for x, y in zip(a, b):
+            _same(x, y)
+    elif dataclasses.is_dataclass(a):
+        for f in dataclasses.fields(a):
+            _same(getattr(a, f.name), getattr(b, f.name))
+    elif isinstance(a, float) and a != a:
+        assert b != b
+    else:
+        assert a == b and repr(a) == repr(b)
+
+
+def test_an_entry_reads_back_what_was_built_and_build_runs_once(cdir):
+    calls = []
+
+    def build():
+        calls.append(1)
+        return _value()
+
+    first = cache.load_or_build("thing", {"n": 1}, build, types=(Thing,))
+    again = cache.load_or_build("thing", {"n": 1}, build, types=(Thing,))
+    assert len(calls) == 1
+    _same(first, _value())
+    _same(again, first)
+    assert len(cache.entries("thing")) == 1
+    cache.load_or_build("thing", {"n": 2}, build, types=(Thing,))  # other inputs: another entry
+    assert len(calls) == 2 and len(cache.entries("thing")) == 2
+    cache.clear()
+    assert cache.entries() == []
+
+
+def _entry(cdir):
+    (d,) = cache.entries("thing")
+    return d
+
+
+def _count_builds(cdir, n=2):
+    calls = []
+    for _ in range(n):
+        cache.load_or_build("thing", {"n": 1}, lambda: calls.append(1) or _value(), types=(Thing,))
+    return len(calls)
+
+
+def test_a_damaged_array_file_is_a_miss_and_is_rebuilt(cdir):
+    cache.load_or_build("thing", {"n": 1}, _value, types=(Thing,))
+    f = _entry(cdir) / "a0.npy"
+    raw = bytearray(f.read_bytes())
+    raw[-1] ^= 0x01  # one bit of the data, the header intact: only the checksum can tell
+    f.write_bytes(bytes(raw))
+    assert _count_builds(cdir, 2) == 1  # rebuilt once, then the new entry is read
+    _same(cache.load(cache.key_for("thing", {"n": 1}), (Thing,))[0], _value())
+
+
+def test_an_entry_of_another_key_or_a_foreign_class_or_pickled_data_is_never_used(cdir):
+    cache.load_or_build("thing", {"n": 1}, _value, types=(Thing,))
+    d = _entry(cdir)
+    meta = json.loads((d / "meta.json").read_text(encoding="utf-8"))
+    meta["key"]["inputs"] = {"n": 99}  # an entry filed under the key of other inputs
+    (d / "meta.json").write_text(json.dumps(meta), encoding="utf-8")
+    assert _count_builds(cdir, 1) == 1
+    # a planted entry naming a class the caller did not allow: not instantiated, a miss
+    key = cache.key_for("thing", {"n": 3})
+    assert cache.save(key, {"o": Other(1)}, types=(Other,))
+    assert cache.load(key, (Thing,)) is None
+    # an array file holding pickled objects, with a matching checksum: np.load refuses it, a miss
+    key = cache.key_for("thing", {"n": 4})
+    assert cache.save(key, np.zeros(3), types=())
+    (e,) = [p for p in cache.entries("thing") if json.loads((p / "meta.json").read_text())["key"] == key]
+    np.save(e / "a0.npy", np.array([{"evil": 1}], dtype=object), allow_pickle=True)
+    meta = json.loads((e / "meta.json").read_text())
+    meta["files"][0][1] = cache._sha256(e / "a0.npy")
+    (e / "meta.json").write_text(json.dumps(meta))
+    assert cache.load(key) is None
+
+
+@pytest.mark.skipif(not hasattr(os, "getuid"), reason="owners and modes are POSIX")
+def test_a_folder_others_may_write_is_neither_read_nor_written(cdir):
+    cache.load_or_build("thing", {"n": 1}, _value, types=(Thing,))
+    os.chmod(cdir, 0o777)
+    try:
+        assert _count_builds(cdir, 2) == 2  # not read
+        assert cache.save(cache.key_for("thing", {"n": 5}), 1.0) is False  # not written
+    finally:
+        os.chmod(cdir, 0o700)
+    assert _count_builds(cdir, 1) == 0
+
+
+@pytest.mark.parametrize("env", [{"AEROPHOTO_GRADING": "1"}, {"AEROPHOTO_CACHE": "0"}, {"AEROPHOTO_CACHE": "off"}])
+def test_off_in_a_grading_kernel_and_when_switched_off(cdir, monkeypatch, env):
+    cache.load_or_build("thing", {"n": 1}, _value, types=(Thing,))
+    for k, v in env.items():
+        monkeypatch.setenv(k, v)
+    assert not cache.enabled()
+    assert _count_builds(cdir, 2) == 2  # the entry on disk (a submission could carry one) is not read
+    assert cache.save(cache.key_for("thing", {"n": 6}), 1.0) is False and len(cache.entries("thing")) == 1
+
+
+def test_values_it_cannot_hold_stay_in_memory(cdir):
+    calls = []
+    got = cache.load_or_build("odd", {}, lambda: calls.append(1) or {"f": object()})
+    assert isinstance(got["f"], object) and cache.entries("odd") == []
+    with pytest.raises(TypeError, match="cannot cache"):
+        cache.encode(np.array([object()]), [])
+
+
+def test_the_key_holds_the_code_and_the_machine():
+    k = cache.key_for("site", {"seed": 0})
+    assert k["code"] == cache.code_fingerprint() and len(k["code"]) == 64
+    assert {"numpy", "python", "machine", "cpu", "format"} <= set(k)
+    assert cache.key_for("site", {"seed": 1}) != k
+
+
+def test_the_site_read_from_the_cache_is_the_site_built(cdir):
+    from aerophoto.site import Site, SiteObjects, SiteParams, build_site
+
+    built = build_site(SiteParams())
+    key = cache.key_for("site", dataclasses.asdict(SiteParams()))
+    types = (Site, SiteObjects, SiteParams)
+    assert cache.save(key, built, types)
+    (read,) = cache.load(key, types)
+    _same(read, built)
+    assert read.height(5000.0, 2500.0) == built.height(5000.0, 2500.0)

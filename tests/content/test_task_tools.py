@@ -2,7 +2,8 @@
 its ``Task.tools``, so an honest student who follows the text is never flagged ``uses_package_answers``.
 
 The text of task ``task-NN-k`` is its markdown cell and its data cells (``task-NN-k-…``, not the answer and check
-cells) in the book's notebook; names are resolved with the notebook's own imports, as the grader's scan does.
+cells, nor the cell that shows the truth after the check) in the book's notebook; names are resolved with the
+notebook's own imports, as the grader's scan does.
 """
 
 from __future__ import annotations
@@ -19,6 +20,13 @@ from conftest import NOTEBOOKS
 
 CODE_SPAN = re.compile(r"```(?:python)?\n(.*?)```|`([^`]+)`", re.S)
 DOTTED = re.compile(r"(?<![\w.])([A-Za-z_]\w*(?:\.[A-Za-z_]\w*)+)")
+
+
+AFTER = ("-answer", "-check", "-truth")
+"""Cells that are not the task's text: the student's answer, the locked check, and the book's own cell that shows
+the site's truth only once the check has passed (07.2's ``task-07-2-truth``: it builds the lab with
+``labs.ch07.stereo_lab`` — the release's code, which the grader knows and never flags — and tells the student to
+use nothing)."""
 
 
 def _notebook(chapter: str) -> dict:
@@ -44,7 +52,7 @@ def _text(nb, task_id: str) -> list[str]:
         src = "".join(c["source"])
         if cid == task_id and c["cell_type"] == "markdown":
             out += [a or b for a, b in CODE_SPAN.findall(src)]
-        elif cid.startswith(task_id + "-") and not cid.endswith(("-answer", "-check")) and c["cell_type"] == "code":
+        elif cid.startswith(task_id + "-") and not cid.endswith(AFTER) and c["cell_type"] == "code":
             out.append(src)
     return out
 

@@ -51,7 +51,8 @@ def test_every_number_states_its_printed_unit_and_admits_it(task_id):
         for i in SAMPLE:
             ref = np.asarray(task.answers(variant_for_index(i))[a.name], dtype=float)
             w = np.asarray(table.width(a, ref))
-            assert np.all(w >= 0.5 * a.printed * (1 + 1e-9)), (a.name, i, float(np.min(w)), a.printed)
+            # half a printed unit is admitted: the verdict's "≤ tolerance" is inclusive (verdict.FLOAT_SLACK)
+            assert np.all(w * (1 + verdict.FLOAT_SLACK) >= 0.5 * a.printed), (a.name, i, float(np.min(w)), a.printed)
 
 
 @pytest.mark.parametrize("task_id", IDS)
@@ -75,6 +76,7 @@ def test_the_articles_ambiguous_readings_are_accepted():
 
 def test_the_table_uses_the_verdicts_default_tolerance():
     assert table._TOL_REL == verdict.TOL_REL == checks.TOL_REL
+    assert rounding._FLOAT_SLACK == verdict.FLOAT_SLACK
 
 
 @pytest.mark.parametrize("task_id", IDS)

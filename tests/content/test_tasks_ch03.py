@@ -193,15 +193,25 @@ def test_the_check_cells_name_the_mistakes(capsys):
 
 
 def test_inputs_are_the_students_lab_sheets():
+    """Each task's inputs are a read-only view of the student's sheet without its solution (issue 27: the
+    inputs never carry a graded answer): the same sheet for the three tasks of chapter 03 and of 04.2/04.4."""
     v = variant_for_index(12)
     s1 = tasks.inputs("task-03-1", v)
-    assert s1 is tasks.inputs("task-03-2", v) is tasks.inputs("task-03-3", v) is relief_sheet(12)
+    views = [s1, tasks.inputs("task-03-2", v), tasks.inputs("task-03-3", v)]
+    assert all(type(s) is ch03.Withheld and s._obj is relief_sheet(12) for s in views)  # noqa: SLF001
     assert s1.kind == "relief" and s1.names == ("I", "1", "2", "II", "3", "4")
     assert tasks.inputs("task-04-1", v) is None  # the variant itself
     s2 = tasks.inputs("task-04-2", v)
-    assert s2 is tasks.inputs("task-04-4", v) and s2.kind == "tilt" and len(s2.names) == 9
+    assert s2._obj is tasks.inputs("task-04-4", v)._obj is tilt_sheet(12)  # noqa: SLF001
+    assert s2.kind == "tilt" and len(s2.names) == 9
+    # the sheet's solution is not given, and the view is read-only
+    for name in ch03.SHEET_WITHHELD:
+        with pytest.raises(AttributeError, match="is not given"):
+            getattr(s1, name)
+    with pytest.raises(AttributeError, match="read-only"):
+        s1.kind = "tilt"
     # what a notebook shows of a sheet has no coordinates and no results
-    assert repr(s1) == "LabSheet(relief, variant 12, 6 points)"
+    assert repr(s1) == f"LabSheet(…, inputs of the task: {', '.join(sorted(ch03.SHEET_WITHHELD))} withheld)"
     assert list(s1.heights().columns) == ["Z, m"]
     text = s1.summary().to_string()
     assert "1:13 200" in text and "220" in text and "-48" in text

@@ -23,7 +23,7 @@ from .wire import as_sequence, is_bool, scalar
 
 __all__ = ["Verdict", "Hints", "value_verdict", "count_verdict", "values_verdict", "bool_verdict",
            "choice_verdict", "VERDICTS", "answer_call", "told_apart", "close", "tolerance", "MORE_DIGITS_WITHIN", "TOL_REL",
-           "TOL_PHOTO_MM", "TOL_COEFF"]
+           "TOL_PHOTO_MM", "TOL_COEFF", "FLOAT_SLACK"]
 
 TOL_REL = 0.005
 """Default relative tolerance (0.5 %) for derived quantities."""
@@ -68,12 +68,20 @@ def _wrong(text: str) -> Verdict:
     return Verdict(False, text)
 
 
+FLOAT_SLACK = 1e-9
+"""A difference this small relative to the values compared is none (binary representation, not the student): a
+value written exactly half a printed unit off — 180.25 m written 180.2 against a tolerance of 0.05 m — is inside
+the tolerance, as the rule "≤ tolerance" says, though 180.25 − 180.2 is 0.050000000000004 in floating point."""
+
+
 def close(a: float, b: float, tol_abs: float | None, tol_rel: float | None) -> bool:
-    """``|a − b| ≤ tol_abs`` or ``≤ tol_rel·|b|`` (neither given: the default :data:`TOL_REL`)."""
+    """``|a − b| ≤ tol_abs`` or ``≤ tol_rel·|b|`` (neither given: the default :data:`TOL_REL`), both inclusive
+    up to :data:`FLOAT_SLACK` of the values."""
     if tol_abs is None and tol_rel is None:
         tol_rel = TOL_REL
-    ok_abs = tol_abs is not None and abs(a - b) <= tol_abs
-    ok_rel = tol_rel is not None and abs(a - b) <= tol_rel * abs(b)
+    d = abs(a - b) - FLOAT_SLACK * max(abs(a), abs(b))
+    ok_abs = tol_abs is not None and d <= tol_abs
+    ok_rel = tol_rel is not None and d <= tol_rel * abs(b)
     return ok_abs or ok_rel
 
 

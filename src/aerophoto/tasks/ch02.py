@@ -92,7 +92,7 @@ class JudgeStrip(_StripTask):
     cross_variant = False
     spec = (
         Answer("crab_limit_deg", "largest crab for your f, degrees", unit="°", tol_abs=0.05, printed=0.1),
-        Answer("alpha_read_deg", "tilt read on the level, degrees", unit="°", tol_abs=0.01, printed=0.1),
+        Answer("alpha_read_deg", "tilt read on the level, degrees", unit="°", tol_abs=0.05, printed=0.1),
         Answer("px_ok", "True / False", kind="bool", hint="compare P_x with the 56 % rejection threshold (guide §3)."),
         Answer("dm_ok", kind="bool", hint="compare |Δm/m| with 3 %."),
         Answer("n_ok", kind="bool", hint="compare n with 2 % (H > 750 m) or 3 %."),

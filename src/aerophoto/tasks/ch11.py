@@ -32,9 +32,9 @@ from .. import plane
 from .. import rectify as rf
 from ..labs.ch11 import paper_lab, rectification_lab
 from .base import Answer, Hidden, Method, Task, Withheld, submitted_number
-from .rounding import allowance, consistency, numbers, verdict_check
+from .rounding import allowance, consistency, numbers, round_sig, sig_unit, verdict_check
 
-__all__ = ["TOL_K", "TOL_T", "Substrate", "FourPointRectification", "TASKS"]
+__all__ = ["TOL_K", "TOL_T", "K_DIGITS", "Substrate", "FourPointRectification", "TASKS"]
 
 
 #: K_d's tolerance: the accepted ways of summing table 11 (the diagonals exact or as shown, over [l₀] or [l_i])
@@ -42,6 +42,8 @@ __all__ = ["TOL_K", "TOL_T", "Substrate", "FourPointRectification", "TASKS"]
 TOL_K = 0.03
 #: t follows K_d: the same, plus t's own rounding
 TOL_T = 0.035
+#: the significant digits K_d may be written with (t's hidden check admits that rounding of K_d)
+K_DIGITS = 3
 
 
 @dataclass(frozen=True)
@@ -62,7 +64,10 @@ class Substrate(Task):
                       "the diagonals by Pythagoras; the table shows them to 0.01 mm, which moves K_d by up to 2.3 %",
                       submit=lambda task, v: task.other_sums(v, exact=True)),
                Method("[δl] divided by the print's [l_i]", "the same to first order in K_d (they differ by K_d², "
-                      "≤ 0.2 % of K_d here)", submit=lambda task, v: task.other_sums(v, over_li=True)))
+                      "≤ 0.2 % of K_d here)", submit=lambda task, v: task.other_sums(v, over_li=True)),
+               Method(f"K_d written to {K_DIGITS} significant digits (−0.00131), t from the unrounded K_d",
+                      "K_d is a sum of differences of readings to 0.01 mm: three digits are all it holds",
+                      submit=lambda task, v: {"K_d": round_sig(task.answers(v)["K_d"], K_DIGITS)}))
 
     def other_sums(self, v, *, exact: bool = False, over_li: bool = False) -> dict:
         """K_d (and t from it) with the diagonals' l₀ exact and/or divided by [l_i] (the accepted methods)."""
@@ -98,8 +103,10 @@ class Substrate(Task):
         # t must follow from the student's own K_d: t = K_d·f·(m/M + 1)
         lab = paper_lab(v)
         factor = lab.f_mm * (rf.enlargement(lab.m, lab.M) + 1.0)
-        return [consistency("t_mm from your own K_d", got.get("t_mm"), 0.0001, lambda K: K * factor,
-                            [(numbers(got.get("K_d")), 1e-08)])]
+        # K_d may be written to three significant digits (−0.00131) and t computed from it or from more digits
+        K = numbers(got.get("K_d"))
+        return [consistency("t_mm from your own K_d", got.get("t_mm"), 0.0001, lambda K_: K_ * factor,
+                            [(K, None if K is None else sig_unit(K, K_DIGITS))])]
 
 
 

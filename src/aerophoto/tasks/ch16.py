@@ -118,7 +118,7 @@ class DensificationForecast(Task):
         hs = {dem.standard_interval(min(max(x, 0.0), 1.25 * top) / 1.25, MEAN_RATIO) for x in (mz - a, mz, mz + a)}
         h = numbers(got.get("h_m"))
         near = min(hs, key=lambda x: abs(x - h)) if h is not None else dem.standard_interval(mz / 1.25, MEAN_RATIO)
-        out.append(Hidden("h_m from your m_z", got.get("h_m"), near, tol_abs=0.1))
+        out.append(Hidden("h_m from your m_z", got.get("h_m"), near, tol_abs=0.1, about="h_m"))
         return out
 
 

@@ -159,7 +159,7 @@ class TriangulationError(Task):
     title = "Triangulation and scanning on your photos"
     points = 2
     spec = (
-        Answer("sigma_um", "σ = 0.5·P, µm", unit="µm", printed=0.1),
+        Answer("sigma_um", "σ = 0.5·P, µm", unit="µm", tol_abs=0.05, printed=0.1),
         Answer("mxy_m", "m_x,y = 0.84·M_c·σ, m", unit="m", printed=0.0001),
         Answer("mphi_m", "m_ф = m_D = √2·m_x,y, m", unit="m", printed=0.0001),
         Answer("msc_m", "scanning m_ск = 3 µm · M_c, m", unit="m", printed=0.0001),

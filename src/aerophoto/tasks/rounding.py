@@ -58,6 +58,7 @@ def allowance(x, printed: float | None, cap=None):
 
 
 _TOL_REL = 0.005  # aerophoto.course.verdict.TOL_REL, the default relative tolerance (a test holds them equal)
+_FLOAT_SLACK = 1e-9  # aerophoto.course.verdict.FLOAT_SLACK (the same test holds them equal)
 
 
 def width(answer, ref):
@@ -207,7 +208,10 @@ def holds(h: Hidden) -> bool:
         return False
     a, e = np.asarray(h.answer, dtype=float), np.asarray(h.expected, dtype=float)
     tol = np.asarray(h.tol_abs if h.tol_abs is not None else 0.0, dtype=float)
-    return a.shape == e.shape and bool(np.all(np.abs(a - e) <= tol))
+    if a.shape != e.shape:
+        return False
+    slack = _FLOAT_SLACK * np.maximum(np.abs(a), np.abs(e))  # verdict.FLOAT_SLACK: "≤ tol" inclusive in floats
+    return bool(np.all(np.abs(a - e) - slack <= tol))
 
 
 def either(*checks: Hidden) -> Hidden:

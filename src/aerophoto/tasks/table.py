@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .rounding import _TOL_REL, width
+from .rounding import _FLOAT_SLACK, _TOL_REL, width
 
 __all__ = ["DOC", "DEVIATIONS", "HIDDEN", "width", "deviation", "measure_variant", "merge", "combine", "measure",
            "hidden_names",
@@ -37,7 +37,9 @@ def deviation(answer, sub, ref) -> float | None:
     if w is None:
         return None
     try:
-        d = np.abs(np.asarray(sub, dtype=float) - np.asarray(ref, dtype=float))
+        x, r = np.asarray(sub, dtype=float), np.asarray(ref, dtype=float)
+        # the verdict's "≤ tolerance" is inclusive up to FLOAT_SLACK of the values: so is a deviation of 1
+        d = np.maximum(np.abs(x - r) - _FLOAT_SLACK * np.maximum(np.abs(x), np.abs(r)), 0.0)
     except (TypeError, ValueError):
         return None
     if d.shape != np.shape(w) and np.ndim(w) != 0:

@@ -551,6 +551,22 @@ def test_code_flags_leave_honest_work_alone(code):
     assert code_flags(code, where="cell x", answer_cell=True, aliases=ALIASES, known=set()) == []
 
 
+@pytest.mark.parametrize("limit", [1000, 3000, 20000])
+def test_deep_code_is_unreadable_whatever_the_recursion_limit(limit):
+    """Importing IPython (jedi) raises the recursion limit to 3 000, where Python itself parses 3 000 nested
+    minus signs: the scan measures the depth, so the verdict is the same in every process."""
+    import sys
+
+    old = sys.getrecursionlimit()
+    sys.setrecursionlimit(limit)
+    try:
+        deep = code_flags("x = " + "-" * 3000 + "1\n", where="cell x", answer_cell=False, aliases={}, known=set())
+        flat = code_flags("x = " + "-1 " * 150 + "\n", where="cell x", answer_cell=False, aliases={}, known=set())
+    finally:
+        sys.setrecursionlimit(old)
+    assert codes(deep) == ["code_unreadable"] and flat == []
+
+
 def test_the_package_answer_functions_come_from_the_task_registry():
     found = package_answer_functions()
     assert "aerophoto.tasks" in found and "aerophoto.geometry.flying_height_m" in found

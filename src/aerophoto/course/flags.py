@@ -78,6 +78,21 @@ def flag_meaning(code: str) -> str:
 
 MAX_CELL_CHARS = 1_000_000
 """A cell's code longer than this is not analysed (flagged ``code_unreadable``)."""
+MAX_NESTING = 200
+"""Code whose syntax tree is deeper than this is not analysed (flagged ``code_unreadable``).  Whether Python's own
+parser gives up depends on the process's recursion limit, which importing IPython raises (jedi sets 3 000): the
+verdict must not depend on what happened to be imported, so the depth is measured, without recursion."""
+
+
+def _too_deep(tree) -> bool:
+    """Whether ``tree`` is nested more than :data:`MAX_NESTING` levels (walked iteratively)."""
+    stack = [(tree, 1)]
+    while stack:
+        node, depth = stack.pop()
+        if depth > MAX_NESTING:
+            return True
+        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
+    return False
 
 
 def parse_code(src: str):
@@ -100,7 +115,10 @@ def parse_code(src: str):
     except Exception:  # IPython's transformer failed: parse the text as it is
         text = src
     try:
-        return ast.parse(text), None
+        tree = ast.parse(text)
+        if _too_deep(tree):
+            return None, f"the code is nested more than {MAX_NESTING} levels deep"
+        return tree, None
     except SyntaxError as exc:
         return None, f"not valid Python ({exc.msg})"
     except (RecursionError, MemoryError) as exc:

@@ -718,9 +718,11 @@ def test_ensure_path_puts_this_python_first(monkeypatch):
     monkeypatch.setenv("PATH", "/usr/bin:/bin")
     ensure_path()
     parts = os.environ["PATH"].split(os.pathsep)
-    assert parts[0] == str(Path(sys.executable).parent) and parts[1:] == ["/usr/bin", "/bin"]
+    # a venv's base Python's bin/ follows (a --system-site-packages venv runs the base's alembic)
+    base = [str(Path(sys.base_prefix) / "bin")] if sys.prefix != sys.base_prefix else []
+    assert parts == [str(Path(sys.executable).parent), *base, "/usr/bin", "/bin"]
     ensure_path()
-    assert os.environ["PATH"].split(os.pathsep).count(str(Path(sys.executable).parent)) == 1
+    assert os.environ["PATH"].split(os.pathsep) == parts
 
 
 def test_course_folder_gets_the_config_template_once(tmp_path, book):

@@ -70,12 +70,17 @@ def measure_variant(task, v) -> dict:
     for form, sub in _forms(task, v, ref).items():
         for name, x in sub.items():
             out[name]["rounding"][form] = deviation(task.answer(name), x, ref[name])
+    # a method is measured from the nearest value the verdict accepts: the reference, or another reading's
+    # value (Task.accepted: 14.1's printed m_D, 16.1's “zr” as 2r, 17.3's transfer), each with its own tolerance
+    alternatives = task.accepted(v) or {}
     for m in task.methods:
         if m.submit is None:
             continue
         sub = m.submission(task, v)
         for name in out:
-            d = deviation(task.answer(name), sub[name], ref[name])
+            targets = [ref[name], *(x for x in (alternatives.get(name) or {}).values() if x is not None)]
+            ds = [d for d in (deviation(task.answer(name), sub[name], x) for x in targets) if d is not None]
+            d = min(ds) if ds else None
             if d is not None and d > 0:
                 out[name]["methods"][m.name] = d
     for name, hints in (task.slips(v) or {}).items():
@@ -257,7 +262,8 @@ def render(measured: dict | None = None) -> str:
         "Every graded task of the book: what it grades, the tolerance of each value, the methods the chapter "
         "teaches and accepts, and the slips it rejects. *Printed* is the unit of the last digit the task expects "
         "written (the guide's, or finer where the task's text asks for more digits). Deviations are measured over "
-        "all 100 variants **in tolerances**: the largest of every rounding and accepted method must stay below 1, "
+        "all 100 variants **in tolerances** (a method from the nearest accepted value: the reference or another "
+        "reading's): the largest of every rounding and accepted method must stay below 1, "
         "the smallest of every slip above it (where a slip is not told apart for a variant, its hint is off there "
         "and the count of variants says so). *i* is the variant where the extreme occurs. The on-screen check and "
         "the instructor's grader run the same scorer (`aerophoto.course.score.grade_task`), so a value accepted "

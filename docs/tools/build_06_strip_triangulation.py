@@ -344,7 +344,8 @@ on your free strip were measured on the common tracing. As in table 8, take the 
 * `spread_ok` — `True` if every $|k - \\bar k|$ is within 0.003 (0.006 on a base shorter than 133 mm on the base),
   else `False`.
 
-Tolerances: 0.05 mm for the lengths, 0.0005 for the coefficients (the guide prints them to three decimals).
+Tolerances: 0.05 mm for the lengths, 0.0005 for the coefficients (the guide prints them to three decimals), 0.0011
+for the mean (the mean of the written coefficients, written to three decimals, as table 8 does).
 """, id="task-06-2"),
     code("""
 readings.control_table()   # your control points: coordinates and positions on the free strip
@@ -362,8 +363,8 @@ from the centre, negative: towards it. Set
 * `r_mm` — the distances from 37, mm (13 values);
 * `v_mm` — the corrections, mm, in the same order.
 
-Tolerances: 0.05 mm for $r$; for $v$ 0.05 mm or 2 % (so a $k$ rounded to three decimals, as the guide writes
-it, passes).
+Tolerances: 0.05 mm for $r$; for $v$ 0.05 mm or 4 % (so $k$ as the guide's table writes it — the mean of the
+coefficients written to three decimals, itself written to three decimals — passes).
 """, id="task-06-3"),
     code("""
 readings.points_table()   # every point of your common tracing, in the order of the guide's table 13

@@ -401,7 +401,8 @@ lab.objects_table()
     check_cell("task-07-2"),
     code("""
 if checks.passed("task-07-2"):
-    display(lab.parallaxes()[["Δh, m"]].join(lab.truth()).round(2))
+    own_lab = labs.ch07.stereo_lab(v)   # the pair itself (its results are not part of your inputs)
+    display(own_lab.parallaxes()[["Δh, m"]].join(own_lab.truth()).round(2))
 else:
     print("Answer task 07.2 first: then your heights appear here beside the site's truth.")
 """, id="task-07-2-truth"),
@@ -417,7 +418,9 @@ The site's relief is $h = Z_{max} - Z_{min}$ (your variant: 30 m). With the base
 $b_0 = B\\,f/H$ — the navigation record's air base $B$ and $H = f\\cdot m$, both in the table below; not the $b$ of the
 pricked principal points from task 07.1, which your photos' tilts shift ("Two photo bases" above) — compute
 
-* `dp_relief_mm` — the parallax difference of $h$: $\\Delta p = b_0\\,h/(H - h)$, mm (tolerance 0.005 mm);
+* `dp_relief_mm` — the parallax difference of $h$: $\\Delta p = b_0\\,h/(H - h)$, mm, to four decimals
+  (tolerance 0.005 mm; the small form $b_0\\,h/H$ is accepted where your $H$ makes it agree with the exact one
+  within the tolerance, and named where it does not);
 * `V` — the vertical exaggeration of your stereo model viewed at $d$ = 250 mm with the eye base $e$ = 65 mm:
   $V = (B/H)/(e/d)$, with $B/H = b_0/f$.
 """, id="task-07-3"),

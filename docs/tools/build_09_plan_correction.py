@@ -238,7 +238,8 @@ the projective transformation fixed by your four control points — the limit of
 directions (`projective.fit_projective(photo, plan)`) — and give
 
 * `xr_mm`, `yr_mm` — the plan x and y of the road's vertices, in the table's order, mm (tolerance 0.1 mm);
-* `road_m` — the road's length on the ground, m: the sum of its segments on the plan times $M/1000$.
+* `road_m` — the road's length on the ground, m: the sum of its segments on the plan times $M/1000$
+  (tolerance 0.2 %; it must follow from your own vertices).
 """, id="task-09-2"),
     answer_cell("task-09-2"),
     check_cell("task-09-2"),

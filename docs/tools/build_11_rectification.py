@@ -203,8 +203,11 @@ Your table 11 is below: six lengths on the control grid (two lines of squares, t
 diagonals of the rectangle they span) and on its contact print, and your $f$, $m$ and the base scale 1:10 000.
 Compute
 
-* `K_d` — the mean deformation coefficient $[\\delta l]/[l_0]$ with $\\delta l = l_0 - l_i$ (tolerance 0.2 %);
-* `t_mm` — the substrate thickness $K_d\\,f\\,(K_t + 1)$, mm, **with its sign** (tolerance 0.5 %).
+* `K_d` — the mean deformation coefficient $[\\delta l]/[l_0]$ with $\\delta l = l_0 - l_i$ (tolerance 3 %: the
+  diagonals' $l_0$ as the table shows them or computed exactly, $5\\sqrt{a^2 + b^2}$ mm, and $[l_0]$ or $[l_i]$ in
+  the denominator are all accepted — they differ by up to 2.5 %, far less than the 0.1 mm readings make $K_d$
+  uncertain);
+* `t_mm` — the substrate thickness $K_d\\,f\\,(K_t + 1)$ from your $K_d$, mm, **with its sign** (tolerance 3.5 %).
 """, id="task-11-1"),
     code("""
 paper = tasks.inputs("task-11-1", v)

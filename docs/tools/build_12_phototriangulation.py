@@ -274,7 +274,8 @@ $\Delta k = k - \bar k$. A base passes when $|\Delta k| \le 0.003$, or $\le 0.00
 * `dk_max` — the largest $|\Delta k|$;
 * `spread_ok` — `True` if every base passes, else `False`.
 
-Tolerance: 0.0005 for the coefficients and `dk_max`.
+Tolerance: 0.0005 for the coefficients, 0.0011 for their mean and 0.0016 for `dk_max` (table 12's way: every
+value written to three decimals, the mean and Δk from the written ones).
 """, id="task-12-2"),
     code("""
 readings = tasks.inputs("task-12-2", v)   # your strip's readings (chapter 06)
@@ -293,7 +294,7 @@ positive, towards it if negative (formula 12.3 of the guide, table 13). Set
 * `r_mm` — the distances from 38, mm (13 values);
 * `v_mm` — the corrections, mm, in the same order.
 
-Tolerances: 0.05 mm for $r$; for $v$ 0.05 mm or 2 %.
+Tolerances: 0.05 mm for $r$; for $v$ 0.05 mm or 4 % (a $\bar k$ written as table 12 writes it passes).
 """, id="task-12-3"),
     code("""
 readings.points_table()   # every point of your common tracing

@@ -272,8 +272,9 @@ Your survey: the photo scale 1:m and focal length f of your variant, a map at 1:
 base b = 72 mm, your parallax error $m_q$ and contour interval $h$ (below). With the reconstructed
 (10.21) compute
 
-* `mD_mm` — the plan error $m_D = \sqrt{m_X^2 + m_Y^2}$ in the middle of **10** bases, mm at the photo scale (the
-  book's reading of the article's $m_D$, coefficient 0.297 — not $\sqrt2\,m_X$);
+* `mD_mm` — the plan error $m_D = \sqrt{m_X^2 + m_Y^2}$ in the middle of **10** bases, mm at the photo scale, to
+  0.0001 mm (the book's reading of the article's $m_D$, coefficient 0.297; the article is ambiguous, so its other
+  reading, $\sqrt2\,m_X$ with coefficient 0.35, is accepted too — with the `n_plan` that follows from it);
 * `mZ_m` — the height error $m_Z$ in the middle of 10 bases, **metres on the ground**;
 * `n_plan` — the largest whole number of bases between plan control with $m_D \le 0.3$ mm on the map;
 * `n_height` — the largest whole number of bases between height control with

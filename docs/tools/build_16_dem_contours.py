@@ -289,7 +289,8 @@ formula holds at any height.) Compute
 
 * `H_m` — the flying height H = f·m, m;
 * `b_mm` — the photo base b = l·(1 − p_x/100), mm;
-* `mz_m` — Lysenko's $m_z = m_p\,(H/b)\,\sqrt{3(2ns + mn - sr)/(2mns)}$ with m_p = 0.025 mm, in metres;
+* `mz_m` — Lysenko's $m_z = m_p\,(H/b)\,\sqrt{3(2ns + mn - sr)/(2mns)}$ with m_p = 0.025 mm, in metres (the
+  book reads the scan's "zr" as s·r; read as 2r, the other reading, it is accepted too, with the h that follows);
 * `h_m` — the smallest contour interval of the standard series 0.25, 0.5, 1, 2, 2.5, 5, 10, 20, 25, 50, 100 m
   whose requirement your densification meets by itself: the mean error m_z/1.25 at most 0.3·h (the
   article's 15 cm for h = 0.5 m).

@@ -283,7 +283,8 @@ You update the guide's 1:10 000 map (1/M, guide §1) from your photos, and — t
 each photo onto its mean plane. The whole relief of your area, Z_max − Z_min, stays in the photos. Take
 the other stages as the article does: control and orthorectification 1.25·0.1 mm, vectorising 0.11 mm on
 the map, the transfer between strips 0.446 mm (rule (1), then formula 9: see "One slip, and its fix"),
-scanning and triangulation from task 17.2. Compute
+scanning and triangulation from task 17.2 (the article's own transfer, 0.357 mm, is accepted too, with the total,
+mean error, verdict and dominant stage that follow from it). Compute
 
 * `mrel_m` — the relief stage, in place of the DEM: $(r_{rms}/f)\cdot\Delta h/\sqrt{12}$ on the ground, m, with
   $r_{rms} = \sqrt{(b_x^2 + b_y^2)/12}$ the RMS distance of the working area $b_x = l(1-p_x)$ by $b_y = l(1-p_y)$

@@ -366,27 +366,42 @@ _CHECKS = {"value": "check_value", "count": "check_count", "values": "check_valu
            "choice": "check_choice"}
 
 
-def _emit(task_id: str, values: Mapping, variant, task=None) -> None:
-    """While grading, put the submitted values into the cell's output (plain data) for the instructor's grader.
+def _record_text(task, values: Mapping) -> str:
+    """The text/plain line of a check cell's answer record: what was handed in, never a verdict or a value."""
+    given = [n for n in task.names if values.get(n, Ellipsis) is not Ellipsis]
+    return t("{task} — checking {names}", task=_task_title(task.id), names=", ".join(given) or t("(no answers yet)"))
 
-    The record (:func:`aerophoto.course.wire.encode_answers`, under :data:`aerophoto.course.wire.ANSWERS_MIME`)
-    also carries what the check saw of the kernel (:func:`aerophoto.course.probe.evidence`).
+
+def _emit(task_id: str, values: Mapping, variant, task=None) -> None:
+    """Put the submitted values into the cell's output, as plain data, before anything is checked.
+
+    Always: the saved notebook keeps what each check cell was given (the course report reads it back,
+    :func:`aerophoto.course.trusted.saved_answers`); while the instructor grades, the grader scores it.  The
+    record (:func:`aerophoto.course.wire.encode_answers`) is an output under
+    :data:`aerophoto.course.wire.ANSWERS_MIME` with a ``text/plain`` line (:func:`_record_text`), so JupyterLab
+    shows that line.  While grading it also carries what the check saw of the kernel
+    (:func:`aerophoto.course.probe.evidence`).  It is published before any reference value exists in this
+    kernel's frames: nothing that runs while it is written can read one.
     """
-    if not os.environ.get("AEROPHOTO_GRADING"):
-        return
     record = _wire.encode_answers(task_id, values, variant)
+    if os.environ.get("AEROPHOTO_GRADING"):
+        try:
+            record["evidence"] = _evidence(task)
+            odd = {str(k): f"{type(x).__module__}.{type(x).__qualname__}"[:80] for k, x in values.items()
+                   if type(x).__module__ == "__main__"}
+            if odd:  # an answer of a class the notebook defined (a float whose __float__ reads the check's frame)
+                record["evidence"]["value_types"] = odd
+        except Exception as exc:  # evidence is a courtesy; the values are what counts
+            record["evidence"] = {"error": type(exc).__name__}
     try:
-        record["evidence"] = _evidence(task)
-        odd = {str(k): f"{type(x).__module__}.{type(x).__qualname__}"[:80] for k, x in values.items()
-               if type(x).__module__ == "__main__"}
-        if odd:  # an answer of a class the notebook defined (a float whose __float__ reads the check's frame)
-            record["evidence"]["value_types"] = odd
-    except Exception as exc:  # evidence is a courtesy; the values are what counts
-        record["evidence"] = {"error": type(exc).__name__}
-    try:
+        from IPython import get_ipython
         from IPython.display import display
 
-        display({_wire.ANSWERS_MIME: json.loads(json.dumps(record, default=str))}, raw=True)
+        if get_ipython() is None:
+            return
+        bundle = {"text/plain": _record_text(task, values) if task is not None else str(task_id),
+                  _wire.ANSWERS_MIME: json.loads(json.dumps(record, default=str))}
+        display(bundle, raw=True)
     except Exception:  # outside IPython: nothing to emit to
         pass
 
@@ -408,25 +423,73 @@ def _task_values(task, values: Mapping) -> dict:
     return {n: values.get(n, Ellipsis) for n in task.names}
 
 
+def _session_variant(variant, task_id: str):
+    """The variant to check with: ``variant`` if it is one; else the setup cell's, with one line saying so.
+
+    A cell that reuses the name ``v`` (chapter 09's ``u, v = …``) must not change whose answers are checked: the
+    variant then comes from the number the setup cell remembered (:func:`aerophoto.book.remembered_record_book`,
+    or the guide's example when none is), as ``setup`` found it.
+    """
+    from .variants import Variant, variant as _variant_of, variant_for_index
+
+    if isinstance(variant, Variant):
+        return variant
+    from .book import remembered_record_book
+
+    rb = remembered_record_book()
+    try:
+        own = _variant_of(rb) if rb else variant_for_index(0, "not given — the guide's worked example")
+    except (TypeError, ValueError):
+        own = variant_for_index(0, "not given — the guide's worked example")
+    print(t("note: the check of {task} was given {what} instead of your variant — a cell has reused the name v "
+            "(e.g. u, v = …); checked for your variant {i:02d} from the setup cell. Give that variable another name.",
+            task=_task_title(task_id), what=f"{type(variant).__name__}", i=own.i))
+    return own
+
+
+def _show(grade) -> None:
+    """Print what the trusted score says: a ✓ line per visible check that passed; raise with the first failure.
+
+    A partial task (:attr:`aerophoto.tasks.Task.partial`) also says the share it earned — the points the grader
+    gives, shown here.
+    """
+    for line, (name, ok, msg, hidden) in zip(grade.lines, grade.checks):
+        if ok:
+            _pass(name)
+            print(line)
+    failed = [(name, msg) for name, ok, msg, _ in grade.checks if not ok]
+    if not failed:
+        return
+    name, msg = failed[0]
+    if grade.partial:
+        msg = t("{message} ({task}: {n} of {total} right, {score:g} of {points:g} points)", message=msg,
+                task=_task_title(grade.task), n=grade.n_passed, total=len(grade.checks), score=grade.score,
+                points=grade.points)
+    elif len(failed) > 1:
+        msg = t("{message} (and {more} more to put right)", message=msg, more=len(failed) - 1)
+    _fail(name, msg)
+
+
 def check_task(task_id: str, variant, /, **values) -> None:
     """Check every answer of a graded task for the student's variant; the whole of a check cell.
 
-    ``checks.check_task("task-03-1", v, Zcp_m=Zcp_m, H_m=H_m)`` runs one
-    check per answer of the task (:mod:`aerophoto.tasks`), in order, each
-    printing ✓ or stopping with one red line that names the kind of mistake;
-    when all pass it prints "✓ Task 03.1 passed".  Returns None (nbgrader
+    ``checks.check_task("task-03-1", v, Zcp_m=Zcp_m, H_m=H_m)`` records the values in the cell's output
+    (:func:`_emit`), then asks the trusted scorer — the very function the instructor's grader runs,
+    :func:`aerophoto.course.score.grade_task`, visible and hidden checks — and shows its verdict: a ✓ per value
+    and "✓ Task 03.1 passed" exactly when the grader gives full marks, else one red line naming the first
+    mistake (or the answers that do not agree with each other) — never the answer.  Returns None (nbgrader
     reads a displayed value as partial credit).
     """
     from . import tasks as _tasks
+    from .course import score as _score
 
     task = _tasks.get(task_id)
     got = _task_values(task, values)
+    variant = _session_variant(variant, task.id)
     _emit(task.id, got, variant, task)  # before the reference values exist anywhere in this kernel's frames
     # the check's own use of the reference values (its expected values, a slip's or another variant's) is not
     # recorded as a student's call; the values scored were written (with what was called before) above
     with own_answers():
-        expected = task.answers(variant)
-        slips = task.slips(variant)
-        for a in task.spec:
-            _check_one(task, a, got[a.name], expected[a.name], slips, variant, quiet=False)
+        grade = _score.grade_task(task.id, variant, got)
+    _show(grade)
     task_passed(task.id)

@@ -29,15 +29,6 @@ def test_the_chapters_register_their_tasks():
         assert set(t.answers(variant_for_index(0))) == set(t.names)
 
 
-@pytest.mark.parametrize("tid", IDS)
-@pytest.mark.parametrize("i", SOME_VARIANTS)
-def test_reference_answers_pass_the_trusted_grading(tid, i):
-    v = variant_for_index(i)
-    grade = score.grade_task(tid, v, tasks.answers(tid, v))
-    assert grade.passed, grade.checks
-    assert grade.score == grade.points
-
-
 def test_chapter_01_answers_are_the_plan():
     v = variant_for_index(0)
     p = flight.plan(v)
@@ -48,7 +39,8 @@ def test_chapter_01_answers_are_the_plan():
     assert tasks.inputs("task-01-1", v) is None                     # the variant itself is the input
     a = ch01.HeightOverlapBases.spec[1]
     assert (a.name, a.tol_abs, a.tol_rel) == ("Px_percent", 0.02, None)
-    assert all(x.kind == "count" and x.rounding == "up" for x in ch01.StripsAndPhotos.spec)
+    assert [(x.kind, x.rounding) for x in ch01.StripsAndPhotos.spec] == [("count", "up"), ("count", "up"),
+                                                                          ("count", "exact")]  # N = n·K
 
 
 # --------------------------------------------------------------------------- typical slips
@@ -66,7 +58,7 @@ def test_chapter_01_slips_are_recognised(capsys):
     assert "relief allowance" in _wrong("task-01-1", v, Bx_km=0.864)               # the guide's 7.2·12000
     assert "photoplan scale" in _wrong("task-01-1", v, H_m=p.f_mm / 1000 * p.M)
     assert "normative px" in _wrong("task-01-1", v, Px_percent=60.0)
-    assert "rounds" in _wrong("task-01-2", v, K=21)                                 # the guide's 30/1.51 + 1
+    assert "30/1.51 + 1" in _wrong("task-01-2", v, K=21)                           # the guide's slip, named
     assert "without the '+ 1'" in _wrong("task-01-2", v, N=21 * 30)
     assert "factor 1.2" in _wrong("task-01-3", v, LS_km=p.LS_km / 1.2)
     assert "0.86·3600/200" in _wrong("task-01-3", v, tau_s=flat.tau_s)

@@ -31,15 +31,6 @@ def test_the_chapters_register_their_tasks():
     assert tasks.get("task-12-2").names == ("k_bases", "k_mean", "dk_max", "spread_ok")
 
 
-def test_every_variant_works():
-    for i in range(100):
-        v = variant_for_index(i)
-        for task_id in IDS:
-            g = score.grade_task(task_id, v, tasks.answers(task_id, v))
-            assert g.passed and g.score == g.points, (i, task_id, g.checks)
-            assert any(hidden for *_, hidden in g.checks)
-
-
 # --------------------------------------------------------------------------- what the student reads
 def test_the_inputs_are_plain_tables_not_the_answers():
     r = tasks.inputs("task-06-1", V57)
@@ -170,8 +161,10 @@ def test_hidden_06_1_verdict_follows_from_the_students_sides():
     assert h.expected is True and not score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.36, 0.04, 0.05], "triangles_ok": True})
     assert h.expected is False and not score.hidden_ok(h)[0]
-    (h,) = task.hidden(v, {"triangle_mm": [0.05, 0.305, 0.04, 0.05], "triangles_ok": True})  # at the limit: either
-    assert score.hidden_ok(h)[0]
+    for side in (0.2999, 0.3003):  # within its rounding of the limit: either verdict
+        for ok in (True, False):
+            (h,) = task.hidden(v, {"triangle_mm": [0.05, side, 0.04, 0.05], "triangles_ok": ok})
+            assert score.hidden_ok(h)[0]
     (h,) = task.hidden(v, {"triangle_mm": "small", "triangles_ok": True})
     assert h.answer is None
 
@@ -179,17 +172,13 @@ def test_hidden_06_1_verdict_follows_from_the_students_sides():
 def test_hidden_06_2_k_from_the_students_own_lengths_and_mean():
     v = VARIANTS[1]
     a = tasks.answers("task-06-2", v)
-    # a coefficient nudged within the visible 0.0005, the lengths left: visible passes, k ≠ l_осн/l_воск
+    # a coefficient that no rounding of the student's own lengths gives (the lengths written to 0.01 mm move k by
+    # about 0.0001, four significant digits of them by up to 0.0003: that is consistent)
     ks = list(a["k_bases"])
-    ks[0] += 0.0004
-    lb = list(a["l_base_mm"])
-    lb[0] -= 0.04  # and a length nudged the other way (within 0.05 mm): together off by ~0.0006
-    g = _grade("task-06-2", v, k_bases=ks, l_base_mm=lb)
-    assert g.visible_ok and not g.hidden_ok
-    assert f"k of {ch06.RING_LABELS[0]} from your lengths" in g.first_failure
-    # the mean of other numbers than the student's own k
-    g = _grade("task-06-2", v, k_mean=a["k_mean"] + 0.0004, k_bases=[k - 0.0004 for k in a["k_bases"]])
-    assert g.visible_ok and not g.hidden_ok
+    ks[0] += 0.003
+    g = _grade("task-06-2", v, k_bases=ks)
+    assert "k from your lengths" in [n for n, ok, _, h in g.checks if h and not ok]
+    assert _grade("task-06-2", v, l_base_mm=[float(f"{x:.4g}") for x in a["l_base_mm"]]).passed
     # every coefficient and the mean nudged together: consistent and within tolerance
     assert _grade("task-06-2", v, k_bases=[k + 0.0003 for k in a["k_bases"]], k_mean=a["k_mean"] + 0.0003).passed
 
@@ -198,11 +187,11 @@ def test_hidden_06_3_corrections_must_be_proportional_to_r():
     v = VARIANTS[1]
     a = tasks.answers("task-06-3", v)
     bad = list(a["v_mm"])
-    j = int(np.argmax(np.abs(bad)))  # the largest correction: 0.08 mm is within its 2 % visible tolerance
-    bad[j] += 0.08 if bad[j] > 0 else -0.08
+    j = int(np.argmax(np.abs(bad)))  # the largest correction, moved by just under its 2 % visible tolerance
+    bad[j] += 0.019 * bad[j]
     g = _grade("task-06-3", v, v_mm=bad)
     assert g.visible_ok and not g.hidden_ok
-    assert f"v_mm at {ch06.CORRECTION_POINTS[j]}" in g.first_failure
+    assert "v_mm = r·(k − 1) with your r and one k" in g.first_failure
     # k rounded to three decimals, as the guide writes 1.037: consistent and accepted
     r = np.array(a["r_mm"])
     k3 = round(tasks.answers("task-06-2", v)["k_mean"], 3)
@@ -217,16 +206,3 @@ def test_the_tasks_are_seeded_by_the_variant():
     assert tasks.inputs("task-06-1", V57).rays.equals(tasks.inputs("task-06-1", variant("21-1157")).rays)
 
 
-def test_every_tasks_code_lives_in_its_own_module():
-    # the grader's probe (aerophoto.course.probe) flags a task whose answers, slips or hidden checks run code from
-    # another file than the task's module (or tasks/base.py) as "replaced in the kernel"
-    import sys
-
-    from aerophoto.tasks import base
-
-    for number in ("05", "06", "12"):
-        for t in tasks.chapter_tasks(number):
-            own = sys.modules[type(t).__module__].__file__
-            for name in ("answers", "slips", "hidden"):
-                code = getattr(type(t), name).__code__
-                assert code.co_filename in (own, base.__file__), (t.id, name, code.co_filename)

@@ -5,10 +5,8 @@ chapters 09, 10 and 11 together (their registry, the printed verdicts, the worke
 import math
 
 import numpy as np
-import pytest
 
 from aerophoto import checks, tasks
-from aerophoto.course import score
 from aerophoto.labs import ch09, ch10, ch11
 from aerophoto.variants import variant_for_index
 
@@ -26,22 +24,6 @@ def test_the_chapters_register_their_tasks():
     assert tasks.get("task-09-1").names == ("row", "col", "x_mm", "y_mm")
     assert tasks.get("task-10-2").names == ("gamma_calc_deg", "dgamma_arcsec", "tol_arcsec", "check_ok")
     assert tasks.get("task-11-1").names == ("K_d", "t_mm")
-
-
-@pytest.mark.parametrize("task_id", IDS)
-def test_every_variant_has_answers_that_earn_full_marks(task_id):
-    for v in ALL:
-        g = score.grade_task(task_id, v, tasks.answers(task_id, v))
-        assert g.passed and g.score == g.points, (v.i, g.checks)
-        assert any(hidden for *_, hidden in g.checks)
-
-
-@pytest.mark.parametrize("task_id", IDS)
-def test_unanswered_and_other_variants_answers_fail(task_id):
-    v, w = SOME[1], SOME[3]
-    assert score.grade_task(task_id, v, {}).score == 0.0
-    g = score.grade_task(task_id, v, tasks.answers(task_id, w))
-    assert not g.passed
 
 
 def test_check_task_prints_the_verdict(capsys):
@@ -82,9 +64,9 @@ def test_09_hidden_checks_tie_the_answers_together():
     # a point in the right place but the wrong cell named: visible checks fail on row; the hidden ones too
     g = _grade("task-09-1", v, row=(a["row"] + 1) % 4)
     assert not g.hidden_ok
-    # road length within the visible 0.5 % but not the sum of the submitted vertices
+    # road length within the visible 0.2 % but not the sum of the submitted vertices
     b = tasks.answers("task-09-2", v)
-    g = _grade("task-09-2", v, road_m=b["road_m"] * 1.004)
+    g = _grade("task-09-2", v, road_m=b["road_m"] * 1.0018)
     assert g.visible_ok and not g.hidden_ok
     assert "road_m from your own vertices" in g.first_failure
 

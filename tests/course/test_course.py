@@ -551,6 +551,22 @@ def test_code_flags_leave_honest_work_alone(code):
     assert code_flags(code, where="cell x", answer_cell=True, aliases=ALIASES, known=set()) == []
 
 
+@pytest.mark.parametrize("limit", [1000, 3000, 20000])
+def test_deep_code_is_unreadable_whatever_the_recursion_limit(limit):
+    """Importing IPython (jedi) raises the recursion limit to 3 000, where Python itself parses 3 000 nested
+    minus signs: the scan measures the depth, so the verdict is the same in every process."""
+    import sys
+
+    old = sys.getrecursionlimit()
+    sys.setrecursionlimit(limit)
+    try:
+        deep = code_flags("x = " + "-" * 3000 + "1\n", where="cell x", answer_cell=False, aliases={}, known=set())
+        flat = code_flags("x = " + "-1 " * 150 + "\n", where="cell x", answer_cell=False, aliases={}, known=set())
+    finally:
+        sys.setrecursionlimit(old)
+    assert codes(deep) == ["code_unreadable"] and flat == []
+
+
 def test_the_package_answer_functions_come_from_the_task_registry():
     found = package_answer_functions()
     assert "aerophoto.tasks" in found and "aerophoto.geometry.flying_height_m" in found
@@ -702,9 +718,11 @@ def test_ensure_path_puts_this_python_first(monkeypatch):
     monkeypatch.setenv("PATH", "/usr/bin:/bin")
     ensure_path()
     parts = os.environ["PATH"].split(os.pathsep)
-    assert parts[0] == str(Path(sys.executable).parent) and parts[1:] == ["/usr/bin", "/bin"]
+    # a venv's base Python's bin/ follows (a --system-site-packages venv runs the base's alembic)
+    base = [str(Path(sys.base_prefix) / "bin")] if sys.prefix != sys.base_prefix else []
+    assert parts == [str(Path(sys.executable).parent), *base, "/usr/bin", "/bin"]
     ensure_path()
-    assert os.environ["PATH"].split(os.pathsep).count(str(Path(sys.executable).parent)) == 1
+    assert os.environ["PATH"].split(os.pathsep) == parts
 
 
 def test_course_folder_gets_the_config_template_once(tmp_path, book):
@@ -744,3 +762,67 @@ def test_the_course_package_imports_lazily():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
 
+
+
+# ------------------------------------------------------------------------------------ check: the teacher's flags
+def test_check_prints_the_flags_the_teacher_will_see_with_what_they_mean(tmp_path):
+    from aerophoto.course.check import print_check, release_for
+    from aerophoto.course.common import Flag
+    from aerophoto.course.flags import FLAG_MEANINGS
+    from aerophoto.course.outcomes import CheckResult, TaskOutcome
+
+    res = CheckResult(tmp_path / "09_plan_correction.ipynb",
+                      tasks=[TaskOutcome("task-09-1", True, 3.0, "", "", 3.0)],
+                      flags=[Flag("variant_shadowed", "cell task-09-1-answer: assigns v (line 2)"),
+                             Flag("uses_package_answers", "cell task-09-2-answer: uses aerophoto.labs.ch09 (line 1)")])
+    lines = []
+    print_check(res, lines.append)
+    text = "\n".join(lines)
+    assert "the teacher will see these flags" in text
+    assert "! variant_shadowed: cell task-09-1-answer: assigns v (line 2)" in text
+    assert f"variant_shadowed — {FLAG_MEANINGS['variant_shadowed']}" in text
+    assert f"uses_package_answers — {FLAG_MEANINGS['uses_package_answers']}" in text
+    # the book's own copy of a chapter is found by its number, wherever the student's copy lives
+    rel = release_for(tmp_path / "09_plan_correction.ipynb", NOTEBOOKS)
+    assert rel is not None and any(c.get("id") == "task-09-1-check" for c in rel["cells"])
+    assert release_for(tmp_path / "notes.ipynb", NOTEBOOKS) is None
+
+
+def test_every_flag_code_the_course_raises_has_a_meaning():
+    import re
+
+    from aerophoto.course import flags
+
+    src = "".join(p.read_text(encoding="utf-8") for p in (Path(flags.__file__).parent).glob("*.py"))
+    codes_used = set(re.findall(r'Flag\("([a-z_]+)"', src)) | set(re.findall(r'hit\("([a-z_]+)"', src))
+    codes_used |= {f"{k}_cell_{s}" for k in ("test", "answer") for s in ("stripped", "deleted", "edited")}
+    codes_used -= {"flags_failed", "not_generated"}  # the instructor's own failures, not a student's
+    assert codes_used <= set(flags.FLAG_MEANINGS), codes_used - set(flags.FLAG_MEANINGS)
+
+
+def test_reusing_the_name_v_is_flagged_as_harmless_not_as_a_changed_variant():
+    flags_ = code_flags("u, v = 0.25, 0.75\nx_mm = u", where="cell x", answer_cell=True, aliases=ALIASES, known=set())
+    assert codes(flags_) == ["variant_shadowed"]
+    assert "variant_changed" in codes(code_flags("del v", where="cell x", answer_cell=True, aliases=ALIASES,
+                                                 known=set()))
+
+
+def test_a_saved_notebook_keeps_the_values_its_check_cells_recorded(release):
+    """The course report reads answers that needed package code from the saved notebook (issue 29's interface)."""
+    from aerophoto.course.trusted import answer_records, saved_answers
+
+    v = variant("19-0457")
+    values = dict(_right(v), on_mm=[1.0, 2.0])   # any plain data survives: here a (wrong) list
+    nb = copy.deepcopy(release)
+    rec = wire.encode_answers("task-00-1", values, v)
+    out = nbformat.v4.new_output("display_data", data={"text/plain": "Task 00.1 — checking H_m, on_mm, oc_mm",
+                                                       wire.ANSWERS_MIME: rec})
+    nbtools.find_cell(nb, "task-00-1-check")[1].outputs = [out]
+    assert answer_records(nb) == {"task-00-1-check": [rec]}
+    saved = saved_answers(json.loads(nbformat.writes(nb)))   # read back from the file's JSON
+    assert set(saved) == {"task-00-1"} and saved["task-00-1"]["H_m"] == pytest.approx(values["H_m"])
+    assert saved["task-00-1"]["on_mm"] == [1.0, 2.0]
+    nbtools.find_cell(nb, "task-00-1-check")[1].outputs = [nbformat.v4.new_output(
+        "display_data", data={"text/plain": "x", wire.ANSWERS_MIME: {"task": 5, "values": "nonsense"}})]
+    assert saved_answers(nb) == {}   # a record that does not name its own cell's task is not read
+    assert saved_answers({"cells": "broken"}) == {}

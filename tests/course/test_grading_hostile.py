@@ -141,8 +141,10 @@ def attacks(course_root: Path) -> dict:
         "19-0515": (WRONG + "import importlib\nc = importlib.import_module('aerophoto.' + 'checks')\n"
                     "c.check_task = lambda *a, **k: print('✓ Task 00.1 passed')\n", None, None, 0.0,
                     {"patched_checks", "no_answer_record", "tampered"}),
+        # the check cell shows the trusted scorer's verdict (issue 27), which check_value is no part of: the patch
+        # no longer makes the screen say "passed", so there is nothing to call tampered — only the attempt
         "19-0516": (WRONG + "from aerophoto import checks\nchecks.check_value = lambda *a, **k: True\n", None, None,
-                    0.0, {"patched_checks", "tampered"}),
+                    0.0, {"patched_checks"}),
         "19-0528": (WRONG + f"import base64\nexec(base64.b64decode({obfuscated!r}).decode())\n", None, None, 0.0,
                     {"dynamic_code", "exception_hooks", "tampered"}),
         # another variant

@@ -142,7 +142,7 @@ def test_the_layer_test_sees_relative_and_lazy_imports():
 
 # ------------------------------------------------------------------ the answer's road: notebook → gradebook
 COURSE = PKG / "course"
-KERNEL_SIDE = {"wire", "verdict", "probe"}
+KERNEL_SIDE = {"wire", "verdict", "probe", "score"}
 """The parts of aerophoto.course the student's kernel loads (through aerophoto.checks)."""
 
 
@@ -200,7 +200,7 @@ def test_the_answer_road_runs_downhill():
     assert _imported_modules(COURSE / "verdict.py") <= {"i18n", "variants", "course.wire"}
     # the trusted side: records in (wire), scores out (score → verdict, tasks)
     assert {"wire", "score"} <= _course_parts(COURSE / "trusted.py")
-    assert _imported_modules(COURSE / "score.py") <= {"tasks", "course.verdict", "course.wire"}
+    assert _imported_modules(COURSE / "score.py") <= {"tasks", "i18n", "course.verdict", "course.wire"}
 
 
 def test_checks_and_course_have_no_import_cycle():

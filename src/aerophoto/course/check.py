@@ -5,6 +5,10 @@ check cell recorded) passes it — never on the kernel's word — so an exceptio
 check, a replaced check function or a swapped variant cannot make ``check`` say "passed".  Nothing is
 verified, and the exit status is 2, for a notebook with no graded task, a kernel name that is not installed
 or no record-book number.
+
+The flags the teacher will see are printed too, one line each on what they mean: the grader's (from the
+records) and the behaviour flags of the student's own cells (:func:`aerophoto.course.flags.behaviour_flags`,
+read against the book's own copy of the chapter, :func:`release_for`).
 """
 
 from __future__ import annotations
@@ -29,6 +33,25 @@ def resolve_record_book(nb, record_book=None) -> tuple[str | None, str]:
 
     saved = remembered_record_book()
     return (saved, "remembered") if saved else (None, "")
+
+
+def release_for(path, notebooks_dir=None):
+    """The book's own copy of the chapter of ``path`` (``NN_*.ipynb`` with the same number), or None."""
+    import re
+
+    from .common import chapters, default_notebooks_dir
+
+    m = re.match(r"^(\d\d)_", Path(path).name)
+    if not m:
+        return None
+    folder = Path(notebooks_dir) if notebooks_dir is not None else default_notebooks_dir()
+    same = [p for p in chapters(folder) if p.name.startswith(m.group(1) + "_")] if folder.is_dir() else []
+    if not same:
+        return None
+    try:
+        return read_nb(same[0])
+    except Exception:  # the book's copy cannot be read: no behaviour flags, said in the output
+        return None
 
 
 def _installed_kernels() -> set:
@@ -86,7 +109,22 @@ def check_notebook(path, *, timeout: int = DEFAULT_TIMEOUT_S, record_book: str |
     for e in ex.events:
         if e.kind in ("kernel_died", "output_truncated"):
             result.errors.append((e.cell, e.message))
+    release = release_for(path)
+    if release is not None:
+        from .flags import behaviour_flags
+
+        try:
+            result.flags += behaviour_flags(release, read_nb(path))
+        except Exception as exc:  # the scan never stops the check
+            result.flags.append(_flag("code_unreadable", f"the notebook's cells could not be scanned "
+                                                         f"({type(exc).__name__})"))
     return result
+
+
+def _flag(code, message):
+    from .common import Flag
+
+    return Flag(code, message)
 
 
 def print_check(result: CheckResult, out=print) -> None:
@@ -101,8 +139,14 @@ def print_check(result: CheckResult, out=print) -> None:
             + ("" if t.passed else f" — {t.message}"))
     for cid, err in result.errors:
         out(_t("  ✗ cell {cell}: {error}", cell=cid, error=err))
-    for f in result.flags:
-        out(f"  ! {f}")
+    if result.flags:
+        from .flags import flag_meaning
+
+        out(_t("  the teacher will see these flags:"))
+        for f in result.flags:
+            out(f"  ! {f}")
+        for code in dict.fromkeys(f.code for f in result.flags):
+            out(_t("    {code} — {meaning}", code=code, meaning=_t(flag_meaning(code))))
     n = sum(t.passed for t in result.tasks)
     out(_t("  {n} of {total} task(s) passed", n=n, total=len(result.tasks))
         + (_t("; {n} cell error(s)", n=len(result.errors)) if result.errors else ""))

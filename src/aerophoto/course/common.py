@@ -30,11 +30,17 @@ _LOG = logging.getLogger("aerophoto.course")
 
 
 def ensure_path() -> None:
-    """Put the running Python's bin/ first on PATH (nbgrader runs ``alembic``, kernels run ``python``)."""
-    bindir = str(Path(sys.executable).parent)
+    """Put the running Python's bin/ first on PATH (nbgrader runs ``alembic``, kernels run ``python``).
+
+    A virtual environment made with ``--system-site-packages`` imports the base Python's packages, whose scripts
+    (``alembic`` among them) live in the base Python's bin/: that one follows, when it is another."""
+    first = [str(Path(sys.executable).parent)]
+    base = Path(sys.base_prefix) / "bin"
+    if Path(sys.prefix) != Path(sys.base_prefix) and base.is_dir():
+        first.append(str(base))
     parts = os.environ.get("PATH", "").split(os.pathsep)
-    if parts[0:1] != [bindir]:
-        os.environ["PATH"] = os.pathsep.join([bindir] + [p for p in parts if p and p != bindir])
+    if parts[:len(first)] != first:
+        os.environ["PATH"] = os.pathsep.join(first + [p for p in parts if p and p not in first])
 
 
 @contextlib.contextmanager

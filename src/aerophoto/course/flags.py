@@ -7,8 +7,9 @@ Two kinds, both reported in the gradebook's ``flags`` column:
 * **behaviour** (:func:`code_flags`, an AST walk over every cell the student wrote or changed):
   ``exception_hooks`` (``set_custom_exc``, IPython event hooks, ``sys.excepthook``, shell methods),
   ``patched_checks`` (``importlib``, ``sys.modules``, ``reload``, attributes of aerophoto's modules set or
-  deleted), ``variant_changed`` (``v`` or ``RECORD_BOOK`` re-assigned, ``globals()``/``vars()``, ``os.environ``
-  written, ``setup`` or ``variant_for_index`` called again), ``uses_package_answers`` (an answer cell
+  deleted), ``variant_changed`` (``RECORD_BOOK`` re-assigned, ``v`` deleted or its attributes set,
+  ``globals()``/``vars()``, ``os.environ`` written, ``setup`` or ``variant_for_index`` called again),
+  ``variant_shadowed`` (the name ``v`` reused — harmless: the checks keep the setup cell's variant), ``uses_package_answers`` (an answer cell
   calls a function the graded tasks compute their answers with — the list is read from
   :mod:`aerophoto.tasks`' own code, :func:`package_answer_functions`), ``dynamic_code`` (``exec``, ``eval``,
   ``compile``, ``__import__``, ``getattr``/``setattr`` with a computed name: what obfuscation needs),
@@ -29,10 +30,69 @@ from pathlib import Path
 from .common import (Flag, cells_by_grade_id, digits, is_answer, is_test, nbg, norm_src, notebook_problem,
                      read_nb, source)
 
+# ----------------------------------------------------------------------------------------------- what they mean
+FLAG_MEANINGS = {
+    "uses_package_answers": "an answer was computed with a package function that computes the task's answer "
+                            "(not one of the tools its text names): the teacher sees the work was not done by hand",
+    "variant_changed": "the variant was changed (RECORD_BOOK, the environment, setup or variant_for_index again): "
+                       "the grader grades the roster's variant and shows this",
+    "variant_shadowed": "a cell reused the name v, the setup cell's variant (e.g. u, v = …): nothing graded changes "
+                        "— the checks keep the setup cell's variant — but rename the variable",
+    "variant_mismatch": "a check ran for another variant than the student's: graded for the student's own",
+    "patched_checks": "the checks or their modules were replaced or imported by hand: the grader ignores the "
+                      "kernel's verdict and shows this",
+    "exception_hooks": "exception or event hooks were installed: they could hide a failed check",
+    "dynamic_code": "code was run from text (exec, eval, a computed attribute name, a magic)",
+    "system_access": "files outside the working folder, processes or the network were used",
+    "code_unreadable": "a cell could not be analysed (too long or nested too deep)",
+    "tampered": "what the check cell saw and what the grader computed disagree: the kernel's word is not taken",
+    "no_answer_record": "a check cell left no record of its answers (it did not run, or was stopped): scored 0",
+    "unreadable_record": "a check cell's record of the answers could not be read: scored 0",
+    "not_graded": "the notebook (or a task) could not be graded",
+    "answer_error": "an answer cell raised an error",
+    "cell_error": "a cell raised an error",
+    "record_book_mismatch": "the setup cell's RECORD_BOOK is not the student's own: graded for the student's",
+    "record_book_unreadable": "the setup cell's RECORD_BOOK line is missing or not a plain number",
+    "record_book_unknown": "the roster has no record-book number for this student: nothing is graded",
+    "test_cell_edited": "a locked check cell was edited or copied: restored from the release before grading",
+    "test_cell_stripped": "a check cell lost its grading metadata: restored from the release before grading",
+    "test_cell_deleted": "a check cell was deleted: its task scores 0",
+    "answer_cell_edited": "an answer cell's grading metadata was changed",
+    "answer_cell_stripped": "an answer cell lost its grading metadata",
+    "answer_cell_deleted": "an answer cell was deleted",
+    "same_code_as": "the answer code is the same as another student's",
+    "claimed_twice": "the same record-book number came from two students' folders: neither was imported",
+    "missing": "no notebook was handed in",
+    "corrupt": "the notebook file cannot be read: scored 0",
+    "notebook_time_limit": "the notebook ran longer than its time limit",
+}
+"""Every flag code, with one line on what it means for the student (``aerophoto-course check`` prints it)."""
+
+
+def flag_meaning(code: str) -> str:
+    """One line on what flag ``code`` means (:data:`FLAG_MEANINGS`); the code itself when unknown."""
+    return FLAG_MEANINGS.get(str(code), str(code))
+
+
 # ----------------------------------------------------------------------------------------------- reading code
 
 MAX_CELL_CHARS = 1_000_000
 """A cell's code longer than this is not analysed (flagged ``code_unreadable``)."""
+MAX_NESTING = 200
+"""Code whose syntax tree is deeper than this is not analysed (flagged ``code_unreadable``).  Whether Python's own
+parser gives up depends on the process's recursion limit, which importing IPython raises (jedi sets 3 000): the
+verdict must not depend on what happened to be imported, so the depth is measured, without recursion."""
+
+
+def _too_deep(tree) -> bool:
+    """Whether ``tree`` is nested more than :data:`MAX_NESTING` levels (walked iteratively)."""
+    stack = [(tree, 1)]
+    while stack:
+        node, depth = stack.pop()
+        if depth > MAX_NESTING:
+            return True
+        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
+    return False
 
 
 def parse_code(src: str):
@@ -55,7 +115,10 @@ def parse_code(src: str):
     except Exception:  # IPython's transformer failed: parse the text as it is
         text = src
     try:
-        return ast.parse(text), None
+        tree = ast.parse(text)
+        if _too_deep(tree):
+            return None, f"the code is nested more than {MAX_NESTING} levels deep"
+        return tree, None
     except SyntaxError as exc:
         return None, f"not valid Python ({exc.msg})"
     except (RecursionError, MemoryError) as exc:
@@ -151,8 +214,30 @@ def package_answer_functions() -> frozenset:
                                                                                      "aerophoto.variants"))
                         and name.count(".") >= 2):
                     found.add(name)
-    taught = {tool for t in tasks.all_tasks() for tool in t.tools}  # the instruments a task tells students to use
-    return frozenset(found - taught)
+    return frozenset(found - package_tools())
+
+
+ALWAYS_TOOLS = ("aerophoto.tasks.inputs", "aerophoto.gradebook.task_inputs")
+"""What every task's data cell calls: a task's inputs never carry its answers (tests/content/test_task_inputs.py)."""
+
+
+@functools.lru_cache(maxsize=None)
+def package_tools() -> frozenset:
+    """The package's names a task's text tells the student to work with (every task's ``Task.tools``, and
+    :data:`ALWAYS_TOOLS`): never flagged, nor anything under them (``aerophoto.tasks.inputs`` is a tool though
+    ``aerophoto.tasks`` is not)."""
+    from .. import tasks
+
+    return frozenset(tool for t in tasks.all_tasks() for tool in t.tools) | frozenset(ALWAYS_TOOLS)
+
+
+def is_package_answer(name: str) -> bool:
+    """Whether the dotted ``name`` is (under) a function the graded tasks compute their answers with and not
+    (under) a tool a task's text names (:func:`package_answer_functions`, :func:`package_tools`)."""
+    def under(prefixes):
+        return any(name == a or name.startswith(a + ".") for a in prefixes)
+
+    return under(package_answer_functions()) and not under(package_tools())
 
 
 def _aliases(tree, package: str = "") -> dict:
@@ -244,7 +329,6 @@ def _assigned_aliases(tree, aliases: dict) -> dict:
 
 
 def _code_flags(tree, *, where: str, aliases: dict, known: set, setup_cell: bool) -> list[Flag]:
-    answers = package_answer_functions()
     hits: dict[str, list[str]] = {}
 
     def hit(code, why, node):
@@ -259,6 +343,7 @@ def _code_flags(tree, *, where: str, aliases: dict, known: set, setup_cell: bool
         if setup_cell and isinstance(stmt, ast.Assign) and isinstance(stmt.value, ast.Constant) and \
                 [getattr(t, "id", None) for t in stmt.targets] == ["RECORD_BOOK"]:
             continue  # the one line a student types in the setup cell
+        inner = {id(n.value) for n in ast.walk(stmt) if isinstance(n, ast.Attribute)}  # a.b of a.b.c: not alone
         for node in ast.walk(stmt):
             if isinstance(node, (ast.Import, ast.ImportFrom)):
                 mods = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
@@ -290,7 +375,7 @@ def _code_flags(tree, *, where: str, aliases: dict, known: set, setup_cell: bool
                     hit("patched_checks", f"uses {name}", node)
                 if name == "sys.excepthook":
                     hit("exception_hooks", "uses sys.excepthook", node)
-                if any(name == a or name.startswith(a + ".") for a in answers):
+                if id(node) not in inner and is_package_answer(name):
                     hit("uses_package_answers", f"uses {name}", node)
             if isinstance(node, ast.Call):
                 fn = _resolve(node.func, aliases) or ""
@@ -338,9 +423,14 @@ def _code_flags(tree, *, where: str, aliases: dict, known: set, setup_cell: bool
                 targets = node.targets if isinstance(node, (ast.Assign, ast.Delete)) else [node.target]
                 for t in targets:
                     for leaf in ast.walk(t):
-                        if isinstance(leaf, ast.Name) and leaf.id in ("v", "RECORD_BOOK") and \
+                        if isinstance(leaf, ast.Name) and leaf.id == "v" and isinstance(leaf.ctx, ast.Store):
+                            # the checks use the setup cell's variant whatever v holds (aerophoto.checks): a
+                            # reused name changes nothing graded, but the student should rename it
+                            hit("variant_shadowed", "assigns v", node)
+                        elif isinstance(leaf, ast.Name) and leaf.id in ("v", "RECORD_BOOK") and \
                                 isinstance(leaf.ctx, (ast.Store, ast.Del)):
-                            hit("variant_changed", f"assigns {leaf.id}", node)
+                            hit("variant_changed", f"{'deletes' if isinstance(leaf.ctx, ast.Del) else 'assigns'} "
+                                                   f"{leaf.id}", node)
                         if isinstance(leaf, ast.Attribute) and isinstance(leaf.ctx, (ast.Store, ast.Del)):
                             base = _resolve(leaf.value, aliases) or ""
                             if base.split(".")[0] in ("aerophoto", "checks", "tasks", "builtins", "__builtins__",

@@ -46,7 +46,14 @@ class Verdict:
 
 
 def answer_records(nb) -> dict[str, list[dict]]:
-    """check grade_id → the answer records found in that test cell's outputs (in order)."""
+    """check grade_id → the answer records found in that test cell's outputs (in order).
+
+    A check cell always leaves its record in its output (:func:`aerophoto.checks.check_task`, under
+    :data:`.wire.ANSWERS_MIME`, beside a ``text/plain`` line), so this reads a student's *saved* notebook as well
+    as one the grader executed.  Each record is plain JSON data: ``{"task": "task-09-2", "variant": 57,
+    "values": {name: encoded value}}`` (and ``"evidence"`` while grading) — untrusted, as everything in a
+    submission; decode it with :func:`.wire.decode_answers` or read it with :func:`saved_answers`.
+    """
     out: dict[str, list[dict]] = {}
     for cell in nb["cells"]:
         if not is_test(cell):
@@ -64,6 +71,32 @@ def answer_records(nb) -> dict[str, list[dict]]:
                     rec = None
             if isinstance(rec, dict):
                 out.setdefault(gid, []).append(rec)
+    return out
+
+
+def saved_answers(nb) -> dict[str, dict]:
+    """The values each task's check cell recorded in a saved notebook: ``{task id: {answer name: value}}``.
+
+    For every check cell with a record (:func:`answer_records`; its first, as the grader takes), the values as
+    the check was given them the last time it ran — numbers, strings, booleans, lists and dicts as plain Python
+    data (:func:`.wire.decode_answers`); a value that was not plain data (an object, a long list) is an opaque
+    string that no check accepts, and ``...`` stands for an answer not given yet.  Tasks whose check cell never
+    ran (or ran before this book version) are absent, and so is a record that does not name its own check cell's
+    task.  Nothing is executed; a malformed record is skipped.
+    The course report (:mod:`aerophoto.report`) reads answers that needed package code from here.
+    """
+    out: dict[str, dict] = {}
+    try:
+        records = answer_records(nb)
+    except Exception:  # a malformed notebook: nothing recorded that can be read
+        return out
+    for gid, recs in records.items():
+        try:
+            task_id, values = decode_answers(recs[0])
+        except Exception:
+            continue
+        if task_id and gid == f"{task_id}-check" and task_id not in out:  # the record of this very check cell
+            out[task_id] = values
     return out
 
 

@@ -1,9 +1,10 @@
 """The answer record: what a check cell sends from the student's kernel to the instructor's grader.
 
-While the instructor grades (``AEROPHOTO_GRADING`` set in the sandbox), :func:`aerophoto.checks.check_task`
-puts the submitted values of its task into the cell's output under :data:`ANSWERS_MIME`, as plain JSON data
-(:func:`encode_answers`), before it checks anything.  The grader (:mod:`.trusted`) reads the record back
-(:func:`decode_answers`) and scores it outside the student's kernel (:mod:`.score`).
+:func:`aerophoto.checks.check_task` puts the submitted values of its task into the cell's output under
+:data:`ANSWERS_MIME`, as plain JSON data (:func:`encode_answers`), before it checks anything — always, so the
+saved notebook keeps them (the course report reads them back: :func:`aerophoto.course.trusted.saved_answers`).
+While the instructor grades (``AEROPHOTO_GRADING`` set in the sandbox) the grader (:mod:`.trusted`) reads the
+record back (:func:`decode_answers`) and scores it outside the student's kernel (:mod:`.score`).
 
 Both ends import this module, so it is pure: the standard library only, nothing else of aerophoto — the
 student's kernel loads it without nbgrader or the rest of :mod:`aerophoto.course`.  It also holds the three
@@ -20,7 +21,7 @@ __all__ = ["ANSWERS_MIME", "encode_answers", "decode_answers", "scalar", "is_boo
            "MAX_STR"]
 
 ANSWERS_MIME = "application/vnd.aerophoto.answers+json"
-"""The output a check cell adds while the instructor grades (``AEROPHOTO_GRADING`` set): the submitted values."""
+"""The output a check cell adds (beside a ``text/plain`` line JupyterLab shows): the submitted values."""
 
 MAX_LIST = 2000
 """The longest list or array a record carries as values (a longer one is kept as its repr)."""

@@ -37,6 +37,7 @@ _ROUNDING = {
         "пособие округляет это число вверх (до большего целого)",
     "the guide rounds this count down (whole items only)": "пособие округляет это число вниз (только целые)",
     "the guide rounds this count to the nearest whole number": "пособие округляет это число до ближайшего целого",
+    "count every one (a whole number)": "сосчитайте каждый (целое число)",
 }
 
 _DIAGNOSES = {
@@ -66,11 +67,42 @@ _DIAGNOSES = {
     "entry {k}": "элемент {k}",
     "check your value against the guide's tolerance.": "сравните своё значение с допуском пособия.",
     "read the task's definitions again.": "перечитайте определения в задании.",
+    "one too many — the guide rounds this count down (whole items only).":
+        "на одно больше — пособие округляет это число вниз (только целые).",
+    "rounded the wrong way — the guide rounds this count to the nearest whole number.":
+        "округлено не в ту сторону — пособие округляет это число до ближайшего целого.",
+    "that is {quantity}, not what this answer asks for — read the task again.":
+        "это {quantity}, а не то, что спрашивает этот ответ — перечитайте задание.",
+    "off by one — count again{hint}": "ошибка на единицу — пересчитайте{hint}",
+    "{name}: {a:g} is not a whole number — count them: a count is a whole number{unit_txt}.":
+        "{name}: {a:g} — не целое число; сосчитайте: количество — целое число{unit_txt}.",
+    "number": "число",
+    "count": "количество",
+    "{name}: no answer yet — replace the ... with your {noun}{unit_txt}.":
+        "{name}: ответа ещё нет — замените ... своим {noun}{unit_txt}.",
+    "{name}: {a} is a yes/no verdict — this task asks for a whole number.":
+        "{name}: {a} — это вывод «да/нет», а задание требует целого числа.",
+    "your answers do not agree with each other: {check} — each must follow from the others as the task says.":
+        "ваши ответы не согласуются друг с другом: {check} — каждый должен следовать из остальных, как сказано в "
+        "задании.",
+    "your answers could not be compared with each other ({error}).":
+        "ваши ответы не удалось сопоставить друг с другом ({error}).",
 }
 
 _LINES = {
     " (in {unit})": " (в {unit})",
     "✓ {name}: correct": "✓ {name}: верно",
+    "✓ {name}: correct ({note})": "✓ {name}: верно ({note})",
+    "{task} — checking {names}": "{task} — проверяются {names}",
+    "(no answers yet)": "(ответов ещё нет)",
+    "note: the check of {task} was given {what} instead of your variant — a cell has reused the name v (e.g. u, v = …); checked for your variant {i:02d} from the setup cell. Give that variable another name.":
+        "заметка: проверке {task} передан {what} вместо вашего варианта — какая-то ячейка заняла имя v (например, "
+        "u, v = …); проверено для вашего варианта {i:02d} из первой ячейки. Назовите ту переменную иначе.",
+    "{message} ({task}: {n} of {total} right, {score:g} of {points:g} points)":
+        "{message} ({task}: верно {n} из {total}, {score:g} из {points:g} баллов)",
+    "{message} (and {more} more to put right)": "{message} (и ещё {more} исправить)",
+    "  the teacher will see these flags:": "  преподаватель увидит эти отметки:",
+    "    {code} — {meaning}": "    {code} — {meaning}",
     "✓ {name}: all {n} values correct": "✓ {name}: все {n} значений верны",
     "✓ {task} passed": "✓ {task} выполнено",
     "Task {nn}.{k}": "Задание {nn}.{k}",
@@ -156,4 +188,58 @@ _SETUP = {  # aerophoto.book.setup's banner
 }
 
 #: English → Russian
-MESSAGES = {**_UNIT_FACTORS, **_ROUNDING, **_DIAGNOSES, **_LINES, **_SETUP}
+_FLAGS = {  # aerophoto.course.flags.FLAG_MEANINGS, as ``aerophoto-course check`` prints them
+    "an answer was computed with a package function that computes the task's answer (not one of the tools its text names): the teacher sees the work was not done by hand":
+        "ответ вычислен функцией пакета, которая вычисляет ответ задания (не инструментом, названным в его "
+        "тексте): преподаватель видит, что работа сделана не вручную",
+    "the variant was changed (RECORD_BOOK, the environment, setup or variant_for_index again): the grader grades the roster's variant and shows this":
+        "вариант изменён (RECORD_BOOK, окружение, повторный setup или variant_for_index): проверка ведётся для "
+        "варианта из списка группы, и это видно преподавателю",
+    "a cell reused the name v, the setup cell's variant (e.g. u, v = …): nothing graded changes — the checks keep the setup cell's variant — but rename the variable":
+        "ячейка заняла имя v — вариант из первой ячейки (например, u, v = …): оценка не меняется — проверки "
+        "сохраняют вариант первой ячейки, — но переменную лучше переименовать",
+    "a check ran for another variant than the student's: graded for the student's own":
+        "проверка выполнялась для чужого варианта: оценено по варианту студента",
+    "the checks or their modules were replaced or imported by hand: the grader ignores the kernel's verdict and shows this":
+        "проверки или их модули подменены или импортированы вручную: проверяющий не верит вердикту ядра и "
+        "показывает это",
+    "exception or event hooks were installed: they could hide a failed check":
+        "установлены перехватчики исключений или событий: они могли бы скрыть непройденную проверку",
+    "code was run from text (exec, eval, a computed attribute name, a magic)":
+        "код выполнялся из текста (exec, eval, вычисляемое имя атрибута, магическая команда)",
+    "files outside the working folder, processes or the network were used":
+        "использовались файлы вне рабочей папки, процессы или сеть",
+    "a cell could not be analysed (too long or nested too deep)":
+        "ячейку не удалось разобрать (слишком длинная или слишком глубокая вложенность)",
+    "what the check cell saw and what the grader computed disagree: the kernel's word is not taken":
+        "то, что видела ячейка проверки, расходится с расчётом проверяющего: слову ядра не верят",
+    "a check cell left no record of its answers (it did not run, or was stopped): scored 0":
+        "ячейка проверки не оставила записи ответов (не выполнялась или была остановлена): 0 баллов",
+    "a check cell's record of the answers could not be read: scored 0":
+        "запись ответов ячейки проверки не читается: 0 баллов",
+    "the notebook (or a task) could not be graded": "тетрадь (или задание) проверить не удалось",
+    "an answer cell raised an error": "ячейка ответа завершилась ошибкой",
+    "a cell raised an error": "ячейка завершилась ошибкой",
+    "the setup cell's RECORD_BOOK is not the student's own: graded for the student's":
+        "RECORD_BOOK в первой ячейке — не студента: оценено по номеру студента",
+    "the setup cell's RECORD_BOOK line is missing or not a plain number":
+        "строки RECORD_BOOK в первой ячейке нет, или в ней не просто номер",
+    "the roster has no record-book number for this student: nothing is graded":
+        "в списке группы нет номера зачётки этого студента: ничего не оценено",
+    "a locked check cell was edited or copied: restored from the release before grading":
+        "заблокированная ячейка проверки изменена или скопирована: перед проверкой восстановлена из выданной версии",
+    "a check cell lost its grading metadata: restored from the release before grading":
+        "ячейка проверки потеряла метаданные проверки: перед проверкой восстановлена из выданной версии",
+    "a check cell was deleted: its task scores 0": "ячейка проверки удалена: задание получает 0",
+    "an answer cell's grading metadata was changed": "метаданные проверки у ячейки ответа изменены",
+    "an answer cell lost its grading metadata": "ячейка ответа потеряла метаданные проверки",
+    "an answer cell was deleted": "ячейка ответа удалена",
+    "the answer code is the same as another student's": "код ответов совпадает с кодом другого студента",
+    "the same record-book number came from two students' folders: neither was imported":
+        "один номер зачётки пришёл из папок двух студентов: не импортирована ни одна",
+    "no notebook was handed in": "тетрадь не сдана",
+    "the notebook file cannot be read: scored 0": "файл тетради не читается: 0 баллов",
+    "the notebook ran longer than its time limit": "тетрадь выполнялась дольше отведённого времени",
+}
+
+MESSAGES = {**_UNIT_FACTORS, **_ROUNDING, **_DIAGNOSES, **_LINES, **_SETUP, **_FLAGS}

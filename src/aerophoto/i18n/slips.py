@@ -279,5 +279,128 @@ _VERDICT_HINTS = {
         "посмотрите на концы островов и на то, как приток впадает в реку.",
 }
 
+_NEW_SLIPS = {  # issue 27: hints of the slips the grading table catalogues
+    "that uses the nominal flying height H = f·m; the stations' height comes from A's own parallax: Z_S = Z_A + B·f/p_A":
+        "здесь взята номинальная высота полёта H = f·m; высота центров проекции следует из собственного параллакса "
+        "A: Z_S = Z_A + B·f/p_A",
+    "that is the nominal flying height f·m itself; the stations' height is Z_S = Z_A + B·f/p_A":
+        "это сама номинальная высота полёта f·m; высота центров проекции Z_S = Z_A + B·f/p_A",
+    "that is the small form b₀·h/H; with your H the exact b₀·h/(H − h) differs by more than the tolerance":
+        "это упрощённая формула b₀·h/H; при вашем H точная b₀·h/(H − h) отличается больше допуска",
+    "the residuals are already on the base: do not multiply them by K_t again":
+        "остаточные расхождения уже на основе: не умножайте их ещё раз на K_t",
+    "that is the guide's example base b = 60 mm; your b = l·(100 − p_x)/100 with your p_x":
+        "это базис примера пособия b = 60 мм; ваш b = l·(100 − p_x)/100 с вашим p_x",
+    "that is the large-n form d·√(n³/3); (10.20) sums the squares exactly: d·√(n(n + 1)(2n + 1)/6)":
+        "это форма для больших n, d·√(n³/3); (10.20) суммирует квадраты точно: d·√(n(n + 1)(2n + 1)/6)",
+    "that is the photo the rejected measurement is on; the task asks for the point's id":
+        "это снимок, на котором отбраковано измерение; задание спрашивает номер точки",
+    "that is the index of the observation (its row); the task asks for the point's id":
+        "это порядковый номер измерения (его строка); задание спрашивает номер точки",
+    "that is the point's index in meas.point_ids; the task asks for the id itself":
+        "это позиция точки в meas.point_ids; задание спрашивает сам номер точки",
+    "that is the rejected control point; blunder_point is the point of the rejected image measurement":
+        "это отбракованная опорная точка; blunder_point — точка отбракованного измерения на снимке",
+    "that is the point of the rejected image measurement; bad_control is the rejected control point":
+        "это точка отбракованного измерения на снимке; bad_control — отбракованная опорная точка",
+    "that is the RMS per coordinate, √(mean(dX² + dY²)/2); the plan error combines both: √(mean(dX² + dY²))":
+        "это СКО на одну координату, √(mean(dX² + dY²)/2); ошибка в плане объединяет обе: √(mean(dX² + dY²))",
+    "that is V_X + V_Y; the plan error combines the axes in squares: √(V_X² + V_Y²)":
+        "это V_X + V_Y; ошибка в плане складывает оси квадратично: √(V_X² + V_Y²)",
+    "that is √2·V_X; V_D takes both axes, √(V_X² + V_Y²)": "это √2·V_X; V_D берёт обе оси, √(V_X² + V_Y²)",
+    "that is m_x,y, one coordinate; the plan error m_D = √2·m_x,y (formula 8)":
+        "это m_x,y, одна координата; ошибка в плане m_D = √2·m_x,y (формула 8)",
+    "rows are counted from 0 at side 1–2 towards side 4–3": "ряды считаются от 0 у стороны 1–2 к стороне 4–3",
+    "columns are counted from 0 at side 1–4 towards side 2–3": "столбцы считаются от 0 у стороны 1–4 к стороне 2–3",
+    "count the classes present on the map: np.unique(patch.soil_map); a class of a few cells counts":
+        "сосчитайте классы, которые есть на карте: np.unique(patch.soil_map); класс из нескольких ячеек тоже считается",
+    "give the id of the rejected image measurement's point, from the rejected table's 'point' column (not a count, not a photo)":
+        "укажите номер точки отбракованного измерения на снимке из столбца 'point' таблицы отбраковки (не количество, "
+        "не снимок)",
+    "give the id of the rejected control point, from the rejected table's 'point' column":
+        "укажите номер отбракованной опорной точки из столбца 'point' таблицы отбраковки",
+}
+
+_NEW_SLIPS["that is your photos' design scale 1:m; the fotoschema's scale comes from your bases: m_i = L_i·M/l_i"] = (
+    "это расчётный масштаб снимков 1:m; масштаб фотосхемы следует из ваших базисов: m_i = L_i·M/l_i")
+
+_QUANTITIES = {  # Task.quantities: the chapter's other quantities a wrong answer may be
+    "the base b₀ = B·f/H of your pair, mm": "базис b₀ = B·f/H вашей пары, мм",
+    "B/H = b₀/f (not yet divided by e/d)": "B/H = b₀/f (ещё не делённое на e/d)",
+    "the relief h = Z_max − Z_min, m": "перепад рельефа h = Z_max − Z_min, м",
+}
+
+_READINGS = {  # Task.accepted: the other readings of the articles, accepted
+    "article 001's other reading, m_D = √2·m_X": "другое прочтение статьи 001, m_D = √2·m_X",
+    "article 000's other reading of “zr”, 2r": "другое прочтение «zr» в статье 000, 2r",
+    "article 003's own reading: the transfer 0.357 mm": "прочтение самой статьи 003: перенос 0,357 мм",
+}
+
+_HIDDEN = {  # the hidden checks' names, shown when the student's answers do not agree with each other
+    "on_mm from your oc_mm": "on_mm по вашему oc_mm",
+    "Bx_km from Px_percent": "Bx_km по Px_percent",
+    "N = n·K": "N = n·K",
+    "TS_h from LS_km": "TS_h по LS_km",
+    "alpha_read_deg (30′ steps)": "alpha_read_deg (шаг 30′)",
+    "l_сн from your x, y": "l_сн по вашим x, y",
+    "m_i from your l_пл and l_сн": "m_i по вашим l_пл и l_сн",
+    "m_част from your m_i": "m_част по вашим m_i",
+    "m_cp from your m_част": "m_cp по вашим m_част",
+    "Δm/m_cp from your m_част and m_cp": "Δm/m_cp по вашим m_част и m_cp",
+    "δh from your r, H and Z_cp": "δh по вашим r, H и Z_cp",
+    "n_corr from your δh": "n_corr по вашим δh",
+    "m_i·l_сн/M gives the plan lengths": "m_i·l_сн/M даёт длины на плане",
+    "|oc| from your xc_mm, yc_mm": "|oc| по вашим xc_mm, yc_mm",
+    "δα from your r_c and φ": "δα по вашим r_c и φ",
+    "n_corr from your δα": "n_corr по вашим δα",
+    "m_rms_mm from your ΔI": "m_rms_mm по вашим ΔI",
+    "n_cutouts from your ΔI": "n_cutouts по вашим ΔI",
+    "seams_ok from your ΔI": "seams_ok по вашим ΔI",
+    "m_i from your l and L": "m_i по вашим l и L",
+    "m_mean (mean of your m_i)": "m_mean (среднее ваших m_i)",
+    "triangles_ok from your sides": "triangles_ok по вашим сторонам",
+    "k from your lengths": "k по вашим длинам",
+    "k_mean is the mean of your k_bases": "k_mean — среднее ваших k_bases",
+    "spread_ok from your k_bases": "spread_ok по вашим k_bases",
+    "dk_max from your k_bases": "dk_max по вашим k_bases",
+    "v_mm = r·(k − 1) with your r and one k": "v_mm = r·(k − 1) по вашим r и одному k",
+    "ZS_m from your own pA_mm": "ZS_m по вашему pA_mm",
+    "dhA_m from your own Δp": "dhA_m по вашему Δp",
+    "dhB_m from your own Δp": "dhB_m по вашему Δp",
+    "dhC_m from your own Δp": "dhC_m по вашему Δp",
+    "dhD_m from your own Δp": "dhD_m по вашему Δp",
+    "dp_relief_mm and V from one base": "dp_relief_mm и V по одному базису",
+    "the plan point lies in row `row` of the plan grid": "точка плана лежит в ряду `row` сетки плана",
+    "the plan point lies in column `col` of the plan grid": "точка плана лежит в столбце `col` сетки плана",
+    "road_m from your own vertices": "road_m по вашим вершинам",
+    "alpha_PA_deg from your own station": "alpha_PA_deg по вашей станции",
+    "dgamma_arcsec from your own gamma_calc_deg": "dgamma_arcsec по вашему gamma_calc_deg",
+    "check_ok from your own dgamma_arcsec and tol_arcsec": "check_ok по вашим dgamma_arcsec и tol_arcsec",
+    "t_mm from your own K_d": "t_mm по вашему K_d",
+    "rect_ok from your own d1_mm, d2_mm": "rect_ok по вашим d1_mm, d2_mm",
+    "n_max follows from m3_mm": "n_max следует из m3_mm",
+    "the named classes get smaller with the scale": "названные классы мельчают вместе с масштабом",
+    "wet is darker than dry at 1.45 µm": "влажная почва темнее сухой на 1,45 мкм",
+    "agreement at least the commonest soil's share": "совпадение не меньше доли самой частой почвы",
+    "n_plan follows from mD_mm": "n_plan следует из mD_mm",
+    "n_height follows from mZ_m": "n_height следует из mZ_m",
+    "m20_mm follows from d_mm": "m20_mm следует из d_mm",
+    "fits_1986 agrees with n_unknowns": "fits_1986 согласуется с n_unknowns",
+    "rms_plan_m is of the size the block's precision allows": "rms_plan_m такой величины, какую допускает точность блока",
+    "rms_Z_m is of the size the block's precision allows": "rms_Z_m такой величины, какую допускает точность блока",
+    "the point lies where the ground truth is": "точка лежит там, где она на самом деле",
+    "mz_m from your H and b": "mz_m по вашим H и b",
+    "h_m from your m_z": "h_m по вашему m_z",
+    "share_pct is a count of the 40 points": "share_pct — доля из 40 точек",
+    "v_lines_m / m_lines_m between 0.5 and 1": "v_lines_m / m_lines_m между 0,5 и 1",
+    "VD_m from your V_X, V_Y": "VD_m по вашим V_X, V_Y",
+    "md_mm from your m_D": "md_mm по вашему m_D",
+    "mxy_m from your σ": "mxy_m по вашему σ",
+    "mphi_m from your m_x,y": "mphi_m по вашему m_x,y",
+    "vd_mm from your m_D": "vd_mm по вашему m_D",
+    "ok from your v_d": "ok по вашему v_d",
+    "hidden checks": "скрытые проверки",
+}
+
 #: English → Russian
-MESSAGES = {**_SLIPS, **_VERDICT_HINTS}
+MESSAGES = {**_SLIPS, **_VERDICT_HINTS, **_NEW_SLIPS, **_QUANTITIES, **_READINGS, **_HIDDEN}

@@ -31,10 +31,11 @@ from types import MappingProxyType
 
 from .. import _chapters
 from ..variants import as_variant
-from .base import KINDS, Answer, Hidden, Task
+from . import rounding
+from .base import KINDS, Answer, Hidden, Method, Task, Withheld
 
-__all__ = ["Answer", "Hidden", "Task", "KINDS", "get", "all_tasks", "chapter_tasks", "inputs", "answers",
-           "CHAPTER_MODULES", "chapter_modules"]
+__all__ = ["Answer", "Hidden", "Method", "Task", "Withheld", "KINDS", "get", "all_tasks", "chapter_tasks", "inputs",
+           "answers", "rounding", "CHAPTER_MODULES", "chapter_modules"]
 
 
 @functools.cache
@@ -81,7 +82,9 @@ def inputs(task_id: str, v):
     """What the student works from in task ``task_id`` for variant ``v`` (shown in the task's data cell).
 
     ``v`` is a :class:`~aerophoto.variants.Variant` or a record-book number; anything else is an error naming ``v``
-    (never the guide's example by default)."""
+    (never the guide's example by default).  The inputs never carry a graded answer of the task (where the lab
+    world knows one, a :class:`~aerophoto.tasks.base.Withheld` view leaves it out;
+    tests/content/test_task_inputs.py compares every task's inputs with its answers)."""
     return get(task_id).inputs(as_variant(v, "v", none=False))
 
 

@@ -13,7 +13,8 @@ import pandas as pd
 
 from .. import geometry as g
 from .. import variants
-from .base import Answer, Hidden, Task
+from .base import Answer, Method, Task
+from .rounding import consistency, numbers
 
 __all__ = ["ElementsOfTiltedPhoto", "TASKS", "SURVEY_LENSES_MM", "RECONNAISSANCE_MAX_MM", "SURVEY_SPEED_KMH",
            "SURVEY_CEILING_KM", "scheme_table"]
@@ -27,9 +28,9 @@ class ElementsOfTiltedPhoto(Task):
     title = "Flying height and the points n and c of your photo"
     points = 3
     spec = (
-        Answer("H_m", "flying height, m", unit="m"),
-        Answer("on_mm", "o to n, mm", unit="mm", tol_abs=0.05),
-        Answer("oc_mm", "o to c with the guide's sign, mm", unit="mm", tol_abs=0.05),
+        Answer("H_m", "flying height, m", unit="m", printed=1),
+        Answer("on_mm", "o to n, mm", unit="mm", tol_abs=0.05, printed=0.01),
+        Answer("oc_mm", "o to c with the guide's sign, mm", unit="mm", tol_abs=0.05, printed=0.01),
     )
 
     def answers(self, v) -> dict:
@@ -50,13 +51,14 @@ class ElementsOfTiltedPhoto(Task):
 
     def hidden(self, v, got) -> list:
         # the two elements must agree with each other: on = 2·f·tg(α/2) / (1 − tg²(α/2)), with tg(α/2) = −oc/f
-        try:
-            t = -float(got["oc_mm"]) / v.f_mm
-            on_from_oc = 2.0 * v.f_mm * t / (1.0 - t * t)
-        except (TypeError, ValueError, ZeroDivisionError):
-            on_from_oc = None
-        return [Hidden("on_mm vs oc_mm", got.get("on_mm") if on_from_oc is not None else None, on_from_oc,
-                       tol_abs=0.1)]
+        def on_of(oc):
+            t = -oc / v.f_mm
+            return 2.0 * v.f_mm * t / (1.0 - t * t)
+
+        return [consistency("on_mm from your oc_mm", got.get("on_mm"), 0.01, on_of,
+                            [(numbers(got.get("oc_mm")), 0.01)])]
+
+    methods = (Method("H = f·m, on = f·tg α, oc = −f·tg(α/2)", "guide §1 (H) and §5 (the points n and c)"),)
 
 
 TASKS = (ElementsOfTiltedPhoto(),)

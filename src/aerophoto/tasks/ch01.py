@@ -15,7 +15,8 @@ import math
 from dataclasses import dataclass
 
 from .. import flight
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task, submitted_number
+from .rounding import consistency, numbers
 
 __all__ = ["typical_slips", "HeightOverlapBases", "StripsAndPhotos", "RouteAndTiming", "TASKS"]
 
@@ -91,17 +92,20 @@ class HeightOverlapBases(_PlanTask):
     title = "Height, overlap and bases"
     points = 4
     spec = (
-        Answer("H_m", "flying height H = f·m, m", unit="m"),
-        Answer("Px_percent", "forward overlap with the relief allowance, %", unit="%", tol_abs=0.02),
-        Answer("Bx_km", "photo base on the ground, km", unit="km"),
-        Answer("By_km", "distance between strips, km", unit="km"),
+        Answer("H_m", "flying height H = f·m, m", unit="m", printed=1),
+        Answer("Px_percent", "forward overlap with the relief allowance, %", unit="%", tol_abs=0.02, printed=0.01),
+        Answer("Bx_km", "photo base on the ground, km", unit="km", printed=0.001),
+        Answer("By_km", "distance between strips, km", unit="km", printed=0.001),
     )
+
+    methods = (Method("H = f·m, P_x = p_x + 40·h/H, B_x = l·(100 − P_x)/100·m, B_y likewise",
+                      "guide §2 steps 2–5 at full precision (b_x, b_y not rounded to 0.1 cm, as the task says)"),)
 
     def hidden(self, v, got) -> list:
         # the base must follow from the student's own overlap: Bx = l·(100 − Px)/100 · m
-        Px = submitted_number(got.get("Px_percent"))
-        Bx_from_Px = None if Px is None else v.frame_mm / 10 * (100 - Px) / 100 * v.m / 1e5
-        return [Hidden("Bx_km from Px_percent", got.get("Bx_km") if Bx_from_Px is not None else None, Bx_from_Px)]
+        return [consistency("Bx_km from Px_percent", got.get("Bx_km"), 0.001,
+                            lambda Px: v.frame_mm / 10 * (100 - Px) / 100 * v.m / 1e5,
+                            [(numbers(got.get("Px_percent")), 0.01)])]
 
 
 @dataclass(frozen=True)
@@ -114,8 +118,14 @@ class StripsAndPhotos(_PlanTask):
     spec = (
         Answer("K", "strips (whole number)", kind="count", rounding="up"),
         Answer("n", "photos per strip (whole number)", kind="count", rounding="up"),
-        Answer("N", "photos in all (whole number)", kind="count", rounding="up"),
+        Answer("N", "photos in all (whole number)", kind="count", rounding="exact"),
     )
+
+    methods = (Method("K = ⌈L_y/B_y + 1⌉, n = ⌈L_x/B_x + 1⌉, N = n·K", "guide §2 steps 6–8, from full-precision bases"),)
+
+    def reals(self, v) -> dict:
+        p = flight.plan(v)
+        return {"K": p.K_ratio + 1, "n": p.n_ratio + 1}
 
     def hidden(self, v, got) -> list:
         # N is the product of the student's own counts
@@ -132,17 +142,18 @@ class RouteAndTiming(_PlanTask):
     title = "Route, time, exposure and interval"
     points = 4
     spec = (
-        Answer("LS_km", "route length, km", unit="km"),
-        Answer("TS_h", "flight time, h", unit="h"),
-        Answer("tmax_s", "longest admissible exposure, s", unit="s"),
-        Answer("tau_s", "interval between exposures, s", unit="s"),
+        Answer("LS_km", "route length, km", unit="km", printed=1),
+        Answer("TS_h", "flight time, h", unit="h", printed=0.01),
+        Answer("tmax_s", "longest admissible exposure, s", unit="s", printed=1e-05),
+        Answer("tau_s", "interval between exposures, s", unit="s", printed=0.01),
     )
+
+    methods = (Method("L_S = 1.2·S/B_y, T_S = L_S/W, t_max = δ·M/W, τ = B_x/W", "guide §2 steps 9–12"),)
 
     def hidden(self, v, got) -> list:
         # the flight time follows from the student's own route length
-        LS = submitted_number(got.get("LS_km"))
-        TS_from_LS = None if LS is None else LS / v.W_kmh
-        return [Hidden("TS_h from LS_km", got.get("TS_h") if TS_from_LS is not None else None, TS_from_LS)]
+        return [consistency("TS_h from LS_km", got.get("TS_h"), 0.01, lambda LS: LS / v.W_kmh,
+                            [(numbers(got.get("LS_km")), 1)])]
 
 
 TASKS = (HeightOverlapBases(), StripsAndPhotos(), RouteAndTiming())

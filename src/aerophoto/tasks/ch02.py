@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import quality as q
 from ..labs.ch02 import measurement_table, strip_measurements
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task, submitted_number
 
 __all__ = ["reference_answers", "MeasureStrip", "JudgeStrip", "TASKS"]
 
@@ -62,10 +62,13 @@ class MeasureStrip(_StripTask):
     title = "Measure your strip"
     points = 3
     spec = (
-        Answer("Px_percent", "forward overlap of photos 1–2, %", unit="%", tol_abs=0.05),
-        Answer("dm_percent", "scale difference of photos 2–3, % (signed)", unit="%", tol_abs=0.02),
-        Answer("n_percent", "straightness of the strip, %", unit="%", tol_abs=0.02),
+        Answer("Px_percent", "forward overlap of photos 1–2, %", unit="%", tol_abs=0.05, printed=0.01),
+        Answer("dm_percent", "scale difference of photos 2–3, % (signed)", unit="%", tol_abs=0.02, printed=0.01),
+        Answer("n_percent", "straightness of the strip, %", unit="%", tol_abs=0.02, printed=0.01),
     )
+
+    methods = (Method("P_x = a/b·100 (3.1), Δm/m = (b₁ − b₂)/b₁·100 (3.4), n = l/L·100 (3.3)",
+                      "guide §3, from the technician's readings"),)
 
     def slips(self, v) -> dict:
         d = strip_measurements(v)
@@ -88,14 +91,17 @@ class JudgeStrip(_StripTask):
     points = 3
     cross_variant = False
     spec = (
-        Answer("crab_limit_deg", "largest crab for your f, degrees", unit="°", tol_abs=0.05),
-        Answer("alpha_read_deg", "tilt read on the level, degrees", unit="°", tol_abs=0.01),
+        Answer("crab_limit_deg", "largest crab for your f, degrees", unit="°", tol_abs=0.05, printed=0.1),
+        Answer("alpha_read_deg", "tilt read on the level, degrees", unit="°", tol_abs=0.05, printed=0.1),
         Answer("px_ok", "True / False", kind="bool", hint="compare P_x with the 56 % rejection threshold (guide §3)."),
         Answer("dm_ok", kind="bool", hint="compare |Δm/m| with 3 %."),
         Answer("n_ok", kind="bool", hint="compare n with 2 % (H > 750 m) or 3 %."),
         Answer("crab_ok", kind="bool", hint="compare |φ| with the limit for your f."),
         Answer("tilt_ok", kind="bool", hint="compare the level reading with 3°."),
     )
+
+    methods = (Method("the book's crab rule for f, the level read to whole divisions of 30′, the five norms of §3",
+                      "guide §3"),)
 
     def slips(self, v) -> dict:
         d = strip_measurements(v)

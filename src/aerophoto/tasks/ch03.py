@@ -34,10 +34,12 @@ import numpy as np
 
 from ..displacement import base_lengths_mm
 from ..labs.displacement import RELIEF_BASES, RELIEF_NAMES, relief_sheet
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task, Withheld
+from .rounding import consistency, count_range, numbers as _numbers
 
 __all__ = ["TOL_XY_MM", "TOL_LEN_MM", "TOL_M_I", "TOL_M_PART", "TOL_M_CP", "TOL_DM_PCT", "BASE_LABELS",
            "ZONES", "numbers", "scale_answers", "scale_spec", "scale_hidden", "sheet_answers", "sheet_hidden",
+           "corrected_count", "chained_scales", "SHEET_WITHHELD", "sheet_inputs",
            "ReliefTable2", "ReliefTable3", "ReliefTable4", "TASKS"]
 
 #: a coordinate read with the measuring tool (to 0.1 mm) may be this far from the truth, mm
@@ -52,19 +54,20 @@ TOL_M_CP = 0.015
 TOL_DM_PCT = 1.5
 BASE_LABELS = tuple(f"{a}-{b}" for a, b in RELIEF_BASES)
 ZONES = ("I", "II")
+#: what a lab sheet knows that its tasks ask for (the student reads the marks with the measuring tools)
+SHEET_WITHHELD = ("work", "reference", "photo_xy_mm", "plan_xy_mm", "l_photo_mm", "l_plan_mm", "n_mm", "c_mm",
+                  "Z_mean_m", "H_m", "mean_plane_xy_mm", "vertical_xy_mm", "XYZ_m", "pose")
+
+
+def sheet_inputs(sheet) -> Withheld:
+    """A lab sheet (:class:`aerophoto.labs.displacement.LabSheet`) as its tasks give it: the photo, the plan, the
+    marks to measure, the heights and the summary — not its solution (:data:`SHEET_WITHHELD`)."""
+    return Withheld(sheet, SHEET_WITHHELD, why="it is what your tables compute — measure the marks with the tools")
 
 
 def numbers(x, n: int):
     """A submitted sequence as a float array of length ``n``, or None if it is not ``n`` finite numbers."""
-    if x is None or x is Ellipsis or isinstance(x, (str, bytes, dict, bool)):
-        return None
-    try:
-        out = np.array([float(e) for e in (x.tolist() if hasattr(x, "tolist") else x)], dtype=float)
-    except (TypeError, ValueError):
-        return None
-    if len(out) != n or not np.all(np.isfinite(out)):
-        return None
-    return out
+    return _numbers(x, n)
 
 
 def _floats(a) -> list:
@@ -77,60 +80,61 @@ def scale_answers(table, lsn_name: str = "lsn_mm") -> dict:
             "m_part": _floats(table.m_part), "m_cp": float(table.m_mean), "dm_pct": _floats(100.0 * table.relative_dm)}
 
 
-def scale_spec(zones: tuple, bases: tuple, *, lsn_name: str = "lsn_mm", lsn_text: str) -> tuple:
-    """The answers of a scale table (2, 4, 5, 7): l_сн, m_i, m_част, m_cp, Δm_i/m_cp."""
+def scale_spec(zones: tuple, bases: tuple, *, lsn_name: str = "lsn_mm", lsn_text: str,
+               m_printed: float = 10) -> tuple:
+    """The answers of a scale table (2, 4, 5, 7): l_сн, m_i, m_част, m_cp, Δm_i/m_cp.
+
+    ``m_printed`` is the unit the guide prints the scale denominators in (10 in §4's tables 2 and 4, 1 in §5's).
+    """
     return (
-        Answer(lsn_name, lsn_text, unit="mm", kind="values", tol_abs=TOL_LEN_MM, labels=bases),
+        Answer(lsn_name, lsn_text, unit="mm", kind="values", tol_abs=TOL_LEN_MM, labels=bases, printed=0.1),
         Answer("m_i", "scale denominators m_i = l_пл·M/l_сн of the bases", kind="values", tol_rel=TOL_M_I,
-               labels=bases),
+               labels=bases, printed=m_printed),
         Answer("m_part", f"partial scale denominators m_част of zones {', '.join(zones)}", kind="values",
-               tol_rel=TOL_M_PART, labels=tuple(f"zone {z}" for z in zones)),
-        Answer("m_cp", "mean scale denominator m_cp", tol_rel=TOL_M_CP),
+               tol_rel=TOL_M_PART, labels=tuple(f"zone {z}" for z in zones), printed=m_printed),
+        Answer("m_cp", "mean scale denominator m_cp", tol_rel=TOL_M_CP, printed=m_printed),
         Answer("dm_pct", "Δm_i/m_cp of each zone, % (Δm_i = m_част − m_cp, with its sign)", unit="%",
-               kind="values", tol_abs=TOL_DM_PCT, labels=tuple(f"zone {z}" for z in zones)),
+               kind="values", tol_abs=TOL_DM_PCT, labels=tuple(f"zone {z}" for z in zones), printed=0.01),
     )
 
 
-def _dev(a, b) -> float:
-    return float(np.max(np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float))))
+def _zone_means(values, bases, zones):
+    values = np.asarray(values, dtype=float)
+    return np.array([np.mean([m for m, (a, _) in zip(values, bases) if a == z]) for z in zones])
 
 
 def scale_hidden(got: dict, bases: tuple, M: float, *, lsn_name: str = "lsn_mm", l_plan=None,
-                 l_plan_truth=None) -> list:
+                 l_plan_truth=None, m_printed: float = 10) -> list:
     """Hidden checks of a scale table: every column follows from the student's own previous column.
 
     m_i from the student's l_пл (``l_plan``, submitted) or — when the plan lengths are not part of the task —
-    the student's m_i·l_сн/M against the true plan lengths within the measuring tolerance; m_част, m_cp and
-    Δm/m_cp from the student's own m_i.
+    from the true plan lengths ``l_plan_truth`` and the student's l_сн, within what a plan reading may be off
+    (:data:`TOL_LEN_MM`); m_част, m_cp and Δm/m_cp from the student's own m_i.  Each tolerance is what the
+    rounding of the values it uses allows (:func:`aerophoto.tasks.rounding.consistency`; scale denominators
+    printed to ``m_printed``).
     """
     nb = len(bases)
     zones = tuple(dict.fromkeys(a for a, _ in bases))
     lsn = numbers(got.get(lsn_name), nb)
     m_i = numbers(got.get("m_i"), nb)
     m_part = numbers(got.get("m_part"), len(zones))
-    m_cp = submitted_number(got.get("m_cp"))
-    dm = numbers(got.get("dm_pct"), len(zones))
-    out = []
-    if l_plan is not None:
-        ok = lsn is not None and m_i is not None and np.all(lsn > 0) and np.all(l_plan > 0)
-        rel = _dev(m_i / (l_plan * M / lsn), 1.0) if ok else None
-        out.append(Hidden("m_i from your l_пл and l_сн", rel, 0.0, tol_abs=0.002))
+    m_cp = _numbers(got.get("m_cp"))
+    if l_plan is not None or l_plan_truth is None:
+        first = consistency("m_i from your l_пл and l_сн", got.get("m_i"), m_printed, lambda lp, ls: lp * M / ls,
+                            [(l_plan, 0.1), (lsn, 0.1)], n=nb)
     else:
-        ok = lsn is not None and m_i is not None
-        dev = _dev(m_i * lsn / M, l_plan_truth) if ok else None
-        out.append(Hidden("m_i·l_сн/M gives the plan lengths", dev, 0.0, tol_abs=TOL_LEN_MM))
-    if m_i is not None and m_part is not None:
-        own = np.array([np.mean([m for m, (a, _) in zip(m_i, bases) if a == z]) for z in zones])
-        out.append(Hidden("m_част from your m_i", _dev(m_part / own, 1.0), 0.0, tol_abs=0.001))
-    else:
-        out.append(Hidden("m_част from your m_i", None, 0.0))
-    ok = m_part is not None and m_cp is not None and m_cp > 0
-    out.append(Hidden("m_cp from your m_част", abs(m_cp / float(np.mean(m_part)) - 1.0) if ok else None, 0.0,
-                      tol_abs=0.001))
-    ok = ok and dm is not None
-    out.append(Hidden("Δm/m_cp from your m_част and m_cp", _dev(dm, 100.0 * (m_part - m_cp) / m_cp) if ok else None,
-                      0.0, tol_abs=0.02))
-    return out
+        truth = np.asarray(l_plan_truth, dtype=float)
+        extra = None if lsn is None else np.abs(TOL_LEN_MM * M / lsn)
+        first = consistency("m_i·l_сн/M gives the plan lengths", got.get("m_i"), m_printed,
+                            lambda ls: truth * M / ls, [(lsn, 0.1)], n=nb, extra=0.0 if extra is None else extra)
+    return [first,
+            consistency("m_част from your m_i", got.get("m_part"), m_printed,
+                        lambda mi: _zone_means(mi, bases, zones), [(m_i, m_printed)], n=len(zones)),
+            consistency("m_cp from your m_част", got.get("m_cp"), m_printed, lambda mp: float(np.mean(mp)),
+                        [(m_part, m_printed)]),
+            consistency("Δm/m_cp from your m_част and m_cp", got.get("dm_pct"), 0.01,
+                        lambda mp, mc: 100.0 * (mp - mc) / mc, [(m_part, m_printed), (m_cp, m_printed)],
+                        n=len(zones))]
 
 
 def sheet_answers(sheet, table) -> dict:
@@ -145,19 +149,18 @@ def sheet_answers(sheet, table) -> dict:
             **scale_answers(table)}
 
 
-def sheet_hidden(got: dict, sheet, names: tuple, bases: tuple) -> list:
-    """Hidden checks of a lab sheet's first table (tasks 03.1 and 04.2): l_сн from the student's own x, y (within
-    0.06 mm), then every scale column from the student's previous one (:func:`scale_hidden`, with their l_пл).
+def sheet_hidden(got: dict, sheet, names: tuple, bases: tuple, m_printed: float = 10) -> list:
+    """Hidden checks of a lab sheet's first table (tasks 03.1 and 04.2): l_сн from the student's own x, y, then
+    every scale column from the student's previous one (:func:`scale_hidden`, with their l_пл).
 
     ``names`` are the sheet's points in the order of ``x_mm``/``y_mm``, ``bases`` its (zone point, point) pairs.
     """
     xy = [numbers(got.get(k), len(names)) for k in ("x_mm", "y_mm")]
-    lsn = numbers(got.get("lsn_mm"), len(bases))
-    dev = None
-    if xy[0] is not None and xy[1] is not None and lsn is not None:
-        dev = _dev(lsn, base_lengths_mm(names, np.column_stack(xy), bases))
     lpl = numbers(got.get("lpl_mm"), len(bases))
-    return [Hidden("l_сн from your x, y", dev, 0.0, tol_abs=0.06), *scale_hidden(got, bases, sheet.M, l_plan=lpl)]
+    return [consistency("l_сн from your x, y", got.get("lsn_mm"), 0.1,
+                        lambda x, y: base_lengths_mm(names, np.column_stack([x, y]), bases),
+                        [(xy[0], 0.1), (xy[1], 0.1)], n=len(bases)),
+            *scale_hidden(got, bases, sheet.M, l_plan=lpl, m_printed=m_printed)]
 
 
 # =========================================================================== task 03.1
@@ -171,17 +174,23 @@ class ReliefTable2(Task):
     cross_variant = False
     spec = (
         Answer("x_mm", "x of I, 1, 2, II, 3, 4 on your photo, mm (measured)", unit="mm", kind="values",
-               tol_abs=TOL_XY_MM, labels=RELIEF_NAMES),
+               tol_abs=TOL_XY_MM, labels=RELIEF_NAMES, printed=0.1),
         Answer("y_mm", "y of I, 1, 2, II, 3, 4 on your photo, mm (measured)", unit="mm", kind="values",
-               tol_abs=TOL_XY_MM, labels=RELIEF_NAMES),
+               tol_abs=TOL_XY_MM, labels=RELIEF_NAMES, printed=0.1),
         Answer("lpl_mm", "plan lengths l_пл of I-1, I-2, II-3, II-4, mm (measured on the plan)", unit="mm",
-               kind="values", tol_abs=TOL_LEN_MM, labels=BASE_LABELS),
+               kind="values", tol_abs=TOL_LEN_MM, labels=BASE_LABELS, printed=0.1),
         *scale_spec(ZONES, BASE_LABELS, lsn_text="photo lengths l_сн of I-1, I-2, II-3, II-4, mm"),
     )
 
+    methods = (Method("readings with the measuring tool, then formulas 5.1, 5.2 column by column",
+                      "guide §4 step 3, table 2"),
+               Method("each column from the previous one as written (to the printed units)",
+                      "the guide's table 2 rounds every column before the next",
+                      submit=lambda task, v: chained_scales(task.answers(v), RELIEF_BASES, 10000.0, 10)))
+
     def inputs(self, v):
         """The student's lab sheet (:class:`aerophoto.labs.displacement.LabSheet`): photo, plan, heights."""
-        return relief_sheet(int(v.i))
+        return sheet_inputs(relief_sheet(int(v.i)))
 
     def answers(self, v) -> dict:
         sheet = relief_sheet(int(v.i))
@@ -202,19 +211,19 @@ class ReliefTable3(Task):
     points = 4
     cross_variant = False
     spec = (
-        Answer("Zcp_m", "mean object plane Z_cp, m", unit="m", tol_abs=0.05),
-        Answer("H_m", "flying height H = m_cp·f above it, m", unit="m", tol_rel=0.02),
-        Answer("xn_mm", "x of the nadir point n, mm", unit="mm", tol_abs=0.05),
-        Answer("yn_mm", "y of the nadir point n, mm", unit="mm", tol_abs=0.05),
+        Answer("Zcp_m", "mean object plane Z_cp, m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("H_m", "flying height H = m_cp·f above it, m", unit="m", tol_rel=0.02, printed=1),
+        Answer("xn_mm", "x of the nadir point n, mm", unit="mm", tol_abs=0.05, printed=0.01),
+        Answer("yn_mm", "y of the nadir point n, mm", unit="mm", tol_abs=0.05, printed=0.01),
         Answer("r_mm", "distances r of I, 1, 2, II, 3, 4 from n, mm", unit="mm", kind="values", tol_abs=0.3,
-               labels=RELIEF_NAMES),
+               labels=RELIEF_NAMES, printed=0.1),
         Answer("dh_mm", "relief displacements δh = r·h/H of the six points, mm (+ away from n)", unit="mm",
-               kind="values", tol_abs=0.01, tol_rel=0.03, labels=RELIEF_NAMES),
+               kind="values", tol_abs=0.01, tol_rel=0.03, labels=RELIEF_NAMES, printed=0.01),
         Answer("n_corr", "number of points corrected (|δh| > 0.2 mm)", integer=True),
     )
 
     def inputs(self, v):
-        return relief_sheet(int(v.i))
+        return sheet_inputs(relief_sheet(int(v.i)))
 
     def answers(self, v) -> dict:
         sheet = relief_sheet(int(v.i))
@@ -240,18 +249,51 @@ class ReliefTable3(Task):
                       turned: float(n[0])},
         }
 
+    methods = (Method("Z_cp from the zones' mean heights, H = m_cp·f, n at f·tg α on the negative principal vertical, "
+                      "δh = r·h/H (4.1)", "guide §4 step 4, table 3"),)
+
     def hidden(self, v, got) -> list:
         """δh from the student's own r, H and Z_cp (and the given heights); the count from the student's own δh."""
         Z = relief_sheet(int(v.i)).Z_given_m
-        r = numbers(got.get("r_mm"), len(Z))
-        dh = numbers(got.get("dh_mm"), len(Z))
-        H, Zcp = submitted_number(got.get("H_m")), submitted_number(got.get("Zcp_m"))
-        dev = None
-        if r is not None and dh is not None and H and Zcp is not None:
-            dev = _dev(dh, r * (Z - Zcp) / H)
-        count = None if dh is None else int(np.count_nonzero(np.abs(dh) > 0.2))
-        return [Hidden("δh from your r, H and Z_cp", dev, 0.0, tol_abs=0.006),
-                Hidden("n_corr from your δh", got.get("n_corr") if count is not None else None, count, kind="count")]
+        r, dh = numbers(got.get("r_mm"), len(Z)), numbers(got.get("dh_mm"), len(Z))
+        H, Zcp = _numbers(got.get("H_m")), _numbers(got.get("Zcp_m"))
+        return [consistency("δh from your r, H and Z_cp", got.get("dh_mm"), 0.01,
+                            lambda r_, H_, Z_: r_ * (Z - Z_) / H_, [(r, 0.1), (H, 1), (Zcp, 0.01)], n=len(Z)),
+                corrected_count("n_corr from your δh", got.get("n_corr"), dh, 0.01, 0.2)]
+
+
+def corrected_count(name: str, n_corr, displacements, printed: float, limit: float) -> Hidden:
+    """The count of points to correct must follow from the student's own displacements: any count their rounding
+    allows (a displacement within its allowance of ``limit`` may go either way)."""
+    if displacements is None:
+        return Hidden(name, None, None, kind="count")
+    lo, hi = count_range(displacements, printed, limit)
+    exact = int(np.count_nonzero(np.abs(displacements) > limit))
+    return Hidden(name, n_corr, exact, kind="count", accepted=tuple(range(lo, hi + 1)))
+
+
+def chained_scales(ref: dict, bases: tuple, M: float, m_printed: float, lsn_name: str = "lsn_mm") -> dict:
+    """The scale columns of a sheet computed as the guide's tables do: each from the previous one as written.
+
+    l_пл and l_сн rounded to 0.1 mm, then m_i = l_пл·M/l_сн, m_част, m_cp and Δm/m_cp, each rounded to its printed
+    unit before the next (the method of guide tables 2, 4, 5, 7).  ``ref`` holds the reference answers; without
+    ``lpl_mm`` (tables 4, 7) the plan lengths follow from the reference m_i and l_сн.
+    """
+    from .rounding import round_to
+
+    zones = tuple(dict.fromkeys(a for a, _ in bases))
+    ls = round_to(np.asarray(ref[lsn_name], float), 0.1)
+    lp = np.asarray(ref["lpl_mm"], float) if "lpl_mm" in ref else np.asarray(ref["m_i"], float) * np.asarray(
+        ref[lsn_name], float) / M
+    lp = round_to(lp, 0.1)
+    mi = round_to(lp * M / ls, m_printed)
+    mp = round_to(_zone_means(mi, bases, zones), m_printed)
+    mc = float(round_to(float(np.mean(mp)), m_printed))
+    dm = round_to(100.0 * (mp - mc) / mc, 0.01)
+    out = {lsn_name: _floats(ls), "m_i": _floats(mi), "m_part": _floats(mp), "m_cp": mc, "dm_pct": _floats(dm)}
+    if "lpl_mm" in ref:
+        out["lpl_mm"] = _floats(lp)
+    return out
 
 
 # =========================================================================== task 03.3
@@ -267,7 +309,14 @@ class ReliefTable4(Task):
                       lsn_text="photo lengths l_сн of I-1, I-2, II-3, II-4 between the corrected points, mm")
 
     def inputs(self, v):
-        return relief_sheet(int(v.i))
+        return sheet_inputs(relief_sheet(int(v.i)))
+
+    methods = (Method("each point with |δh| > 0.2 mm moved by δh along the ray from n, then table 2's formulas",
+                      "guide §4 steps 5–6, table 4"),
+               Method("each column from the previous one as written (to the printed units)",
+                      "the guide's table 4 rounds every column before the next",
+                      submit=lambda task, v: chained_scales(task.answers(v), RELIEF_BASES, 10000.0, 10,
+                                                            "lsn_corr_mm")))
 
     def answers(self, v) -> dict:
         return scale_answers(relief_sheet(int(v.i)).work().table4, "lsn_corr_mm")

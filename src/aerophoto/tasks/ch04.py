@@ -33,9 +33,10 @@ import numpy as np
 from .. import displacement as d
 from .. import geometry as g
 from ..labs.displacement import TILT_BASES, TILT_NAMES, tilt_sheet
-from .base import Answer, Hidden, Task, submitted_number
-from .ch03 import (TOL_LEN_MM, TOL_XY_MM, numbers, scale_answers, scale_hidden, scale_spec, sheet_answers,
-                   sheet_hidden)
+from .base import Answer, Method, Task
+from .ch03 import (TOL_LEN_MM, TOL_XY_MM, chained_scales, corrected_count, numbers, scale_answers, scale_hidden, scale_spec,
+                   sheet_answers, sheet_hidden, sheet_inputs)
+from .rounding import consistency, numbers as number
 
 __all__ = ["BASE_LABELS", "ZONES", "TOL_PHI_DEG", "Isocentre", "TiltTable5", "TiltTable6", "TiltTable7", "TASKS"]
 
@@ -49,10 +50,6 @@ def _floats(a) -> list:
     return [float(x) for x in np.ravel(a)]
 
 
-def _dev(a, b) -> float:
-    return float(np.max(np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float))))
-
-
 # =========================================================================== task 04.1
 @dataclass(frozen=True)
 class Isocentre(Task):
@@ -62,9 +59,9 @@ class Isocentre(Task):
     title = "The isocentre on your photo"
     points = 2
     spec = (
-        Answer("oc_mm", "o to c along the principal vertical, guide's sign, mm", unit="mm", tol_abs=0.05),
-        Answer("xc_mm", "x of the isocentre c, mm", unit="mm", tol_abs=0.05),
-        Answer("yc_mm", "y of the isocentre c, mm", unit="mm", tol_abs=0.05),
+        Answer("oc_mm", "o to c along the principal vertical, guide's sign, mm", unit="mm", tol_abs=0.05, printed=0.01),
+        Answer("xc_mm", "x of the isocentre c, mm", unit="mm", tol_abs=0.05, printed=0.01),
+        Answer("yc_mm", "y of the isocentre c, mm", unit="mm", tol_abs=0.05, printed=0.01),
     )
 
     def answers(self, v) -> dict:
@@ -83,11 +80,14 @@ class Isocentre(Task):
             "yc_mm": {turned: 0.0},
         }
 
+    methods = (Method("oc = −f·tg(α/2); c at |oc| from o along the principal vertical (direction λ)",
+                      "guide §5 step 1"),)
+
     def hidden(self, v, got) -> list:
-        """c lies at the distance |oc| from o."""
-        xc, yc = submitted_number(got.get("xc_mm")), submitted_number(got.get("yc_mm"))
-        dist = None if xc is None or yc is None else math.hypot(xc, yc)
-        return [Hidden("|oc| from xc, yc", dist, abs(d.isocentre_offset(v.f_mm, v.alpha_deg)), tol_abs=0.05)]
+        """c lies at the distance |oc| from o (the student's own oc)."""
+        oc = number(got.get("oc_mm"))
+        return [consistency("|oc| from your xc_mm, yc_mm", None if oc is None else abs(oc), 0.01, math.hypot,
+                            [(number(got.get("xc_mm")), 0.01), (number(got.get("yc_mm")), 0.01)])]
 
 
 # =========================================================================== task 04.2
@@ -101,25 +101,31 @@ class TiltTable5(Task):
     cross_variant = False
     spec = (
         Answer("x_mm", "x of I, 1, 2, II, 3, 4, III, 5, 6 on your photo, mm (measured)", unit="mm", kind="values",
-               tol_abs=TOL_XY_MM, labels=TILT_NAMES),
+               tol_abs=TOL_XY_MM, labels=TILT_NAMES, printed=0.1),
         Answer("y_mm", "y of the nine points on your photo, mm (measured)", unit="mm", kind="values",
-               tol_abs=TOL_XY_MM, labels=TILT_NAMES),
+               tol_abs=TOL_XY_MM, labels=TILT_NAMES, printed=0.1),
         Answer("lpl_mm", "plan lengths l_пл of I-1, I-2, II-3, II-4, III-5, III-6, mm (measured on the plan)",
-               unit="mm", kind="values", tol_abs=TOL_LEN_MM, labels=BASE_LABELS),
-        *scale_spec(ZONES, BASE_LABELS, lsn_text="photo lengths l_сн of the six bases, mm"),
+               unit="mm", kind="values", tol_abs=TOL_LEN_MM, labels=BASE_LABELS, printed=0.1),
+        *scale_spec(ZONES, BASE_LABELS, lsn_text="photo lengths l_сн of the six bases, mm", m_printed=1),
     )
 
     def inputs(self, v):
         """The student's lab sheet (:class:`aerophoto.labs.displacement.LabSheet`): photo and plan."""
-        return tilt_sheet(int(v.i))
+        return sheet_inputs(tilt_sheet(int(v.i)))
 
     def answers(self, v) -> dict:
         sheet = tilt_sheet(int(v.i))
         return sheet_answers(sheet, sheet.work().table5)
 
+    methods = (Method("readings with the measuring tool, then formulas 5.1, 5.2 column by column",
+                      "guide §5 steps 6–8, table 5"),
+               Method("each column from the previous one as written (to the printed units)",
+                      "the guide's table 5 rounds every column before the next",
+                      submit=lambda task, v: chained_scales(task.answers(v), TILT_BASES, 10000.0, 1)))
+
     def hidden(self, v, got) -> list:
         """l_сн from the student's own coordinates; every scale column from the student's previous one."""
-        return sheet_hidden(got, tilt_sheet(int(v.i)), TILT_NAMES, TILT_BASES)
+        return sheet_hidden(got, tilt_sheet(int(v.i)), TILT_NAMES, TILT_BASES, m_printed=1)
 
 
 # =========================================================================== task 04.3
@@ -133,33 +139,33 @@ class TiltTable6(Task):
     cross_variant = False
     spec = (
         Answer("rc_mm", "distances r_c of the nine points from c, mm", unit="mm", kind="values", tol_abs=0.3,
-               labels=TILT_NAMES),
+               labels=TILT_NAMES, printed=0.1),
         Answer("phi_deg", "angles φ from the + principal vertical, counter-clockwise, 0 ≤ φ < 360°", unit="°",
-               kind="values", tol_abs=TOL_PHI_DEG, labels=TILT_NAMES),
+               kind="values", tol_abs=TOL_PHI_DEG, labels=TILT_NAMES, printed=0.1),
         Answer("da_mm", "tilt displacements δα of the nine points, mm", unit="mm", kind="values", tol_abs=0.02,
-               tol_rel=0.03, labels=TILT_NAMES),
+               tol_rel=0.03, labels=TILT_NAMES, printed=0.01),
         Answer("n_corr", "number of points corrected (|δα| > 0.2 mm)", integer=True),
     )
 
     def inputs(self, v):
-        return tilt_sheet(int(v.i))
+        return sheet_inputs(tilt_sheet(int(v.i)))
 
     def answers(self, v) -> dict:
         t6 = tilt_sheet(int(v.i)).work().table6
         return {"rc_mm": _floats(t6.r_c_mm), "phi_deg": _floats(t6.phi_deg), "da_mm": _floats(t6.delta_approx_mm),
                 "n_corr": int(t6.n_applied)}
 
+    methods = (Method("r_c and φ about c, δα = −(r_c²·cos φ/f)·sin α", "guide §5 step 9, table 6"),)
+
     def hidden(self, v, got) -> list:
         """δα from the student's own r_c and φ; the count from the student's own δα."""
         n = len(TILT_NAMES)
         r, phi, da = (numbers(got.get(k), n) for k in ("rc_mm", "phi_deg", "da_mm"))
-        dev = None
-        if r is not None and phi is not None and da is not None:
-            own = -(r**2) * np.cos(np.radians(phi)) / v.f_mm * math.sin(math.radians(v.alpha_deg))
-            dev = _dev(da, own)
-        count = None if da is None else int(np.count_nonzero(np.abs(da) > 0.2))
-        return [Hidden("δα from your r_c and φ", dev, 0.0, tol_abs=0.006),
-                Hidden("n_corr from your δα", got.get("n_corr") if count is not None else None, count, kind="count")]
+        sin_a = math.sin(math.radians(v.alpha_deg))
+        return [consistency("δα from your r_c and φ", got.get("da_mm"), 0.01,
+                            lambda r_, p_: -(r_**2) * np.cos(np.radians(p_)) / v.f_mm * sin_a,
+                            [(r, 0.1), (phi, 0.1)], n=n),
+                corrected_count("n_corr from your δα", got.get("n_corr"), da, 0.01, 0.2)]
 
 
 # =========================================================================== task 04.4
@@ -172,17 +178,24 @@ class TiltTable7(Task):
     points = 3
     cross_variant = False
     spec = scale_spec(ZONES, BASE_LABELS, lsn_name="lsn_corr_mm",
-                      lsn_text="photo lengths l_сн of the six bases between the corrected points, mm")
+                      lsn_text="photo lengths l_сн of the six bases between the corrected points, mm", m_printed=1)
 
     def inputs(self, v):
-        return tilt_sheet(int(v.i))
+        return sheet_inputs(tilt_sheet(int(v.i)))
 
     def answers(self, v) -> dict:
         return scale_answers(tilt_sheet(int(v.i)).work().table7, "lsn_corr_mm")
 
+    methods = (Method("each point with |δα| > 0.2 mm moved by δα along the ray from c, then table 5's formulas",
+                      "guide §5 steps 10–11, table 7"),
+               Method("each column from the previous one as written (to the printed units)",
+                      "the guide's table 7 rounds every column before the next",
+                      submit=lambda task, v: chained_scales(task.answers(v), TILT_BASES, 10000.0, 1, "lsn_corr_mm")))
+
     def hidden(self, v, got) -> list:
         sheet = tilt_sheet(int(v.i))
-        return scale_hidden(got, TILT_BASES, sheet.M, lsn_name="lsn_corr_mm", l_plan_truth=sheet.l_plan_mm)
+        return scale_hidden(got, TILT_BASES, sheet.M, lsn_name="lsn_corr_mm", l_plan_truth=sheet.l_plan_mm,
+                            m_printed=1)
 
 
 TASKS = (Isocentre(), TiltTable5(), TiltTable6(), TiltTable7())

@@ -37,7 +37,6 @@ student's readings are their own, and recognising another's would assemble all
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,29 +44,23 @@ import pandas as pd
 
 from .. import mosaic as mo
 from ..labs.ch05 import BASE_LABELS, answers_of, scale_readings, seam_readings
-from .base import Answer, Hidden, Task
+from .base import Answer, Hidden, Method, Task
+from .rounding import consistency, numbers
 
-__all__ = ["TOL_SCALE", "TOL_OWN", "SeamQuality", "MeanScale", "TASKS"]
+__all__ = ["TOL_SCALE", "DESIGN_SCALE", "SeamQuality", "MeanScale", "TASKS"]
 
+#: slip hint of task 05.2: the photos' design scale typed instead of the fotoschema's own
+DESIGN_SCALE = "that is your photos' design scale 1:m; the fotoschema's scale comes from your bases: m_i = L_i·M/l_i"
 #: tolerance of the scales (relative): l and L rounded to 0.1 mm before dividing change m_i by up to 0.035 %
 TOL_SCALE = 0.0005
-#: the hidden checks hold m_i to the student's own l, L (and m to their own m_i) to about one unit of m
-#: (rounding m_i to whole numbers passes; a value that does not come from their own bases does not —
-#: e.g. the photos' design scale 1:m typed for every m_i, which for a long-focus variant lies within
-#: TOL_SCALE of the true partial scales)
-TOL_OWN = 5e-5
+
 
 def _numbers(x, n: int | None = None):
     """``x`` as a list of finite floats (of length ``n`` if given), or None."""
-    if x is None or x is Ellipsis or isinstance(x, (str, bytes, dict, bool)):
-        return None
-    try:
-        out = [float(e) for e in (x.tolist() if hasattr(x, "tolist") else x)]
-    except (TypeError, ValueError):
-        return None
-    if (n is not None and len(out) != n) or not out or not all(math.isfinite(e) for e in out):
-        return None
-    return out
+    if n is None:
+        n = len(x) if hasattr(x, "__len__") and not isinstance(x, (str, bytes, dict)) else -1
+    out = numbers(x, n) if n > 0 else None
+    return None if out is None else [float(e) for e in out]
 
 
 # =========================================================================== task 05.1
@@ -80,9 +73,9 @@ class SeamQuality(Task):
     points = 4
     cross_variant = False
     spec = (
-        Answer("dI_mm", "ΔI at every check point, in the table's order, mm", unit="mm", kind="values", tol_abs=0.05),
-        Answer("m_rms_mm", "RMS of the mismatches m, mm", unit="mm", tol_abs=0.005),
-        Answer("n_cutouts", "number of cut-outs (whole number)", kind="count", rounding="nearest"),
+        Answer("dI_mm", "ΔI at every check point, in the table's order, mm", unit="mm", kind="values", tol_abs=0.05, printed=0.1),
+        Answer("m_rms_mm", "RMS of the mismatches m, mm", unit="mm", tol_abs=0.005, printed=0.001),
+        Answer("n_cutouts", "number of cut-outs (whole number)", kind="count", rounding="exact"),
         Answer("seams_ok", "True / False", kind="bool", hint="compare the most negative ΔI with −0.5 mm (guide §6)."),
     )
 
@@ -106,16 +99,20 @@ class SeamQuality(Task):
             "n_cutouts": {"you counted the duplicates (+): cut-outs are the negative ΔI.": int(np.sum(dI > 0))},
         }
 
+    methods = (Method("ΔI = contour − prick with the guide's signs, m = √(ΣΔI²/n) (6.2), cut-outs the negative ΔI",
+                      "guide §6 step 8"),)
+
     def hidden(self, v, got) -> list:
-        """m, the count and the verdict must follow from the student's own ΔI."""
+        """m, the count and the verdict must follow from the student's own ΔI (readings to 0.1 mm: exact
+        multiples, so the count and the verdict are read from ΔI rounded to 0.01 mm)."""
         dI = _numbers(got.get("dI_mm"))
         if dI is None:
             return [Hidden("m_rms_mm from your ΔI", None, None), Hidden("n_cutouts from your ΔI", None, None,
                                                                          kind="count"),
                     Hidden("seams_ok from your ΔI", None, None, kind="bool")]
         d = np.round(np.array(dI), 2)
-        return [Hidden("m_rms_mm from your ΔI", got.get("m_rms_mm"), float(np.sqrt(np.mean(np.array(dI) ** 2))),
-                       tol_abs=0.005),
+        return [consistency("m_rms_mm from your ΔI", got.get("m_rms_mm"), 0.001,
+                            lambda x: float(np.sqrt(np.mean(x**2))), [(np.array(dI), 0.1)]),
                 Hidden("n_cutouts from your ΔI", got.get("n_cutouts"), int(np.sum(d < 0)), kind="count"),
                 Hidden("seams_ok from your ΔI", got.get("seams_ok"), bool(d.min() >= -mo.ALLOWED_CUTOUT_MM),
                        kind="bool")]
@@ -132,12 +129,12 @@ class MeanScale(Task):
     cross_variant = False
     spec = (
         Answer("l_mm", "the four bases on the fotoschema l_i, mm", unit="mm", kind="values", tol_abs=0.05,
-               labels=BASE_LABELS),
+               labels=BASE_LABELS, printed=0.01),
         Answer("L_mm", "the same bases on the plan L_i, mm", unit="mm", kind="values", tol_abs=0.05,
-               labels=BASE_LABELS),
+               labels=BASE_LABELS, printed=0.01),
         Answer("m_i", "four partial scale denominators m_i = L_i·M/l_i", kind="values", tol_rel=TOL_SCALE,
-               labels=BASE_LABELS),
-        Answer("m_mean", "mean scale denominator m", unit="(scale denominator)", tol_rel=TOL_SCALE),
+               labels=BASE_LABELS, printed=1),
+        Answer("m_mean", "mean scale denominator m", unit="(scale denominator)", tol_rel=TOL_SCALE, printed=1),
     )
 
     def inputs(self, v) -> pd.DataFrame:
@@ -155,20 +152,20 @@ class MeanScale(Task):
             "the partial scale is m_i = L_i·M/l_i — the plan's base times M over the fotoschema's, not the inverse.":
                 float(np.mean(l * M / L)),
             "multiply by the plan's scale denominator M = 10 000 (6.1).": float(np.mean(L / l)),
-        }}
+            DESIGN_SCALE: float(v.m),
+        }, "m_i": {DESIGN_SCALE: [float(v.m)] * 4}}
+
+    methods = (Method("l_i and L_i from the readings, m_i = L_i·M/l_i, their mean (6.1)", "guide §6 step 7"),)
 
     def hidden(self, v, got) -> list:
         """Each m_i must follow from the student's own l_i and L_i, and m from their own m_i."""
-        l, L = _numbers(got.get("l_mm"), 4), _numbers(got.get("L_mm"), 4)
-        mi = _numbers(got.get("m_i"), 4)
-        out = []
-        for j, lab in enumerate(BASE_LABELS):
-            ok = l is not None and L is not None and mi is not None and l[j] > 0
-            out.append(Hidden(f"m_i of {lab} from your l and L", mi[j] if ok else None,
-                              L[j] * float(v.M) / l[j] if ok else None, tol_rel=TOL_OWN))
-        out.append(Hidden("m_mean (mean of your m_i)", got.get("m_mean") if mi is not None else None,
-                          float(np.mean(mi)) if mi is not None else None, tol_rel=TOL_OWN))
-        return out
+        l, L = numbers(got.get("l_mm"), 4), numbers(got.get("L_mm"), 4)
+        mi = numbers(got.get("m_i"), 4)
+        M = float(v.M)
+        return [consistency("m_i from your l and L", got.get("m_i"), 1, lambda l_, L_: L_ * M / l_,
+                            [(l, 0.01), (L, 0.01)], n=4),
+                consistency("m_mean (mean of your m_i)", got.get("m_mean"), 1, lambda m_: float(np.mean(m_)),
+                            [(mi, 1)])]
 
 
 TASKS = (SeamQuality(), MeanScale())

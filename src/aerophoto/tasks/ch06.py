@@ -33,7 +33,6 @@ computes them; the tests hold them against the truth.  Chapter 12
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,11 +41,12 @@ import pandas as pd
 from .. import plane
 from .. import triangulation as tri
 from ..labs.ch06 import CENTRE, POINT_ORDER, TIE_POINTS, StripReadings, shared_readings, strip_readings
-from .base import Answer, Hidden, Task
+from .base import Answer, Hidden, Method, Task
+from .rounding import allowance, consistency, numbers, round_to, verdict_check
 
-__all__ = ["RING", "RING_LABELS", "CORRECTION_POINTS", "TOL_COEFF", "triangles_from_rays", "coefficients_from_control",
+__all__ = ["RING", "RING_LABELS", "CORRECTION_POINTS", "TOL_COEFF", "TOL_MEAN", "TOL_SPREAD", "TOL_V_REL", "triangles_from_rays", "coefficients_from_control",
            "corrections_from_points", "ErrorTriangles", "RingCoefficients", "CorrectionsForReduction",
-           "CorrectionsTask", "TASKS"]
+           "CorrectionsTask", "spread_checks", "rounded_coefficients", "corrections_with_written_k", "TASKS"]
 
 #: the four bases of a table-8 ring around the strip, in the order of task 06.2
 RING = (("36/1", "39/1"), ("39/1", "39/2"), ("39/2", "36/2"), ("36/2", "36/1"))
@@ -55,6 +55,13 @@ RING_LABELS = tuple(f"{a}–{b}" for a, b in RING)
 CORRECTION_POINTS = tuple(n for n in POINT_ORDER if n != CENTRE)
 #: the coefficient is printed to three decimals: half a unit of the last digit
 TOL_COEFF = 0.0005
+#: the mean of k written to three decimals, itself written to three decimals (guide table 8): two roundings,
+#: and what writing the lengths to 0.01 mm moves k
+TOL_MEAN = 0.0011
+#: Δk from the written k and the written mean (guide table 12): the same, once more
+TOL_SPREAD = 0.0016
+#: a correction v = r·(k − 1) with the written k_mean: r·0.0011 on |k − 1| ≥ 0.03, 3.7 % at most
+TOL_V_REL = 0.04
 # =========================================================================== the work, from the readings
 def triangles_from_rays(rays: pd.DataFrame) -> pd.DataFrame:
     """The error triangle at every tie point from the table of rays: the three sides and the largest, mm.
@@ -93,26 +100,42 @@ def corrections_from_points(points: pd.DataFrame, centre: str, k: float, names) 
 
 def _numbers(x, n: int):
     """``x`` as a list of ``n`` finite floats, or None (not answered, wrong length, not numbers)."""
-    if x is None or x is Ellipsis or isinstance(x, (str, bytes, dict, bool)):
-        return None
-    try:
-        out = [float(e) for e in (x.tolist() if hasattr(x, "tolist") else x)]
-    except (TypeError, ValueError):
-        return None
-    return out if len(out) == n and all(math.isfinite(e) for e in out) else None
+    out = numbers(x, n)
+    return None if out is None else [float(e) for e in out]
 
 
-def _verdict_hidden(name: str, got_verdict, deviations, tols, margin: float) -> Hidden:
-    """A verdict against the student's own numbers: True if all |d| ≤ tol, False if one exceeds it;
-    within ``margin`` of a tolerance either verdict is consistent."""
-    d, t = np.abs(np.asarray(deviations, dtype=float)), np.asarray(tols, dtype=float)
-    if np.all(d <= t - margin):
-        expected = True
-    elif np.any(d > t + margin):
-        expected = False
-    else:
-        expected = bool(got_verdict) if isinstance(got_verdict, (bool, np.bool_)) else True
-    return Hidden(name, got_verdict, expected, kind="bool")
+def _verdict_hidden(name: str, got_verdict, deviations, tols, allowances) -> Hidden:
+    """A verdict against the student's own numbers: True if all |d| ≤ tol, False if one exceeds it; where a
+    deviation is within its rounding ``allowances`` of its tolerance, either verdict is consistent."""
+    return verdict_check(name, got_verdict, deviations, tols, allowances)
+
+
+def spread_checks(got: dict, n: int, tol, *, dk_max: bool = False) -> list:
+    """Hidden checks of a set of ``n`` reduction coefficients (tables 8, 12): the mean of the student's own k,
+    (for table 12) the largest |Δk| from them, and the verdict from their own deviations."""
+    ks = numbers(got.get("k_bases"), n)
+    out = [consistency("k_mean is the mean of your k_bases", got.get("k_mean"), 0.001, lambda k: float(np.mean(k)),
+                       [(ks, 0.001)])]
+    if dk_max:
+        out.append(consistency("dk_max from your k_bases", got.get("dk_max"), 0.001,
+                               lambda k: float(np.max(np.abs(k - np.mean(k)))), [(ks, 0.001)]))
+    if ks is None:
+        return out + [Hidden("spread_ok from your k_bases", None, None, kind="bool")]
+    dev = ks - float(np.mean(ks))
+    a = 2.0 * np.asarray(allowance(ks, 0.001), dtype=float)  # k and the mean each as written
+    return out + [_verdict_hidden("spread_ok from your k_bases", got.get("spread_ok"), dev, tol, a)]
+
+
+def rounded_coefficients(task, v) -> dict:
+    """Table 8/12 as the guide computes it: every k written to three decimals, the mean of the written k written to
+    three decimals, Δk from those (the method of guide §7, table 8)."""
+    ref = task.answers(v)
+    k = round_to(np.asarray(ref["k_bases"], float), 0.001)
+    mean = float(round_to(float(np.mean(k)), 0.001))
+    out = {"k_bases": [float(x) for x in k], "k_mean": mean}
+    if "dk_max" in ref:
+        out["dk_max"] = float(round_to(float(np.max(np.abs(k - mean))), 0.001))
+    return out
 
 
 # =========================================================================== task 06.1
@@ -125,7 +148,7 @@ class ErrorTriangles(Task):
     points = 3
     spec = (
         Answer("triangle_mm", "largest side of the error triangle at a, b, c, d, mm", unit="mm", kind="values",
-               tol_abs=0.01, labels=TIE_POINTS),
+               tol_abs=0.01, labels=TIE_POINTS, printed=0.001),
         Answer("triangles_ok", "True if every side is within 0.3 mm", kind="bool",
                hint="compare the largest side of every triangle with 0.3 mm (guide §7)."),
     )
@@ -139,13 +162,16 @@ class ErrorTriangles(Task):
         side = [float(t.loc[n, "largest, mm"]) for n in TIE_POINTS]
         return {"triangle_mm": side, "triangles_ok": bool(max(side) <= tri.TRIANGLE_TOL_MM)}
 
+    methods = (Method("the three rays intersected two by two (forward intersection), the triangle's largest side",
+                      "guide §7, §13 step 6"),)
+
     def hidden(self, v, got) -> list:
         """The verdict must follow from the student's own sides."""
-        s = _numbers(got.get("triangle_mm"), len(TIE_POINTS))
+        s = numbers(got.get("triangle_mm"), len(TIE_POINTS))
         if s is None:
             return [Hidden("triangles_ok from your sides", None, None, kind="bool")]
         return [_verdict_hidden("triangles_ok from your sides", got.get("triangles_ok"), s,
-                                [tri.TRIANGLE_TOL_MM] * len(s), 0.01)]
+                                [tri.TRIANGLE_TOL_MM] * len(s), allowance(s, 0.001))]
 
 
 # =========================================================================== task 06.2
@@ -158,12 +184,12 @@ class RingCoefficients(Task):
     points = 4
     spec = (
         Answer("l_base_mm", "base lengths on the plan l_осн, mm", unit="mm", kind="values", tol_abs=0.05,
-               labels=RING_LABELS),
+               labels=RING_LABELS, printed=0.01),
         Answer("l_template_mm", "the same on the free strip l_воск, mm", unit="mm", kind="values", tol_abs=0.05,
-               labels=RING_LABELS),
+               labels=RING_LABELS, printed=0.01),
         Answer("k_bases", "four reduction coefficients k = l_осн/l_воск", kind="values", tol_abs=TOL_COEFF,
-               labels=RING_LABELS),
-        Answer("k_mean", "their mean", tol_abs=TOL_COEFF),
+               labels=RING_LABELS, printed=0.001),
+        Answer("k_mean", "their mean", tol_abs=TOL_MEAN, printed=0.001),
         Answer("spread_ok", "True if every |k − mean| is within its tolerance", kind="bool",
                hint="compare every |k − mean| with 0.003 (0.006 on a base shorter than 133 mm on the plan)."),
     )
@@ -181,25 +207,19 @@ class RingCoefficients(Task):
         k_mean = self.answers(v)["k_mean"]
         return {"k_mean": {"this is l_воск / l_осн — the coefficient is base over template": 1.0 / k_mean}}
 
+    methods = (Method("l_осн from the coordinates at 1:M, l_воск on the strip, k = l_осн/l_воск, their mean",
+                      "guide §7, table 8"),
+               Method("k and the mean written to three decimals, as the guide's table 8 prints them",
+                      "guide §7, table 8", submit=rounded_coefficients))
+
     def hidden(self, v, got) -> list:
         """k from the student's own lengths, the mean of their own k, the verdict from their own deviations."""
         n = len(RING)
-        lb, lt, ks = (_numbers(got.get(k), n) for k in ("l_base_mm", "l_template_mm", "k_bases"))
-        out = []
-        for j, lab in enumerate(RING_LABELS):
-            ok = lb is not None and lt is not None and ks is not None and lt[j] > 0
-            out.append(Hidden(f"k of {lab} from your lengths", ks[j] if ok else None, lb[j] / lt[j] if ok else None,
-                              tol_abs=TOL_COEFF))
-        mean = float(np.mean(ks)) if ks is not None else None
-        out.append(Hidden("k_mean is the mean of your k_bases", got.get("k_mean") if ks is not None else None, mean,
-                          tol_abs=TOL_COEFF))
-        if ks is None:
-            out.append(Hidden("spread_ok from your k_bases", None, None, kind="bool"))
-        else:
-            tol = coefficients_from_control(shared_readings(v).control, float(v.M), RING).tol
-            out.append(_verdict_hidden("spread_ok from your k_bases", got.get("spread_ok"), np.array(ks) - mean, tol,
-                                       TOL_COEFF))
-        return out
+        lb, lt = numbers(got.get("l_base_mm"), n), numbers(got.get("l_template_mm"), n)
+        tol = coefficients_from_control(shared_readings(v).control, float(v.M), RING).tol
+        return [consistency("k from your lengths", got.get("k_bases"), 0.001, lambda b, t: b / t,
+                            [(lb, 0.01), (lt, 0.01)], n=n),
+                *spread_checks(got, n, tol)]
 
 
 # =========================================================================== task 06.3
@@ -225,19 +245,24 @@ class CorrectionsTask(Task):
     def slips(self, v) -> dict:
         return {}
 
+    def written_k(self, v) -> float:
+        """k_mean as the guide's table writes it: the mean of the k written to three decimals, to three decimals."""
+        c = coefficients_from_control(shared_readings(v).control, float(v.M), self.pairs)
+        return float(round_to(float(np.mean(round_to(np.asarray(c.k, float), 0.001))), 0.001))
+
     def hidden(self, v, got) -> list:
-        """Every v must be the student's own r times one and the same k − 1 (within the 0.1 mm the guide prints)."""
+        """Every v must be the student's own r times one and the same k − 1: k − 1 fitted to their own r and v,
+        each v within what the rounding of r and v moves it."""
         n = len(self.names_)
-        r, vv = _numbers(got.get("r_mm"), n), _numbers(got.get("v_mm"), n)
-        if r is None or vv is None:
-            return [Hidden("v_mm proportional to your r_mm", None, None)]
-        r, vv = np.array(r), np.array(vv)
-        far = r > 30.0
-        if not np.any(far) or np.any(r < 0):
-            return [Hidden("v_mm proportional to your r_mm", None, None)]
-        k1 = float(np.median(vv[far] / r[far]))
-        return [Hidden(f"v_mm at {name} = r·(k − 1) with your r and one k", float(vv[j]), float(k1 * r[j]),
-                       tol_abs=0.06) for j, name in enumerate(self.names_)]
+        r, vv = numbers(got.get("r_mm"), n), numbers(got.get("v_mm"), n)
+        if r is None or vv is None or np.any(r <= 0):
+            return [Hidden("v_mm = r·(k − 1) with your r and one k", None, None)]
+
+        def one_k(r_, v_):
+            return r_ * float(np.sum(v_ * r_) / np.sum(r_ * r_))
+
+        return [consistency("v_mm = r·(k − 1) with your r and one k", got.get("v_mm"), 0.1, one_k,
+                            [(r, 0.01), (vv, 0.1)], n=n)]
 
 
 @dataclass(frozen=True)
@@ -249,10 +274,20 @@ class CorrectionsForReduction(CorrectionsTask):
     points = 3
     spec = (
         Answer("r_mm", "distances from centre 37, in the table's order (37 left out), mm", unit="mm", kind="values",
-               tol_abs=0.05, labels=CORRECTION_POINTS),
+               tol_abs=0.05, labels=CORRECTION_POINTS, printed=0.01),
         Answer("v_mm", "corrections v = r·(k − 1), same order, mm", unit="mm", kind="values", tol_abs=0.05,
-               tol_rel=0.02, labels=CORRECTION_POINTS),
+               tol_rel=TOL_V_REL, labels=CORRECTION_POINTS, printed=0.1),
     )
+    methods = (Method("r from centre 37 on the common tracing, v = r·(k − 1) with k_mean of table 8",
+                      "guide §7, table 9"),
+               Method("k_mean as the guide writes it (three decimals, from k written to three decimals)",
+                      "guide §7, tables 8–9", submit=lambda task, v: corrections_with_written_k(task, v)))
+
+
+def corrections_with_written_k(task, v) -> dict:
+    """Table 9/13 with the k the guide's table writes (:meth:`CorrectionsTask.written_k`)."""
+    r, vv = corrections_from_points(shared_readings(v).points, task.centre, task.written_k(v), task.names_)
+    return {"r_mm": [float(x) for x in r], "v_mm": [float(x) for x in vv]}
 
 
 TASKS = (ErrorTriangles(), RingCoefficients(), CorrectionsForReduction())

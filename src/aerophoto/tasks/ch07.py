@@ -30,20 +30,37 @@ its own seed) that the chapter's live demo opens on.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from .. import stereo as st
-from ..labs.ch07 import OBJECT_LABELS, PX_PERCENT, StereoLab, stereo_lab
-from .base import Answer, Hidden, Task, submitted_number
+from ..labs.ch07 import OBJECT_LABELS, PX_PERCENT, stereo_lab
+from .base import Answer, Method, Task, Withheld
+from .rounding import allowance, consistency, either, numbers, source
 
-__all__ = ["EYE_BASE_MM", "VIEWING_MM", "PRICKED_BASE", "PairBase", "ObjectHeights", "ParallaxForHeight", "TASKS"]
+__all__ = ["EYE_BASE_MM", "VIEWING_MM", "PRICKED_BASE", "SMALL_FORM", "NOMINAL_H", "PAIR_WITHHELD", "pair_inputs",
+           "PairBase", "ObjectHeights",
+           "ParallaxForHeight", "TASKS"]
 
 #: slip hint of task 07.3: the base of the pricked principal points (task 07.1) instead of b₀ = B·f/H
 PRICKED_BASE = ("that uses b from the pricked principal points, which the photos' tilts shift by 1–3 %; the parallaxes "
                 "of the normalised pair go with its base b₀ = B·f/H (chapter 07)")
+#: slip hint of task 07.3: the small form b·h/H where it differs from the exact form by more than the tolerance
+SMALL_FORM = "that is the small form b₀·h/H; with your H the exact b₀·h/(H − h) differs by more than the tolerance"
+#: slip hint of task 07.1: the nominal flying height f·m instead of the height from A's own parallax
+NOMINAL_H = ("that uses the nominal flying height H = f·m; the stations' height comes from A's own parallax: "
+             "Z_S = Z_A + B·f/p_A")
+NOMINAL_H_ALONE = "that is the nominal flying height f·m itself; the stations' height is Z_S = Z_A + B·f/p_A"
 #: the viewing the vertical exaggeration of task 07.3 refers to: eye base and viewing distance, mm
 EYE_BASE_MM, VIEWING_MM = st.EYE_BASE_MM, st.VIEWING_DISTANCE_MM
+#: what the pair knows that tasks 07.1–07.2 ask for
+PAIR_WITHHELD = ("b_mm", "pA_mm", "ZS_from_A_m", "photo_bases_mm", "parallaxes", "truth")
+
+
+def pair_inputs(v) -> Withheld:
+    """The student's stereo pair as tasks 07.1–07.2 give it: the tables to read, not their results."""
+    return Withheld(stereo_lab(v), PAIR_WITHHELD, why="it is what tasks 07.1–07.2 ask you to compute")
+
+
 # =========================================================================== task 07.1
 @dataclass(frozen=True)
 class PairBase(Task):
@@ -53,13 +70,13 @@ class PairBase(Task):
     title = "The base of your pair and the height of its stations"
     points = 3
     spec = (
-        Answer("b_mm", "photo base b, the mean of b₁ and b₂, mm", unit="mm", tol_abs=0.02),
-        Answer("pA_mm", "x-parallax of A, mm", unit="mm", tol_abs=0.005),
-        Answer("ZS_m", "height of the projection centres from A, m", unit="m", tol_abs=0.5),
+        Answer("b_mm", "photo base b, the mean of b₁ and b₂, mm", unit="mm", tol_abs=0.02, printed=0.01),
+        Answer("pA_mm", "x-parallax of A, mm", unit="mm", tol_abs=0.005, printed=0.01),
+        Answer("ZS_m", "height of the projection centres from A, m", unit="m", tol_abs=0.5, printed=0.1),
     )
 
-    def inputs(self, v) -> StereoLab:
-        return stereo_lab(v)
+    def inputs(self, v) -> Withheld:
+        return pair_inputs(v)
 
     def answers(self, v) -> dict:
         lab = stereo_lab(v)
@@ -71,6 +88,7 @@ class PairBase(Task):
         c = lab.control
         H_A = lab.B_record_m * lab.f_mm / lab.pA_mm
         planned = lab.camera.frame_mm * (1.0 - PX_PERCENT / 100.0)
+        fm = lab.f_mm / 1000.0 * float(v.m)
         return {
             "b_mm": {"that is the planned base l·(100 − p_x)/100 of §2 — measure b on your photos": planned,
                      "the photo base is the mean of both photos' bases, b = (b₁ + b₂)/2": b1 if abs(b1 - b2) > 0.04
@@ -80,15 +98,20 @@ class PairBase(Task):
             "pA_mm": {"the sign: the x-parallax is p = x_left − x_right": float(c["x right"] - c["x left"])},
             "ZS_m": {"that is the flying height over A, B·f/p; add A's own height Z_A": H_A,
                      "use A's own parallax p_A in B·f/p, not the photo base b":
-                     float(c["Z, m"]) + lab.B_record_m * lab.f_mm / lab.b_mm},
+                     float(c["Z, m"]) + lab.B_record_m * lab.f_mm / lab.b_mm,
+                     NOMINAL_H: float(c["Z, m"]) + fm, NOMINAL_H_ALONE: fm},
         }
+
+    tools = ("aerophoto.labs.ch07.lab_images",)
+    methods = (Method("b = (b₁ + b₂)/2 from the pricked principal points, p_A = x_left − x_right, "
+                      "Z_S = Z_A + B·f/p_A", "guide §8; chapter 07, the pair's tables"),)
 
     def hidden(self, v, got) -> list:
         # the stations' height must follow from the student's own parallax of A
         lab = stereo_lab(v)
-        p = submitted_number(got.get("pA_mm"))
-        exp = None if p is None or p <= 0 else float(lab.control["Z, m"]) + lab.B_record_m * lab.f_mm / p
-        return [Hidden("ZS_m from your own pA_mm", got.get("ZS_m") if exp is not None else None, exp, tol_abs=0.1)]
+        Z_A, Bf = float(lab.control["Z, m"]), lab.B_record_m * lab.f_mm
+        return [consistency("ZS_m from your own pA_mm", got.get("ZS_m"), 0.1, lambda p: Z_A + Bf / p,
+                            [source(self, got, "pA_mm")], target_cap=self.answer("ZS_m").tol_abs)]
 
 
 # =========================================================================== task 07.2
@@ -105,15 +128,15 @@ class ObjectHeights(Task):
     points = 5
     spec = (
         Answer("dp_mm", "parallax differences Δp = p_top − p_foot of A, B, C, D, mm", unit="mm", kind="values",
-               tol_abs=0.005, labels=OBJECT_LABELS),
-        Answer("dhA_m", "height of the roof corner A over its foot, m", unit="m", tol_abs=0.05),
-        Answer("dhB_m", "height of the tree top B, m", unit="m", tol_abs=0.05),
-        Answer("dhC_m", "height of the chimney top C, m", unit="m", tol_abs=0.05),
-        Answer("dhD_m", "height of the mast top D, m", unit="m", tol_abs=0.05),
+               tol_abs=0.005, labels=OBJECT_LABELS, printed=0.01),
+        Answer("dhA_m", "height of the roof corner A over its foot, m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("dhB_m", "height of the tree top B, m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("dhC_m", "height of the chimney top C, m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("dhD_m", "height of the mast top D, m", unit="m", tol_abs=0.05, printed=0.01),
     )
 
-    def inputs(self, v) -> StereoLab:
-        return stereo_lab(v)
+    def inputs(self, v) -> Withheld:
+        return pair_inputs(v)
 
     def answers(self, v) -> dict:
         t = stereo_lab(v).parallaxes()
@@ -140,22 +163,18 @@ class ObjectHeights(Task):
             out[name] = {h: (float(x) if abs(x - exact) > 0.06 else None) for h, x in cands.items()}
         return out
 
+    methods = (Method("Δp = p_top − p_foot, H = B·f/p_foot, Δh = H·Δp/(p_foot + Δp)", "guide §8; chapter 07"),)
+
     def hidden(self, v, got) -> list:
         # each height must follow from the student's own Δp with the foot's measured parallax
         t = stereo_lab(v).parallaxes()
-        dps = got.get("dp_mm")
-        try:
-            dps = [float(x) for x in dps]
-        except (TypeError, ValueError):
-            dps = None
+        dps = numbers(got.get("dp_mm"), len(t))
         out = []
         for k, (name, (_, r)) in enumerate(zip(_dh_labels(), t.iterrows())):
-            dp = dps[k] if dps is not None and len(dps) == len(t) and math.isfinite(dps[k]) else None
-            if dp is None or r["p foot, mm"] + dp <= 0:
-                out.append(Hidden(f"{name} from your own Δp", None, None))
-                continue
-            exp = r["H over the foot, m"] * dp / (r["p foot, mm"] + dp)
-            out.append(Hidden(f"{name} from your own Δp", got.get(name), exp, tol_abs=0.05))
+            H, p = float(r["H over the foot, m"]), float(r["p foot, mm"])
+            dp = None if dps is None else float(dps[k])
+            out.append(consistency(f"{name} from your own Δp", got.get(name), 0.01, lambda x: H * x / (p + x),
+                                   [(dp, 0.01)]))
         return out
 
 
@@ -168,8 +187,9 @@ class ParallaxForHeight(Task):
     title = "What a height does to your parallaxes, and how tall the model looks"
     points = 2
     spec = (
-        Answer("dp_relief_mm", "parallax difference of the relief h = Z_max − Z_min, mm", unit="mm", tol_abs=0.005),
-        Answer("V", "vertical exaggeration of the stereo model", tol_rel=0.005),
+        Answer("dp_relief_mm", "parallax difference of the relief h = Z_max − Z_min, mm", unit="mm", tol_abs=0.005,
+               printed=0.0001),
+        Answer("V", "vertical exaggeration of the stereo model", tol_rel=0.005, printed=0.001),
     )
 
     def inputs(self, v) -> dict:
@@ -189,17 +209,24 @@ class ParallaxForHeight(Task):
         V = float(st.vertical_exaggeration(lab.b_flat_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))  # B/H = b₀/f
         return {"dp_relief_mm": dp, "V": V}
 
+    def _small_form(self, v):
+        """(the small form b₀·h/H, whether it is accepted): accepted where it lies within the tolerance of the
+        exact form even when written to its printed unit; a slip elsewhere (every variant is one or the other)."""
+        lab, h, dp = self._ref(v)
+        small = float(st.parallax_difference_mm(h, lab.b_flat_mm, lab.H_m, approx=True))
+        a = self.spec[0]
+        return small, abs(small - dp) + allowance(dp, a.printed) <= a.tol_abs
+
     def slips(self, v) -> dict:
         lab, h, dp = self._ref(v)
         b0 = lab.b_flat_mm
-        small = float(st.parallax_difference_mm(h, b0, lab.H_m, approx=True))
+        small, small_ok = self._small_form(v)
         BH = b0 / lab.f_mm
         pricked_dp = float(st.parallax_difference_mm(h, lab.b_mm, lab.H_m))
         pricked_V = float(st.vertical_exaggeration(lab.b_mm, lab.f_mm, EYE_BASE_MM, VIEWING_MM))
         V = float(st.vertical_exaggeration(b0, lab.f_mm, EYE_BASE_MM, VIEWING_MM))
         return {
-            "dp_relief_mm": {"that is the small form b·h/H; the exact one is b·h/(H − h)":
-                             small if abs(small - dp) > 0.005 else None,
+            "dp_relief_mm": {SMALL_FORM: None if small_ok else small,
                              "the relief's parallax difference uses the photo base b in mm, not B in m":
                              lab.B_record_m * h / (lab.H_m - h),
                              PRICKED_BASE: pricked_dp if abs(pricked_dp - dp) > 0.005 else None},
@@ -208,13 +235,30 @@ class ParallaxForHeight(Task):
                   PRICKED_BASE: pricked_V if abs(pricked_V / V - 1) > 0.005 else None},
         }
 
-    def hidden(self, v, got) -> list:
-        # both answers come from one photo base: Δp/V = f·h·e/(d·(H − h)) does not depend on b
+    def quantities(self, v) -> dict:
         lab, h, _ = self._ref(v)
-        dp, V = submitted_number(got.get("dp_relief_mm")), submitted_number(got.get("V"))
-        exp = lab.f_mm * h * EYE_BASE_MM / (VIEWING_MM * (lab.H_m - h))
-        ratio = dp / V if dp is not None and V not in (None, 0.0) else None
-        return [Hidden("dp_relief_mm and V from one base", ratio, exp, tol_rel=0.002)]
+        return {"the base b₀ = B·f/H of your pair, mm": lab.b_flat_mm, "B/H = b₀/f (not yet divided by e/d)":
+                lab.b_flat_mm / lab.f_mm, "the relief h = Z_max − Z_min, m": h}
+
+    methods = (Method("Δp = b₀·h/(H − h) with b₀ = B·f/H; V = (b₀/f)/(e/d)", "guide §8; chapter 07, task 07.3"),
+               Method("the small form Δp = b₀·h/H, where H is high enough for it to agree with the exact form "
+                      "within the tolerance", "chapter 07 teaches it as the limit h ≪ H; elsewhere it is a slip",
+                      submit=lambda task, v: ({"dp_relief_mm": task._small_form(v)[0]} if task._small_form(v)[1]
+                                              else {})))
+
+    def hidden(self, v, got) -> list:
+        # both answers come from one photo base: Δp/V = f·h·e/(d·(H − h)) does not depend on b (for the small
+        # form, where it is accepted, f·h·e/(d·H))
+        lab, h, _ = self._ref(v)
+        k = lab.f_mm * h * EYE_BASE_MM / VIEWING_MM
+        V = numbers(got.get("V"))
+        exact = consistency("dp_relief_mm and V from one base", got.get("dp_relief_mm"), 0.0001,
+                            lambda x: x * k / (lab.H_m - h), [(V, 0.001)])
+        if not self._small_form(v)[1]:
+            return [exact]
+        small = consistency("dp_relief_mm and V from one base", got.get("dp_relief_mm"), 0.0001,
+                            lambda x: x * k / lab.H_m, [(V, 0.001)])
+        return [either(exact, small)]
 
 
 TASKS = (PairBase(), ObjectHeights(), ParallaxForHeight())

@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..labs.ch08 import FLOW_OPTIONS, N_OBJECTS, OBJECT_NAMES, STAND_OPTIONS, LabPhoto, lab_photo, setup_for, truth
-from .base import Answer, Task
+from .base import Answer, Method, Task
 
 __all__ = ["WIDTH_TOL_REL", "NameObjects", "FlowAndForest", "RiverWidth", "TASKS"]
 
@@ -43,6 +43,9 @@ class NameObjects(Task):
     partial = True
     cross_variant = False
     spec = tuple(_obj(k) for k in range(1, N_OBJECTS + 1))
+    tools = ("aerophoto.labs.ch08.OBJECT_NAMES",)
+    methods = (Method("tone, texture, shape, size and surroundings against table 10's direct and indirect keys",
+                      "guide §9, table 10"),)
 
     def inputs(self, v) -> LabPhoto:
         return lab_photo(v)
@@ -65,6 +68,9 @@ class FlowAndForest(Task):
         Answer("spruce", "which stand is spruce: 'P' or 'Q'", kind="choice", options=STAND_OPTIONS,
                hint="compare the stands' tone, its evenness, and the crowns' shape and shadows."),
     )
+    tools = ("aerophoto.labs.ch08.FLOW_OPTIONS",)
+    methods = (Method("the islands' ends and the tributary's angle for the flow; tone and crowns for spruce",
+                      "guide §9, table 10"),)
 
     def inputs(self, v) -> LabPhoto:
         return lab_photo(v)
@@ -85,7 +91,8 @@ class RiverWidth(Task):
     title = "The river's width by the photo's scale"
     points = 1
     cross_variant = False
-    spec = (Answer("width_m", "the river's width at A–B on the ground, m", unit="m", tol_rel=WIDTH_TOL_REL),)
+    spec = (Answer("width_m", "the river's width at A–B on the ground, m", unit="m", tol_rel=WIDTH_TOL_REL, printed=0.1),)
+    methods = (Method("|AB| on the photo times this photo's own m", "guide §9; chapter 08, task 08.3"),)
 
     def inputs(self, v) -> LabPhoto:
         return lab_photo(v)

@@ -29,7 +29,8 @@ from dataclasses import dataclass
 import numpy as np
 from .. import projective as pj
 from ..labs.ch09 import GRID_N, PlanCorrectionLab, plan_correction_lab
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task, submitted_number
+from .rounding import consistency, source
 
 __all__ = ["GridCell", "NewRoad", "TASKS"]
 
@@ -43,11 +44,17 @@ class GridCell(Task):
     points = 3
     FEATURE = "farm building 1"
     spec = (
-        Answer("row", "row of the cell on the photo grid (0 at side 1–2)", kind="count", rounding="nearest"),
-        Answer("col", "column of the cell (0 at side 1–4)", kind="count", rounding="nearest"),
-        Answer("x_mm", "x of the corner on the plan, mm", unit="mm", tol_abs=0.02),
-        Answer("y_mm", "y of the corner on the plan, mm", unit="mm", tol_abs=0.02),
+        Answer("row", "row of the cell on the photo grid (0 at side 1–2)", kind="count", rounding="exact",
+               hint="rows are counted from 0 at side 1–2 towards side 4–3"),
+        Answer("col", "column of the cell (0 at side 1–4)", kind="count", rounding="exact",
+               hint="columns are counted from 0 at side 1–4 towards side 2–3"),
+        Answer("x_mm", "x of the corner on the plan, mm", unit="mm", tol_abs=0.02, printed=0.01),
+        Answer("y_mm", "y of the corner on the plan, mm", unit="mm", tol_abs=0.02, printed=0.01),
     )
+
+    tools = ("aerophoto.projective.grid_pair", "aerophoto.projective.locate")
+    methods = (Method("grids of central directions, 4 × 4 cells, on the four points; the corner carried cell by cell",
+                      "guide §10; chapter 09 (projective.grid_pair, projective.locate)"),)
 
     def inputs(self, v) -> PlanCorrectionLab:
         return plan_correction_lab(v)
@@ -116,10 +123,14 @@ class NewRoad(Task):
     FEATURE = "new road"
     spec = (
         Answer("xr_mm", "x of the road's vertices on the plan, mm (in the table's order)", unit="mm", kind="values",
-               tol_abs=0.1),
-        Answer("yr_mm", "y of the road's vertices on the plan, mm", unit="mm", kind="values", tol_abs=0.1),
-        Answer("road_m", "length of the new road on the ground, m"),
+               tol_abs=0.1, printed=0.01),
+        Answer("yr_mm", "y of the road's vertices on the plan, mm", unit="mm", kind="values", tol_abs=0.1, printed=0.01),
+        Answer("road_m", "length of the new road on the ground, m", unit="m", tol_rel=0.002, printed=0.1),
     )
+
+    tools = ("aerophoto.projective.fit_projective",)
+    methods = (Method("the projective transformation of the four points (projective.fit_projective), the road's "
+                      "segments summed on the plan times M/1000", "guide §10; chapter 09"),)
 
     def inputs(self, v) -> PlanCorrectionLab:
         return plan_correction_lab(v)
@@ -145,15 +156,10 @@ class NewRoad(Task):
     def hidden(self, v, got) -> list:
         # the length must follow from the student's own vertices: Σ|segment| · M/1000
         lab = plan_correction_lab(v)
-        try:
-            xs = np.asarray(got.get("xr_mm"), dtype=float).ravel()
-            ys = np.asarray(got.get("yr_mm"), dtype=float).ravel()
-        except (TypeError, ValueError):
-            xs = ys = np.zeros(0)
-        if len(xs) < 2 or xs.shape != ys.shape or not (np.all(np.isfinite(xs)) and np.all(np.isfinite(ys))):
-            return [Hidden("road_m from your own vertices", None, None)]
-        L = float(np.sum(np.hypot(np.diff(xs), np.diff(ys)))) * lab.M / 1000.0
-        return [Hidden("road_m from your own vertices", got.get("road_m"), L, tol_rel=0.002)]
+        n = len(lab.photo_of(self.FEATURE))
+        return [consistency("road_m from your own vertices", got.get("road_m"), 0.1,
+                            lambda x, y: float(np.sum(np.hypot(np.diff(x), np.diff(y)))) * lab.M / 1000.0,
+                            [source(self, got, "xr_mm", n), source(self, got, "yr_mm", n)], about="road_m")]
 
 
 TASKS = (GridCell(), NewRoad())

@@ -26,10 +26,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import control as c
-from ..labs.ch10 import PLAN_M, ResectionLab, resection_lab
-from .base import Answer, Hidden, Task, submitted_number
+from ..labs.ch10 import PLAN_M, resection_lab
+from .base import Answer, Hidden, Method, Task, Withheld
+from .rounding import allowance, consistency, numbers, round_to, source, verdict_check
 
-__all__ = ["Resection", "CheckAngle", "TASKS"]
+__all__ = ["station_inputs", "Resection", "CheckAngle", "TASKS"]
+
+def station_inputs(v) -> Withheld:
+    """The student's station as tasks 10.1–10.2 give it: the known points and the angles, not the resection."""
+    return Withheld(resection_lab(v), ("resection", "check", "true_station", "blunder_arcsec"),
+                    why="it is what tasks 10.1–10.2 ask you to compute")
+
 
 # =========================================================================== task 10.1
 @dataclass(frozen=True)
@@ -40,13 +47,13 @@ class Resection(Task):
     title = "Your resection"
     points = 4
     spec = (
-        Answer("X_m", "X of the station P (north), m", unit="m", tol_abs=0.05),
-        Answer("Y_m", "Y of the station P (east), m", unit="m", tol_abs=0.05),
-        Answer("alpha_PA_deg", "direction angle from P to A, degrees", unit="°", tol_abs=0.002, period=360.0),
+        Answer("X_m", "X of the station P (north), m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("Y_m", "Y of the station P (east), m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("alpha_PA_deg", "direction angle from P to A, degrees", unit="°", tol_abs=0.002, period=360.0, printed=0.001),
     )
 
-    def inputs(self, v) -> ResectionLab:
-        return resection_lab(v)
+    def inputs(self, v) -> Withheld:
+        return station_inputs(v)
 
     def answers(self, v) -> dict:
         lab = resection_lab(v)
@@ -75,20 +82,24 @@ class Resection(Task):
             float(np.degrees(np.arctan2(A[0] - P[0], A[1] - P[1])) % 360.0)
         return out
 
+    methods = (Method("resection from A, B, C and β₁, β₂; the direction angle P → A by atan2(ΔY, ΔX), clockwise "
+                      "from north", "guide §11; chapter 10"),)
+
     def hidden(self, v, got) -> list:
         # the direction angle must follow from the student's own station: atan2(Y_A − Y_P, X_A − X_P)
-        lab = resection_lab(v)
-        X, Y = submitted_number(got.get("X_m")), submitted_number(got.get("Y_m"))
-        a = submitted_number(got.get("alpha_PA_deg"))
-        if X is None or Y is None or a is None:
+        A = resection_lab(v).point("A")
+        X, Y = numbers(got.get("X_m")), numbers(got.get("Y_m"))
+        a = numbers(got.get("alpha_PA_deg"))
+        if X is None or Y is None or a is None or (X, Y) == (float(A[0]), float(A[1])):
             return [Hidden("alpha_PA_deg from your own station", None, None)]
-        A = lab.point("A")
-        try:
-            exp = c.direction_angle_deg([X, Y], A)
-        except ValueError:
-            return [Hidden("alpha_PA_deg from your own station", None, None)]
-        diff = math.remainder(a - exp, 360.0)
-        return [Hidden("alpha_PA_deg from your own station", exp + diff, exp, tol_abs=0.002)]
+        ref = c.direction_angle_deg([X, Y], A)
+
+        def angle(x, y):  # the direction angle, kept on the side of 0°/360° the student's answer is on
+            return ref + math.remainder(c.direction_angle_deg([x, y], A) - ref, 360.0)
+
+        return [consistency("alpha_PA_deg from your own station", ref + math.remainder(a - ref, 360.0), 0.001,
+                            angle, [source(self, got, "X_m"), source(self, got, "Y_m")],
+                            target_cap=self.answer("alpha_PA_deg").tol_abs)]
 
 
 # =========================================================================== task 10.2
@@ -101,15 +112,15 @@ class CheckAngle(Task):
     points = 4
     spec = (
         Answer("gamma_calc_deg", "check angle C → D computed from your station, degrees", unit="°", tol_abs=0.001,
-               period=360.0),
-        Answer("dgamma_arcsec", "measured minus computed, arc-seconds", unit="″", tol_abs=4.0),
-        Answer("tol_arcsec", "tolerance of the check angle, arc-seconds"),
+               period=360.0, printed=0.001),
+        Answer("dgamma_arcsec", "measured minus computed, arc-seconds", unit="″", tol_abs=4.0, printed=0.1),
+        Answer("tol_arcsec", "tolerance of the check angle, arc-seconds", printed=0.1),
         Answer("check_ok", "True if the check holds", kind="bool",
                hint="compare |Δγ| with the tolerance ρ″·(0.1 mm · M)/S_PD"),
     )
 
-    def inputs(self, v) -> ResectionLab:
-        return resection_lab(v)
+    def inputs(self, v) -> Withheld:
+        return station_inputs(v)
 
     def answers(self, v) -> dict:
         ch = resection_lab(v).check
@@ -130,23 +141,30 @@ class CheckAngle(Task):
                            ch.tolerance_arcsec / 10.0},
         }
 
+    methods = (Method("γ from the directions P → C and P → D of the station, Δγ = measured − computed, "
+                      "tolerance ρ″·(0.1 mm · M)/S_PD", "guide §11; chapter 10"),
+               Method("γ written to its stated 0.001°, Δγ from the written γ", "the task states γ to 0.001°",
+                      submit=lambda task, v: task.written_gamma(v)))
+
+    def written_gamma(self, v) -> dict:
+        """γ as written to 0.001°, and Δγ from it (the tolerance and the verdict as before)."""
+        lab = resection_lab(v)
+        g = float(round_to(lab.check.computed_deg, 0.001))
+        return {"gamma_calc_deg": g, "dgamma_arcsec": math.remainder(lab.angles_deg["gamma"] - g, 360.0) * 3600.0}
+
     def hidden(self, v, got) -> list:
         # Δγ must follow from the student's own computed angle, and the verdict from their own Δγ and tolerance
         lab = resection_lab(v)
-        g = submitted_number(got.get("gamma_calc_deg"))
-        dg = submitted_number(got.get("dgamma_arcsec"))
-        tol = submitted_number(got.get("tol_arcsec"))
-        out = []
-        if g is None or dg is None:
-            out.append(Hidden("dgamma_arcsec from your own gamma_calc_deg", None, None))
-        else:
-            exp = math.remainder(lab.angles_deg["gamma"] - g, 360.0) * 3600.0
-            out.append(Hidden("dgamma_arcsec from your own gamma_calc_deg", dg, exp, tol_abs=1.0))
+        g, dg, tol = numbers(got.get("gamma_calc_deg")), numbers(got.get("dgamma_arcsec")), numbers(got.get("tol_arcsec"))
+        out = [consistency("dgamma_arcsec from your own gamma_calc_deg", got.get("dgamma_arcsec"), 0.1,
+                           lambda x: math.remainder(lab.angles_deg["gamma"] - x, 360.0) * 3600.0,
+                           [(g, 0.001, self.answer("gamma_calc_deg").tol_abs)],
+                           target_cap=self.answer("dgamma_arcsec").tol_abs)]
         if dg is None or tol is None:
             out.append(Hidden("check_ok from your own dgamma_arcsec and tol_arcsec", None, None, kind="bool"))
         else:
-            out.append(Hidden("check_ok from your own dgamma_arcsec and tol_arcsec", got.get("check_ok"),
-                              abs(dg) <= tol, kind="bool"))
+            out.append(verdict_check("check_ok from your own dgamma_arcsec and tol_arcsec", got.get("check_ok"), [dg],
+                                     [tol], [allowance(dg, 0.1, 4.0) + allowance(tol, 0.1, 0.005 * abs(tol))]))
         return out
 
 

@@ -30,10 +30,20 @@ import numpy as np
 
 from .. import plane
 from .. import rectify as rf
-from ..labs.ch11 import PaperLab, RectificationLab, paper_lab, rectification_lab
-from .base import Answer, Hidden, Task, submitted_number
+from ..labs.ch11 import paper_lab, rectification_lab
+from .base import Answer, Hidden, Method, Task, Withheld, submitted_number
+from .rounding import allowance, consistency, numbers, round_sig, sig_unit, verdict_check
 
-__all__ = ["Substrate", "FourPointRectification", "TASKS"]
+__all__ = ["TOL_K", "TOL_T", "K_DIGITS", "Substrate", "FourPointRectification", "TASKS"]
+
+
+#: K_d's tolerance: the accepted ways of summing table 11 (the diagonals exact or as shown, over [l₀] or [l_i])
+#: differ by up to 2.5 % — K_d itself is a small difference of readings to 0.1 mm, uncertain by far more
+TOL_K = 0.03
+#: t follows K_d: the same, plus t's own rounding
+TOL_T = 0.035
+#: the significant digits K_d may be written with (t's hidden check admits that rounding of K_d)
+K_DIGITS = 3
 
 
 @dataclass(frozen=True)
@@ -44,12 +54,31 @@ class Substrate(Task):
     title = "Your paper's deformation and the substrate"
     points = 3
     spec = (
-        Answer("K_d", "mean deformation coefficient [δl]/[l₀] (δl = l₀ − l_i)", tol_rel=0.002),
-        Answer("t_mm", "substrate thickness K_d·f·(K_t + 1), mm, with its sign", unit="mm", tol_rel=0.005),
+        Answer("K_d", "mean deformation coefficient [δl]/[l₀] (δl = l₀ − l_i)", tol_rel=TOL_K, printed=1e-08),
+        Answer("t_mm", "substrate thickness K_d·f·(K_t + 1), mm, with its sign", unit="mm", tol_rel=TOL_T,
+               printed=0.0001),
     )
+    methods = (Method("K_d = [δl]/[l₀] with l₀ as table 11 gives it (to 0.01 mm), t = K_d·f·(K_t + 1)",
+                      "guide §12 step 2, table 11"),
+               Method("the diagonals' l₀ computed exactly, 5 mm·√(a² + b²)", "chapter 11 teaches l₀ = 5 mm·n and "
+                      "the diagonals by Pythagoras; the table shows them to 0.01 mm, which moves K_d by up to 2.3 %",
+                      submit=lambda task, v: task.other_sums(v, exact=True)),
+               Method("[δl] divided by the print's [l_i]", "the same to first order in K_d (they differ by K_d², "
+                      "≤ 0.2 % of K_d here)", submit=lambda task, v: task.other_sums(v, over_li=True)),
+               Method(f"K_d written to {K_DIGITS} significant digits (−0.00131), t from the unrounded K_d",
+                      "K_d is a sum of differences of readings to 0.01 mm: three digits are all it holds",
+                      submit=lambda task, v: {"K_d": round_sig(task.answers(v)["K_d"], K_DIGITS)}))
 
-    def inputs(self, v) -> PaperLab:
-        return paper_lab(v)
+    def other_sums(self, v, *, exact: bool = False, over_li: bool = False) -> dict:
+        """K_d (and t from it) with the diagonals' l₀ exact and/or divided by [l_i] (the accepted methods)."""
+        lab = paper_lab(v)
+        l0 = np.asarray(lab.l0_mm, float) if exact else np.round(lab.l0_mm, 2)
+        li = np.asarray(lab.li_mm, float)
+        K = float((l0 - li).sum() / (li.sum() if over_li else l0.sum()))
+        return {"K_d": K, "t_mm": rf.substrate_thickness_mm(K, lab.f_mm, rf.enlargement(lab.m, lab.M))}
+
+    def inputs(self, v) -> Withheld:
+        return Withheld(paper_lab(v), ("deformation",), why="K_d is what task 11.1 asks you to compute")
 
     def answers(self, v) -> dict:
         lab = paper_lab(v)
@@ -63,8 +92,7 @@ class Substrate(Task):
         Kt = rf.enlargement(lab.m, lab.M)
         t = rf.substrate_thickness_mm(K, lab.f_mm, Kt)
         return {
-            "K_d": {"the sign: δl = l₀ − l_i (grid minus print)": -K,
-                    "K_d divides by the grid's lengths [l₀], not the print's [l_i]": pdf.sum_dl_mm / pdf.sum_li_mm},
+            "K_d": {"the sign: δl = l₀ − l_i (grid minus print)": -K},
             "t_mm": {"the sign: t has the sign of K_d (the guide's example prints it without)": -t,
                      "K_t = m/M is the enlargement from the photo to the base, not M/m":
                          K * lab.f_mm * (1.0 / Kt + 1.0),
@@ -74,11 +102,11 @@ class Substrate(Task):
     def hidden(self, v, got) -> list:
         # t must follow from the student's own K_d: t = K_d·f·(m/M + 1)
         lab = paper_lab(v)
-        K = submitted_number(got.get("K_d"))
-        if K is None:
-            return [Hidden("t_mm from your own K_d", None, None)]
-        exp = K * lab.f_mm * (rf.enlargement(lab.m, lab.M) + 1.0)
-        return [Hidden("t_mm from your own K_d", got.get("t_mm"), exp, tol_rel=0.002, tol_abs=1e-6)]
+        factor = lab.f_mm * (rf.enlargement(lab.m, lab.M) + 1.0)
+        # K_d may be written to three significant digits (−0.00131) and t computed from it or from more digits
+        K = numbers(got.get("K_d"))
+        return [consistency("t_mm from your own K_d", got.get("t_mm"), 0.0001, lambda K_: K_ * factor,
+                            [(K, None if K is None else sig_unit(K, K_DIGITS))])]
 
 
 
@@ -97,14 +125,14 @@ class FourPointRectification(Task):
     title = "Your four-point rectification"
     points = 3
     spec = (
-        Answer("d1_mm", "residual length at check point K1, mm on the base", unit="mm", tol_abs=0.02),
-        Answer("d2_mm", "residual length at check point K2, mm on the base", unit="mm", tol_abs=0.02),
+        Answer("d1_mm", "residual length at check point K1, mm on the base", unit="mm", tol_abs=0.02, printed=0.01),
+        Answer("d2_mm", "residual length at check point K2, mm on the base", unit="mm", tol_abs=0.02, printed=0.01),
         Answer("rect_ok", "True if both are within 0.4 mm", kind="bool",
                hint="compare both residuals with the guide's 0.4 mm"),
     )
 
-    def inputs(self, v) -> RectificationLab:
-        return rectification_lab(v)
+    def inputs(self, v) -> Withheld:
+        return Withheld(rectification_lab(v), ("rectification",), why="the fit is what task 11.2 asks you to make")
 
     def answers(self, v) -> dict:
         r = rectification_lab(v).rectification
@@ -122,16 +150,23 @@ class FourPointRectification(Task):
         out = {}
         for k, name in enumerate(("d1_mm", "d2_mm")):
             out[name] = {"that is an affine fit: four points fix a projective (8-parameter) transformation": float(aff[k]),
-                         "that is in photo mm: the residuals are measured on the base": float(d[k] / Kt)}
+                         "that is in photo mm: the residuals are measured on the base": float(d[k] / Kt),
+                         "the residuals are already on the base: do not multiply them by K_t again": float(d[k] * Kt)}
         return out
+
+    tools = ("aerophoto.rectify.rectify_points", "aerophoto.projective.fit_projective")
+    methods = (Method("the projective transformation photo → base fitted on points 1–4, the residual lengths at "
+                      "K1, K2 on the base", "guide §12; chapter 11 (rectify.rectify_points or "
+                      "projective.fit_projective)"),)
 
     def hidden(self, v, got) -> list:
         # the verdict must follow from the student's own residuals
         d1, d2 = submitted_number(got.get("d1_mm")), submitted_number(got.get("d2_mm"))
         if d1 is None or d2 is None:
             return [Hidden("rect_ok from your own d1_mm, d2_mm", None, None, kind="bool")]
-        return [Hidden("rect_ok from your own d1_mm, d2_mm", got.get("rect_ok"),
-                       max(abs(d1), abs(d2)) <= rf.TOLERANCE_MM, kind="bool")]
+        d = [abs(d1), abs(d2)]
+        return [verdict_check("rect_ok from your own d1_mm, d2_mm", got.get("rect_ok"), d, [rf.TOLERANCE_MM] * 2,
+                              allowance(d, 0.01))]
 
 
 TASKS = (Substrate(), FourPointRectification())

@@ -18,9 +18,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import triangulation as tri
-from .base import Answer, Hidden, Task
+from .base import Answer, Hidden, Method, Task
 from ..labs.ch06 import POINT_ORDER, StripReadings, shared_readings, strip_readings
-from .ch06 import TOL_COEFF, CorrectionsTask, _numbers, _verdict_hidden, coefficients_from_control
+from .ch06 import (TOL_COEFF, TOL_MEAN, TOL_SPREAD, TOL_V_REL, CorrectionsTask, coefficients_from_control, corrections_with_written_k,
+                   rounded_coefficients, spread_checks)
+from .rounding import allowance, numbers
 
 __all__ = ["M_ALLOWED_MM", "N_BASES", "m_eps_arcmin", "ZhukovInputs", "zhukov_inputs", "ControlSpacing",
            "TABLE12", "TABLE12_LABELS", "CENTRE_13", "CORRECTION_POINTS_13", "SpreadCheck", "Table13", "TASKS"]
@@ -105,7 +107,7 @@ class ControlSpacing(Task):
     title = "The control spacing for your camera (formula 13.1)"
     points = 3
     spec = (
-        Answer("m3_mm", "predicted RMS error of an orienting point for n = 3 bases, mm", unit="mm"),
+        Answer("m3_mm", "predicted RMS error of an orienting point for n = 3 bases, mm", unit="mm", printed=0.001),
         Answer("n_max", "largest whole number of bases with m ≤ 0.35 mm", kind="count", rounding="down"),
     )
 
@@ -116,33 +118,35 @@ class ControlSpacing(Task):
         kw = zhukov_inputs(v).zhukov_kwargs()
         return {"m3_mm": tri.zhukov_error_mm(N_BASES, **kw), "n_max": tri.zhukov_max_bases(M_ALLOWED_MM, **kw)}
 
+    methods = (Method("(13.1) read with n³ + 11n + 34, k_i = m/M, b = l·(100 − p_x)/100; n_max the largest whole n "
+                      "with m(n) ≤ 0.35 mm", "guide §13 step 1; chapter 12"),)
+
     def slips(self, v) -> dict:
         kw = zhukov_inputs(v).zhukov_kwargs()
         return {"m3_mm": {
             "this is the radicand as scanned (n⁰): read it n³ + 11n + 34": tri.zhukov_error_mm(N_BASES, reading="n0", **kw),
             "this is with n² — the radicand is n³ + 11n + 34": tri.zhukov_error_mm(N_BASES, reading="n2", **kw),
             "k_i is the enlargement m/M, not 1": tri.zhukov_error_mm(N_BASES, **{**kw, "k_i": 1.0}),
+            "that is the guide's example base b = 60 mm; your b = l·(100 − p_x)/100 with your p_x":
+                tri.zhukov_error_mm(N_BASES, **{**kw, "b_mm": 60.0}) if abs(kw["b_mm"] - 60.0) > 0.5 else None,
         }}
 
+    def reals(self, v) -> dict:
+        """The real n at which (13.1) reaches 0.35 mm: n³ + 11n + 34 = r(3)·(0.35/m(3))²."""
+        m3 = self.answers(v)["m3_mm"]
+        R = tri.zhukov_radicand(N_BASES) * (M_ALLOWED_MM / m3) ** 2
+        roots = [r.real for r in np.roots([1.0, 0.0, 11.0, 34.0 - R]) if abs(r.imag) < 1e-9 and r.real > -1]
+        return {"n_max": max(roots)} if roots else {}
+
     def hidden(self, v, got) -> list:
-        # n_max must follow from the student's own m(3): (13.1) grows as √(n³ + 11n + 34).  Where m(3) is
-        # within its tolerance (0.5 %) of a boundary, every whole number that tolerance allows is consistent.
-        # Both answers are fixed by the inputs, so a pair that passes the visible checks passes this one too.
-        try:
-            m3 = float(got.get("m3_mm"))
-        except (TypeError, ValueError):
-            m3 = float("nan")
-        if not (math.isfinite(m3) and m3 > 0):
+        # n_max must follow from the student's own m(3): (13.1) grows as √(n³ + 11n + 34).  Where m(3) is within
+        # its rounding allowance of a boundary, every whole number that allowance reaches is consistent.
+        m3 = numbers(got.get("m3_mm"))
+        if m3 is None or m3 <= 0:
             return [Hidden("n_max follows from m3_mm", None, None, kind="count")]
-        tol = ControlSpacing.spec[0].tol_rel or TOL_REL
-        allowed = set(range(_n_max(m3 / (1.0 - tol)), _n_max(m3 / (1.0 + tol)) + 1))
-        n_got = got.get("n_max")
-        try:
-            n_val = float(n_got)
-        except (TypeError, ValueError):
-            n_val = None
-        expected = n_val if n_val in allowed else _n_max(m3)
-        return [Hidden("n_max follows from m3_mm", n_got, expected, kind="count")]
+        a = allowance(m3, self.spec[0].printed)
+        allowed = tuple(range(_n_max(m3 + a), _n_max(max(m3 - a, 1e-12)) + 1))
+        return [Hidden("n_max follows from m3_mm", got.get("n_max"), _n_max(m3), kind="count", accepted=allowed)]
 
 
 # =========================================================================== task 12.2
@@ -163,9 +167,9 @@ class SpreadCheck(Task):
     points = 3
     spec = (
         Answer("k_bases", "six reduction coefficients, in table 12's order", kind="values", tol_abs=TOL_COEFF,
-               labels=TABLE12_LABELS),
-        Answer("k_mean", "their mean", tol_abs=TOL_COEFF),
-        Answer("dk_max", "largest |Δk| = |k − mean| over the six bases", tol_abs=TOL_COEFF),
+               labels=TABLE12_LABELS, printed=0.001),
+        Answer("k_mean", "their mean", tol_abs=TOL_MEAN, printed=0.001),
+        Answer("dk_max", "largest |Δk| = |k − mean| over the six bases", tol_abs=TOL_SPREAD, printed=0.001),
         Answer("spread_ok", "True if every base is within its tolerance", kind="bool",
                hint="compare every |Δk| with 0.003, or with 0.006 on a base shorter than 133 mm on the base"),
     )
@@ -187,19 +191,14 @@ class SpreadCheck(Task):
         return {"dk_max": {"this is max k − min k; the guide's spread is the deviation from the mean": float(c.k_range)},
                 "k_mean": {"this is l_воск / l_осн — the coefficient is base over template": 1.0 / c.k_mean}}
 
+    methods = (Method("k of all six bases, their mean, the largest |Δk| against 0.003 (0.006 under 133 mm)",
+                      "guide §13, table 12"),
+               Method("k and the mean written to three decimals, as the guide's table 12 prints them",
+                      "guide §13, table 12", submit=rounded_coefficients))
+
     def hidden(self, v, got) -> list:
         """The mean, the largest deviation and the verdict must follow from the student's own six k."""
-        ks = _numbers(got.get("k_bases"), len(TABLE12))
-        if ks is None:
-            return [Hidden("k_mean is the mean of your k_bases", None, None),
-                    Hidden("dk_max from your k_bases", None, None),
-                    Hidden("spread_ok from your k_bases", None, None, kind="bool")]
-        mean = float(np.mean(ks))
-        dev = np.array(ks) - mean
-        tol = self._coefficients(v).tol
-        return [Hidden("k_mean is the mean of your k_bases", got.get("k_mean"), mean, tol_abs=TOL_COEFF),
-                Hidden("dk_max from your k_bases", got.get("dk_max"), float(np.max(np.abs(dev))), tol_abs=TOL_COEFF),
-                _verdict_hidden("spread_ok from your k_bases", got.get("spread_ok"), dev, tol, TOL_COEFF)]
+        return spread_checks(got, len(TABLE12), self._coefficients(v).tol, dk_max=True)
 
 
 # =========================================================================== task 12.3
@@ -215,10 +214,14 @@ class Table13(CorrectionsTask):
     pairs = TABLE12
     spec = (
         Answer("r_mm", "distances from centre 38, in the table's order (38 left out), mm", unit="mm", kind="values",
-               tol_abs=0.05, labels=CORRECTION_POINTS_13),
+               tol_abs=0.05, labels=CORRECTION_POINTS_13, printed=0.01),
         Answer("v_mm", "corrections v = r·(k − 1) with k of table 12, same order, mm", unit="mm", kind="values",
-               tol_abs=0.05, tol_rel=0.02, labels=CORRECTION_POINTS_13),
+               tol_abs=0.05, tol_rel=TOL_V_REL, labels=CORRECTION_POINTS_13, printed=0.1),
     )
+    methods = (Method("r from centre 38 on the common tracing, v = r·(k − 1) with the six-base mean of table 12",
+                      "guide §13, table 13"),
+               Method("k_mean as the guide writes it (three decimals, from k written to three decimals)",
+                      "guide §13, tables 12–13", submit=lambda task, v: corrections_with_written_k(task, v)))
 
     # defined here, not only inherited from chapter 06's class: the grader's probe trusts a task's answers, slips
     # and hidden checks only when their code lives in the task's own module (aerophoto.course.probe)

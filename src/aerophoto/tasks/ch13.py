@@ -23,6 +23,7 @@ The pit is at the patch's cell (50 + i mod 100, 150 − i mod 100) (row, column 
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,7 +32,7 @@ import pandas as pd
 from .. import soilmap, spectral
 from .. import guide
 from ..labs.ch13 import Patch, patch_of
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task, submitted_number
 
 __all__ = ["MAP_FACTORS", "SEED", "map_scales", "majority_agreement_pct", "ScaleClasses", "PitReflectance",
            "ContourInterpretation", "TASKS"]
@@ -66,6 +67,7 @@ class ScaleClasses(Task):
     title = "Which class of soil map?"
     points = 2
     cross_variant = False  # five options: another variant's answer is no sign of a mix-up
+    methods = (Method("the denominators 2m, 10m, 40m against guide §14's ranges, gaps included", "guide §14"),)
     spec = tuple(
         Answer(f"class_{f}m", f"class of a soil map at 1 : {f}·m", kind="choice", options=guide.ch13.CLASS_NAMES,
                hint="compare the denominator with the ranges of guide §14 — and mind the gaps between them.")
@@ -101,11 +103,13 @@ class PitReflectance(Task):
     title = "Reading the pit's reflectance curve"
     points = 2
     cross_variant = False
-    tools = ("aerophoto.spectral.soil_reflectance", "aerophoto.spectral.soil_bands")
+    tools = ("aerophoto.spectral.soil_reflectance", "aerophoto.spectral.soil_bands", "aerophoto.spectral.BAND_NAMES")
+    methods = (Method("spectral.soil_bands and spectral.soil_reflectance with the pit's keywords, and with θ = 0",
+                      "guide §14; chapter 13, task 13.2"),)
     spec = (
-        Answer("rho_red", "the pit soil's reflectance in the red band (0.63–0.69 µm), 0…1", tol_abs=0.002),
+        Answer("rho_red", "the pit soil's reflectance in the red band (0.63–0.69 µm), 0…1", tol_abs=0.002, printed=0.001),
         Answer("wet_dry_145_pct", "its reflectance at 1.45 µm as a share of the same soil dried (θ = 0), %",
-               unit="%", tol_abs=0.3),
+               unit="%", tol_abs=0.3, printed=0.1),
         Answer("band", "the band that keeps the smallest share of its dry brightness", kind="choice",
                options=spectral.BAND_NAMES,
                hint="compare wet/dry band by band: where does water itself absorb most?"),
@@ -149,10 +153,13 @@ class ContourInterpretation(Task):
     points = 3
     cross_variant = False  # each patch is its own
     tools = ("aerophoto.soilmap.segment_tones", "aerophoto.soilmap.contingency")
+    methods = (Method("k from the survey map, soilmap.segment_tones(composite, k, seed=0), each area labelled with its "
+                      "majority soil in soilmap.contingency", "guide §14; chapter 13, task 13.3"),)
     spec = (
-        Answer("k", "number of soil classes on the survey map of your patch", kind="count", rounding="nearest"),
+        Answer("k", "number of soil classes on the survey map of your patch", kind="count", rounding="exact",
+               hint="count the classes present on the map: np.unique(patch.soil_map); a class of a few cells counts"),
         Answer("agreement_pct", "share of cells whose area's majority soil is their own soil, %", unit="%",
-               tol_abs=0.05),
+               tol_abs=0.05, printed=0.01),
     )
 
     def inputs(self, v) -> Patch:
@@ -161,13 +168,11 @@ class ContourInterpretation(Task):
     def answers(self, v) -> dict:
         p = patch_of(v)
         k = int(len(np.unique(p.soil_map)))
-        labels = soilmap.segment_tones(p.composite, k, seed=SEED)
-        return {"k": k, "agreement_pct": majority_agreement_pct(labels, p.soil_map)}
+        return {"k": k, "agreement_pct": majority_agreement_pct(_areas(v), p.soil_map)}
 
     def slips(self, v) -> dict:
         p = patch_of(v)
-        k = int(len(np.unique(p.soil_map)))
-        t = soilmap.contingency(soilmap.segment_tones(p.composite, k, seed=SEED), p.soil_map.astype(np.int64))
+        t = soilmap.contingency(_areas(v), p.soil_map.astype(np.int64))
         diag = 100.0 * float(np.trace(t[:, :min(t.shape)])) / float(t.sum())
         return {"k": {"count the classes present on the map (np.unique), not all classes of the legend":
                       len(p.legend())},
@@ -181,6 +186,21 @@ class ContourInterpretation(Task):
         x = submitted_number(got.get("agreement_pct"))
         return [Hidden("agreement at least the commonest soil's share", None if x is None else bool(
             floor - 0.05 <= x <= 100.0), True, kind="bool")]
+
+
+def _areas(v) -> np.ndarray:
+    """The k-means areas of the variant's patch (task 13.3; the one k-means run its answers and slips share)."""
+    return _areas_of(int(v.i))
+
+
+@functools.lru_cache(maxsize=2)
+def _areas_of(i: int) -> np.ndarray:
+    from ..variants import variant_for_index
+
+    p = patch_of(variant_for_index(i))
+    labels = soilmap.segment_tones(p.composite, int(len(np.unique(p.soil_map))), seed=SEED)
+    labels.setflags(write=False)
+    return labels
 
 
 TASKS = (ScaleClasses(), PitReflectance(), ContourInterpretation())

@@ -21,23 +21,22 @@ import functools
 import math
 from dataclasses import dataclass
 
-import numpy as np
 
 from .. import accuracy as acc
 from .. import geometry as g
 from .. import simulate
 from .. import site as _site
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task
+from .rounding import allowance, consistency, numbers
 
 __all__ = ["MD_MAP_MM", "OTHER_READING", "N_EXAMPLE", "CONTOURS_M", "SurveyInputs", "survey_inputs", "MC_BASES", "MC_RUNS",
            "student_monte_carlo", "ControlSpacing1021", "AccumulationLaw", "TASKS"]
 
 #: the allowed plan error of densification on the map, mm (article 001: half the 0.6 mm RMS of a contour point)
 MD_MAP_MM = 0.3
-#: the slip hint for article 001's other reading of m_D (√2·m_X, its printed 0.11 mm): the task's text adopts the
-#: legend's plan error √(m_X² + m_Y²), so the other reading is named, not marked as a wrong formula
-OTHER_READING = ("this is the other reading of m_D, √2·m_X (the article's printed 0.11 mm); this task takes m_D as "
-                 "the plan error √(m_X² + m_Y²), as the article's legend names it (chapter 14)")
+#: article 001's other reading of m_D (√2·m_X, its printed 0.11 mm): the book adopts the legend's plan error
+#: √(m_X² + m_Y²), and accepts this reading too — the article is ambiguous (chapter 14)
+OTHER_READING = "article 001's other reading, m_D = √2·m_X"
 #: the n of task 14.1's first answers (the article's example uses n = 10)
 N_EXAMPLE = 10
 #: the contour intervals of the variants, m (i mod 4)
@@ -100,8 +99,8 @@ class ControlSpacing1021(Task):
     title = "Control spacing for your survey by formula (10.21)"
     points = 4
     spec = (
-        Answer("mD_mm", "plan error m_D in the middle of 10 bases, mm at the photo scale", unit="mm"),
-        Answer("mZ_m", "height error m_Z in the middle of 10 bases, m on the ground", unit="m"),
+        Answer("mD_mm", "plan error m_D in the middle of 10 bases, mm at the photo scale", unit="mm", printed=0.0001),
+        Answer("mZ_m", "height error m_Z in the middle of 10 bases, m on the ground", unit="m", printed=0.01),
         Answer("n_plan", "largest whole number of bases between plan control points", kind="count",
                rounding="down"),
         Answer("n_height", "largest whole number of bases between height control points", kind="count",
@@ -117,6 +116,26 @@ class ControlSpacing1021(Task):
         return {"mD_mm": e["D"], "mZ_m": e["Z"] * s.m / 1000.0, "n_plan": acc.whole_bases(s.n_plan_real()),
                 "n_height": acc.whole_bases(s.n_height_real())}
 
+    methods = (Method("m_D = √(m_X² + m_Y²) = 0.297·m_q·√n³ (the article's legend: the plan error), m_Z with f/b; "
+                      "n from the allowed errors", "article 001, (10.21); chapter 14", reading="adopted"),
+               Method("m_D = √2·m_X = 0.35·m_q·√n³ (the article's printed 0.11 mm)", "article 001 is ambiguous: "
+                      "its example prints 0.11 = √2·m_X; the n_plan that follows is accepted with it",
+                      submit=lambda task, v: task.other_reading(v), reading="other"))
+
+    def other_reading(self, v) -> dict:
+        """m_D and n_plan under the other reading of m_D (√2·m_X, coefficient 0.35)."""
+        s = survey_inputs(v)
+        c = acc.COEFF_D_SQRT2 * s.mq_mm
+        return {"mD_mm": c * math.sqrt(N_EXAMPLE**3), "n_plan": _n_from_coeff(c, MD_MAP_MM * s.M / s.m)}
+
+    def accepted(self, v) -> dict:
+        o = self.other_reading(v)
+        return {"mD_mm": {OTHER_READING: o["mD_mm"]}, "n_plan": {OTHER_READING: o["n_plan"]}}
+
+    def reals(self, v) -> dict:
+        s = survey_inputs(v)
+        return {"n_plan": s.n_plan_real(), "n_height": s.n_height_real()}
+
     def slips(self, v) -> dict:
         s = survey_inputs(v)
         e = acc.strip_errors_mm(N_EXAMPLE, s.mq_mm, f_mm=s.f_mm, b_mm=s.b_mm)
@@ -126,13 +145,11 @@ class ControlSpacing1021(Task):
         return {
             "mD_mm": {"the law grows as √n³, not as √n": cD * math.sqrt(N_EXAMPLE),
                       "this is m_X alone; the plan error m_D = √(m_X² + m_Y²)": acc.COEFF_10_21["X"] * s.mq_mm
-                      * math.sqrt(N_EXAMPLE**3),
-                      OTHER_READING: acc.COEFF_D_SQRT2 * s.mq_mm * math.sqrt(N_EXAMPLE**3)},
+                      * math.sqrt(N_EXAMPLE**3)},
             "mZ_m": {"this is m_Z at the photo scale in mm; the task asks for metres on the ground": e["Z"],
                      "m_Z carries the factor f/b": e["Z"] * s.b_mm / s.f_mm * s.m / 1000.0},
             "n_plan": {"the allowed 0.3 mm is on the map: at the photo scale it is 0.3·M/m":
-                       _n_from_coeff(cD, MD_MAP_MM),
-                       OTHER_READING: _n_from_coeff(acc.COEFF_D_SQRT2 * s.mq_mm, MD_MAP_MM * s.M / s.m)},
+                       _n_from_coeff(cD, MD_MAP_MM)},
             "n_height": {"the allowed height error is the RMS: 1.25 × the mean error h/3, halved":
                          _n_from_coeff(cz, 0.5 * s.contour_m / 3.0 / s.m * 1000.0),
                          "densification gets half of the map's RMS height error": _n_from_coeff(cz, 2 * mz_allowed_photo)},
@@ -140,21 +157,20 @@ class ControlSpacing1021(Task):
 
     def hidden(self, v, got) -> list:
         # the spacing must follow from the student's own errors for 10 bases (both grow as √n³): every whole
-        # number that the answers' tolerance (0.5 %) allows is consistent
+        # number the rounding of those errors allows is consistent
         s = survey_inputs(v)
         out = []
-        for err, n_name, allowed_photo, to_photo in (
-                ("mD_mm", "n_plan", MD_MAP_MM * s.M / s.m, 1.0),
-                ("mZ_m", "n_height", acc.allowed_height_error_m(s.contour_m), 1.0)):
-            x = submitted_number(got.get(err))
-            n_got = submitted_number(got.get(n_name))
+        for err, n_name, allowed_photo in (("mD_mm", "n_plan", MD_MAP_MM * s.M / s.m),
+                                           ("mZ_m", "n_height", acc.allowed_height_error_m(s.contour_m))):
+            x = numbers(got.get(err))
             if x is None or x <= 0:
                 out.append(Hidden(f"{n_name} follows from {err}", None, None, kind="count"))
                 continue
-            c = x / math.sqrt(N_EXAMPLE**3)
-            allowed = {_n_from_coeff(c * k, allowed_photo * to_photo) for k in (0.995, 1.0, 1.005)}
-            expected = n_got if n_got in allowed else _n_from_coeff(c, allowed_photo * to_photo)
-            out.append(Hidden(f"{n_name} follows from {err}", got.get(n_name), expected, kind="count"))
+            a = allowance(x, self.answer(err).printed)
+            ns = {_n_from_coeff(y / math.sqrt(N_EXAMPLE**3), allowed_photo) for y in (x - a, x, x + a) if y > 0}
+            out.append(Hidden(f"{n_name} follows from {err}", got.get(n_name),
+                              _n_from_coeff(x / math.sqrt(N_EXAMPLE**3), allowed_photo), kind="count",
+                              accepted=tuple(range(min(ns), max(ns) + 1))))
         return out
 
 
@@ -197,10 +213,10 @@ class AccumulationLaw(Task):
     cross_variant = False
     spec = (
         Answer("d_mm", "per-link height error d of law (10.20) fitted to the free strip, mm at the photo scale",
-               unit="mm", tol_rel=0.01),
+               unit="mm", tol_rel=0.01, printed=0.0001),
         Answer("m20_mm", "height error (10.20) predicts at the end of a free strip of 20 links, mm", unit="mm",
-               tol_rel=0.01),
-        Answer("gain", "free-strip end error / middle error with control at both ends, 12 bases", tol_rel=0.01),
+               tol_rel=0.01, printed=0.001),
+        Answer("gain", "free-strip end error / middle error with control at both ends, 12 bases", tol_rel=0.01, printed=0.01),
     )
 
     def inputs(self, v) -> acc.StripMonteCarlo:
@@ -213,6 +229,11 @@ class AccumulationLaw(Task):
         mid = mc.rms_mid_mm()[list(mc.mid_n).index(MC_BASES), 2]
         return {"d_mm": d, "m20_mm": d * acc.free_strip_factor(20), "gain": float(free_end / mid)}
 
+    tools = ("aerophoto.accuracy.fit_accumulation",)
+    methods = (Method("least squares through the origin of m = d·√(n(n+1)(2n+1)/6) to the Z column, n = 1 … 11 "
+                      "(acc.fit_accumulation); (10.20) at n = 20; the gain from the two columns",
+                      "article 001, (10.20); chapter 14, task 14.2"),)
+
     def slips(self, v) -> dict:
         mc = student_monte_carlo(v)
         d, _ = _law_fit(mc)
@@ -223,12 +244,13 @@ class AccumulationLaw(Task):
                          "k − 1 of them": d_k,
                          "this is the X (along-strip) column; the task asks for heights Z":
                              acc.fit_accumulation(n, mc.rms_free_mm()[1:, 0], acc.free_strip_factor)[0]},
-                "m20_mm": {"(10.20) grows as √(n(n + 1)(2n + 1)/6), not as n": d * 20.0}}
+                "m20_mm": {"(10.20) grows as √(n(n + 1)(2n + 1)/6), not as n": d * 20.0,
+                           "that is the large-n form d·√(n³/3); (10.20) sums the squares exactly: "
+                           "d·√(n(n + 1)(2n + 1)/6)": d * math.sqrt(20.0**3 / 3.0)}}
 
     def hidden(self, v, got) -> list:
-        d = submitted_number(got.get("d_mm"))
-        exp = None if d is None else d * acc.free_strip_factor(20)
-        return [Hidden("m20_mm follows from d_mm", got.get("m20_mm") if d is not None else None, exp, tol_rel=0.01)]
+        return [consistency("m20_mm follows from d_mm", got.get("m20_mm"), 0.001,
+                            lambda d: d * acc.free_strip_factor(20), [(numbers(got.get("d_mm")), 0.0001)])]
 
 
 TASKS = (ControlSpacing1021(), AccumulationLaw())

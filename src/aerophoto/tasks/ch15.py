@@ -37,10 +37,10 @@ import numpy as np
 
 from .. import bundle as B
 from ..labs.ch15 import SurveyBlock, student_block
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task, Withheld, submitted_number
 
-__all__ = ["LIMIT_1986", "Solution", "solve_block", "field_point_id", "BlockSize", "FindBlunders", "LocateFieldPoint",
-           "TASKS"]
+__all__ = ["LIMIT_1986", "Solution", "solve_block", "field_point_id", "TaskMeasurements", "block_inputs", "BlockSize",
+           "FindBlunders", "LocateFieldPoint", "TASKS"]
 
 #: article 002, table 2: the most unknowns the package could hold in a block
 LIMIT_1986 = 1000
@@ -107,6 +107,45 @@ def _solution(v) -> Solution:
     return solve_block(student_block(v))
 
 
+#: what the block knows that tasks 15.1–15.2 ask for: its planted blunders
+_BLUNDERS = ("blunder_obs", "blunder_mm", "blunder_point", "blunder_photo", "bad_control", "bad_control_dz_m")
+
+
+@dataclass(frozen=True, eq=False)
+class TaskMeasurements(B.Measurements):
+    """The block's measurements as tasks 15.1–15.3 give them: the same arrays (every adjustment runs on them),
+    without the count of unknowns that task 15.1 asks for (``n_unknowns``, and ``summary()``'s "unknowns" and
+    "redundancy")."""
+
+    @property
+    def n_unknowns(self) -> int:
+        raise AttributeError("'n_unknowns' is not given: it is what task 15.1 asks you to count")
+
+    def summary(self) -> dict:
+        """Counts: photos, strips, points of each kind, image observations, equations (no unknowns)."""
+        from ..bundle.block import KINDS
+
+        out = {"photos": self.n_photos, "strips": int(len(np.unique(self.photo_strip)))}
+        for k in KINDS:
+            out[f"{k} points"] = int(np.sum(self.point_kind == k))
+        out.update({"image observations": self.n_obs, "equations": self.n_equations})
+        return out
+
+
+@functools.lru_cache(maxsize=8)
+def _task_meas(meas: B.Measurements) -> TaskMeasurements:
+    from dataclasses import fields
+
+    return TaskMeasurements(**{f.name: getattr(meas, f.name) for f in fields(meas) if f.name != "_cache"})
+
+
+def block_inputs(v) -> Withheld:
+    """The student's block as tasks 15.1–15.3 give it: no planted blunders, no count of unknowns."""
+    sv = student_block(v)
+    return Withheld(sv, _BLUNDERS, {"meas": _task_meas(sv.meas)},
+                    why="the planted blunders are what task 15.2 asks you to find")
+
+
 def field_point_id(v) -> int:
     """The gravimetric point of task 15.3 for variant ``v``: the variant picks one of the block's."""
     ids = student_block(v).field_ids
@@ -124,13 +163,16 @@ class BlockSize(Task):
     cross_variant = False
     spec = (
         Answer("n_unknowns", "unknowns of the bundle adjustment: 6 per photo + 3 per ground point", kind="count",
-               rounding="nearest"),
+               rounding="exact"),
         Answer("fits_1986", "True if the 1986 package (at most 1000 unknowns) could adjust it", kind="bool",
                hint="compare your number of unknowns with the limit in table 2"),
     )
 
-    def inputs(self, v) -> SurveyBlock:
-        return student_block(v)
+    methods = (Method("6 elements of exterior orientation per photo + 3 coordinates per ground point (tie, control, "
+                      "check and gravimetric), against table 2's 1000", "article 002, table 2; chapter 15"),)
+
+    def inputs(self, v) -> Withheld:
+        return block_inputs(v)
 
     def answers(self, v) -> dict:
         n = student_block(v).meas.n_unknowns
@@ -161,16 +203,21 @@ class FindBlunders(Task):
     title = "Find the blunders and judge the block by its check points"
     points = 4
     cross_variant = False
+    tools = ("aerophoto.bundle.three_stage", "aerophoto.bundle.data_snooping")
+    methods = (Method("bundle.three_stage, then bundle.data_snooping; the check points' errors against "
+                      "block.truth_of", "article 002; chapter 15, task 15.2"),)
     spec = (
         Answer("blunder_point", "id of the point whose image measurement is rejected", kind="count",
-               rounding="nearest"),
-        Answer("bad_control", "id of the control point that is rejected", kind="count", rounding="nearest"),
-        Answer("rms_plan_m", "RMS plan error of the check points after the adjustment, m", unit="m", tol_rel=0.02),
-        Answer("rms_Z_m", "RMS height error of the check points after the adjustment, m", unit="m", tol_rel=0.02),
+               rounding="exact", hint="give the id of the rejected image measurement's point, from the rejected "
+                                      "table's 'point' column (not a count, not a photo)"),
+        Answer("bad_control", "id of the control point that is rejected", kind="count", rounding="exact",
+               hint="give the id of the rejected control point, from the rejected table's 'point' column"),
+        Answer("rms_plan_m", "RMS plan error of the check points after the adjustment, m", unit="m", tol_rel=0.02, printed=0.001),
+        Answer("rms_Z_m", "RMS height error of the check points after the adjustment, m", unit="m", tol_rel=0.02, printed=0.001),
     )
 
-    def inputs(self, v) -> SurveyBlock:
-        return student_block(v)
+    def inputs(self, v) -> Withheld:
+        return block_inputs(v)
 
     def answers(self, v) -> dict:
         sol = _solution(v)
@@ -191,9 +238,25 @@ class FindBlunders(Task):
         d = adj.xyz_m[sel] - np.array([sv.truth_of(p) for p in adj.meas.point_ids[sel]])
         sol = _solution(v)
         pr = sol.predicted_check_rms_m()
+        r = sol.check_rms_m()
+        meas = sv.meas
+        ids = {"that is the photo the rejected measurement is on; the task asks for the point's id":
+               sv.blunder_photo,
+               "that is the index of the observation (its row); the task asks for the point's id": sv.blunder_obs,
+               "that is the point's index in meas.point_ids; the task asks for the id itself":
+               int(meas.obs_point[sv.blunder_obs]) if sv.blunder_obs >= 0 else None,
+               "that is the rejected control point; blunder_point is the point of the rejected image measurement":
+               sv.bad_control}
+        ctl = {"that is the point of the rejected image measurement; bad_control is the rejected control point":
+               sv.blunder_point,
+               "that is the point's index in meas.point_ids; the task asks for the id itself":
+               meas.index_of_point(sv.bad_control) if sv.bad_control >= 0 else None}
         return {
+            "blunder_point": ids, "bad_control": ctl,
             "rms_plan_m": {"this is with the blunders still in: reject them first (data snooping)":
                            float(np.sqrt(np.mean(d[:, 0] ** 2 + d[:, 1] ** 2))),
+                           "that is the RMS per coordinate, √(mean(dX² + dY²)/2); the plan error combines both: "
+                           "√(mean(dX² + dY²))": r["plan"] / np.sqrt(2.0),
                            "this is the predicted (a priori) error; the task asks for the true errors of the check "
                            "points": pr["plan"]},
             "rms_Z_m": {"this is with the blunders still in: reject them first (data snooping)":
@@ -226,14 +289,18 @@ class LocateFieldPoint(Task):
     points = 3
     cross_variant = False
     spec = (
-        Answer("X_m", "adjusted X of the gravimetric point, m", unit="m", tol_abs=0.05),
-        Answer("Y_m", "adjusted Y, m", unit="m", tol_abs=0.05),
-        Answer("Z_m", "adjusted Z, m", unit="m", tol_abs=0.05),
-        Answer("a_m", "semi-major axis of its standard error ellipse, m", unit="m", tol_rel=0.02),
+        Answer("X_m", "adjusted X of the gravimetric point, m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("Y_m", "adjusted Y, m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("Z_m", "adjusted Z, m", unit="m", tol_abs=0.05, printed=0.01),
+        Answer("a_m", "semi-major axis of its standard error ellipse, m", unit="m", tol_rel=0.02, printed=0.001),
     )
 
+    tools = ("aerophoto.bundle.error_ellipse",)
+    methods = (Method("the final adjustment's xyz_m of the point; the ellipse of its 2 × 2 plan covariance "
+                      "(bundle.error_ellipse)", "article 002; chapter 15, task 15.3"),)
+
     def inputs(self, v) -> dict:
-        return {"point": field_point_id(v), "block": student_block(v)}
+        return {"point": field_point_id(v), "block": block_inputs(v)}
 
     def answers(self, v) -> dict:
         fp = _solution(v).field_point(field_point_id(v))

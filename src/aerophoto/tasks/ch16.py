@@ -32,12 +32,21 @@ import pandas as pd
 
 from .. import dem
 from ..labs.ch16 import N_CHECK, TOL_15_M, Block, block_of, sheet_data
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task, Withheld, submitted_number
+from .rounding import allowance, consistency, either, numbers
 
-__all__ = ["MEAN_RATIO", "DensificationForecast", "SheetCheckPoints", "TASKS"]
+__all__ = ["MEAN_RATIO", "OTHER_READING", "DensificationForecast", "SheetCheckPoints", "TASKS"]
 
 #: the article's requirement: mean contour error 15 cm for h = 0.5 m, i.e. 0.3·h
 MEAN_RATIO = 0.3
+#: article 000's other reading of Lysenko's "zr": 2r (the book reads s·r, an italic s scanned as z)
+OTHER_READING = "article 000's other reading of “zr”, 2r"
+
+
+def _two_r_root(b: Block) -> float:
+    """Lysenko's root with "zr" read as 2r."""
+    n, m, s, r = b.n, b.points_per_photo, b.images_per_point, b.r
+    return math.sqrt(3 * (2 * n * s + m * n - 2 * r) / (2 * m * n * s))
 
 
 @dataclass(frozen=True)
@@ -48,32 +57,46 @@ class DensificationForecast(Task):
     title = "How well will your block densify the heights?"
     points = 3
     spec = (
-        Answer("H_m", "flying height H = f·m, m", unit="m"),
-        Answer("b_mm", "photo base b = l·(1 − p_x), mm", unit="mm"),
-        Answer("mz_m", "Lysenko's m_z, m", unit="m"),
+        Answer("H_m", "flying height H = f·m, m", unit="m", printed=1),
+        Answer("b_mm", "photo base b = l·(1 − p_x), mm", unit="mm", printed=0.1),
+        Answer("mz_m", "Lysenko's m_z, m", unit="m", printed=0.001),
         # the intervals of the series are at least 0.25 m apart: a tolerance of 0.1 m tells them apart
-        Answer("h_m", "smallest standard contour interval h with m_z/1.25 ≤ 0.3·h, m", unit="m", tol_abs=0.1),
+        Answer("h_m", "smallest standard contour interval h with m_z/1.25 ≤ 0.3·h, m", unit="m", tol_abs=0.1, printed=0.01),
     )
 
-    def inputs(self, v) -> Block:
-        return block_of(v)
+    def inputs(self, v) -> Withheld:
+        return Withheld(block_of(v), ("H_m", "b_mm", "mz_m"), why="it is what task 16.1 asks you to compute")
 
     def answers(self, v) -> dict:
         b = block_of(v)
         return {"H_m": b.H_m, "b_mm": b.b_mm, "mz_m": b.mz_m,
                 "h_m": dem.standard_interval(b.mz_m / 1.25, MEAN_RATIO)}
 
+    methods = (Method("m_z = m_p·(H/b)·√(3(2ns + mn − sr)/(2mns)) with m_p = 0.025 mm (“zr” read as s·r); the "
+                      "smallest standard h with m_z/1.25 ≤ 0.3·h", "article 000; chapter 16", reading="adopted"),
+               Method("“zr” read as 2r, as the scan prints it", "article 000 is ambiguous in the scan; the book "
+                      "argues for s·r (the root is then u/N), the other reading is accepted with its h",
+                      submit=lambda task, v: task.other_reading(v), reading="other"))
+
+    def other_reading(self, v) -> dict:
+        """m_z and h with Lysenko's "zr" read as 2r."""
+        b = block_of(v)
+        mz = b.mp_mm * b.H_m / b.b_mm * _two_r_root(b)
+        return {"mz_m": mz, "h_m": dem.standard_interval(min(mz / 1.25, MEAN_RATIO * dem.STANDARD_INTERVALS_M[-1]),
+                                                         MEAN_RATIO)}
+
+    def accepted(self, v) -> dict:
+        o, a = self.other_reading(v), self.answers(v)
+        return {k: {OTHER_READING: o[k] if o[k] != a[k] else None} for k in o}
+
     def slips(self, v) -> dict:
         b = block_of(v)
         root = dem.lysenko_ratio(b.n, b.points_per_photo, b.images_per_point, b.r)
-        two_r = math.sqrt(3 * (2 * b.n * b.images_per_point + b.points_per_photo * b.n - 2 * b.r)
-                          / (2 * b.points_per_photo * b.n * b.images_per_point))
         return {
             "H_m": {"f is in millimetres: H = f/1000 · m gives metres": b.f_mm * b.m},
             "b_mm": {"the base is the part of the frame not overlapped: l·(1 − p_x/100)": b.frame_mm},
             "mz_m": {"m_p is 0.025 mm — the printed 0,25 lost a zero (see the reading above)":
                      0.25 * b.H_m / b.b_mm * root,
-                     "the book reads “zr” as s·r, not 2r": b.mp_mm * b.H_m / b.b_mm * two_r,
                      "the whole frame is not the base: b = l·(1 − p_x)": b.mp_mm * b.H_m / b.frame_mm * root},
             "h_m": {"compare the mean error m_z/1.25, not m_z itself, with 0.3·h":
                     dem.standard_interval(min(b.mz_m, 30.0), MEAN_RATIO)},
@@ -81,15 +104,21 @@ class DensificationForecast(Task):
 
     def hidden(self, v, got) -> list:
         b = block_of(v)
-        root = dem.lysenko_ratio(b.n, b.points_per_photo, b.images_per_point, b.r)
-        H, base = submitted_number(got.get("H_m")), submitted_number(got.get("b_mm"))
-        expected = None if H is None or base is None or base <= 0 else b.mp_mm * H / base * root
-        out = [Hidden("mz_m from your H and b", got.get("mz_m") if expected is not None else None, expected,
-                      tol_rel=0.005)]
-        mz = submitted_number(got.get("mz_m"))
-        ok = mz is not None and 0 <= mz / 1.25 <= MEAN_RATIO * dem.STANDARD_INTERVALS_M[-1]
-        out.append(Hidden("h_m from your m_z", got.get("h_m") if ok else None,
-                          dem.standard_interval(mz / 1.25, MEAN_RATIO) if ok else None, tol_abs=0.1))
+        roots = (dem.lysenko_ratio(b.n, b.points_per_photo, b.images_per_point, b.r), _two_r_root(b))
+        H, base = numbers(got.get("H_m")), numbers(got.get("b_mm"))
+        out = [either(*(consistency("mz_m from your H and b", got.get("mz_m"), 0.001,
+                                    lambda H_, b_, _r=root: b.mp_mm * H_ / b_ * _r, [(H, 1), (base, 0.1)])
+                        for root in roots))]
+        mz = numbers(got.get("mz_m"))
+        top = MEAN_RATIO * dem.STANDARD_INTERVALS_M[-1]
+        if mz is None or not 0 <= mz / 1.25 <= top:
+            out.append(Hidden("h_m from your m_z", None, None))
+            return out
+        a = allowance(mz, 0.001)
+        hs = {dem.standard_interval(min(max(x, 0.0), 1.25 * top) / 1.25, MEAN_RATIO) for x in (mz - a, mz, mz + a)}
+        h = numbers(got.get("h_m"))
+        near = min(hs, key=lambda x: abs(x - h)) if h is not None else dem.standard_interval(mz / 1.25, MEAN_RATIO)
+        out.append(Hidden("h_m from your m_z", got.get("h_m"), near, tol_abs=0.1, about="h_m"))
         return out
 
 
@@ -102,11 +131,15 @@ class SheetCheckPoints(Task):
     points = 3
     cross_variant = False  # each variant's table is its own; no other variant's numbers to recognise
     spec = (
-        Answer("m_grid_m", "RMS error of the regular DEM at the check points, m", unit="m", tol_abs=0.0005),
-        Answer("m_lines_m", "RMS error of the DEM with structural lines, m", unit="m", tol_abs=0.0005),
-        Answer("v_lines_m", "mean error Σ|Δ|/n of the DEM with structural lines, m", unit="m", tol_abs=0.0005),
-        Answer("share_pct", "share of its errors within 15 cm, %", unit="%", tol_abs=0.01),
+        Answer("m_grid_m", "RMS error of the regular DEM at the check points, m", unit="m", tol_abs=0.0005, printed=0.0001),
+        Answer("m_lines_m", "RMS error of the DEM with structural lines, m", unit="m", tol_abs=0.0005, printed=0.0001),
+        Answer("v_lines_m", "mean error Σ|Δ|/n of the DEM with structural lines, m", unit="m", tol_abs=0.0005, printed=0.0001),
+        Answer("share_pct", "share of its errors within 15 cm, %", unit="%", tol_abs=0.01, printed=0.01),
     )
+
+    tools = ("aerophoto.labs.ch16.sheet_of",)
+    methods = (Method("Δ = Z_DEM − Z_geod at the 40 points: RMS √(ΣΔ²/n), mean Σ|Δ|/n, the share of |Δ| ≤ 0.15 m",
+                      "article 000; chapter 16, task 16.2"),)
 
     def inputs(self, v) -> pd.DataFrame:
         return sheet_data(v).points.copy()

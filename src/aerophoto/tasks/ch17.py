@@ -32,15 +32,16 @@ import numpy as np
 import pandas as pd
 
 from .. import budget as bu
-from .base import Answer, Hidden, Task, submitted_number
+from .base import Answer, Hidden, Method, Task
+from .rounding import allowance, consistency, numbers, verdict_check
 
 __all__ = ["N_MEASUREMENTS", "scan_um", "corner_measurements", "Case", "case_of", "stage_options",
            "VectorisingError", "TriangulationError", "UpdateBudget", "TASKS"]
 
 N_MEASUREMENTS = 20
-#: slip hint for article 003's own reading of the transfer (formula 9 applied to the mean discrepancy)
-TRANSFER_AS_PRINTED = ("the transfer stage here is formula (9) applied to the mean discrepancy 0.5 mm (0.357 mm, the "
-                       "article's slip); rule (1) first turns the mean into an RMS, 1.25·0.5 mm (chapter 17)")
+#: article 003's own reading of the transfer (formula 9 applied to the mean discrepancy, 0.357 mm): the book turns
+#: the mean into an RMS first (rule 1, 0.446 mm) and accepts the article's reading too
+TRANSFER_AS_PRINTED = "article 003's own reading: the transfer 0.357 mm"
 #: the stage names a student may give as the dominant one (task 17.3)
 STAGE_NAMES = tuple(en for _k, _s, en, _ru in bu.STAGES)
 
@@ -109,11 +110,11 @@ class VectorisingError(Task):
     title = "Your vectorising error (table 1)"
     points = 3
     spec = (
-        Answer("VX_m", "mean error V_X = Σ|X − X̄|/n, m", unit="m", tol_abs=0.0005),
-        Answer("VY_m", "mean error V_Y, m", unit="m", tol_abs=0.0005),
-        Answer("VD_m", "mean plan error V_D = √(V_X² + V_Y²), m", unit="m", tol_abs=0.0007),
-        Answer("mD_m", "RMS plan error m_D = 1.25·V_D, m", unit="m", tol_abs=0.001),
-        Answer("md_mm", "m_d = m_D/M on the map, mm", unit="mm", tol_abs=0.0005),
+        Answer("VX_m", "mean error V_X = Σ|X − X̄|/n, m", unit="m", tol_abs=0.0005, printed=0.0001),
+        Answer("VY_m", "mean error V_Y, m", unit="m", tol_abs=0.0005, printed=0.0001),
+        Answer("VD_m", "mean plan error V_D = √(V_X² + V_Y²), m", unit="m", tol_abs=0.0007, printed=0.0001),
+        Answer("mD_m", "RMS plan error m_D = 1.25·V_D, m", unit="m", tol_abs=0.001, printed=0.0001),
+        Answer("md_mm", "m_d = m_D/M on the map, mm", unit="mm", tol_abs=0.0005, printed=0.0001),
     )
 
     def inputs(self, v) -> pd.DataFrame:
@@ -134,17 +135,20 @@ class VectorisingError(Task):
         return {
             "VX_m": {"that is the standard deviation; the mean error is the mean of |X − X̄|": sx,
                      "divide the sum of |X − X̄| by n": r.V_X_m * N_MEASUREMENTS},
+            "VD_m": {"that is V_X + V_Y; the plan error combines the axes in squares: √(V_X² + V_Y²)": r.V_X_m + r.V_Y_m,
+                     "that is √2·V_X; V_D takes both axes, √(V_X² + V_Y²)": math.sqrt(2.0) * r.V_X_m},
             "mD_m": {"m_D = 1.25·V_D (formula 5), not V_D/1.25": r.V_D_m / 1.25},
             "md_mm": {"m_D/M is in metres; the map needs millimetres (×1000)": r.m_D_m / v.M},
         }
 
+    methods = (Method("V = Σ|Δ|/n per axis (3), V_D = √(V_X² + V_Y²) (4), m_D = 1.25·V_D (5), m_d = m_D/M (6)",
+                      "article 003, table 1; chapter 17"),)
+
     def hidden(self, v, got) -> list:
-        vx, vy = submitted_number(got.get("VX_m")), submitted_number(got.get("VY_m"))
-        vd = None if vx is None or vy is None else math.hypot(vx, vy)
-        mD = submitted_number(got.get("mD_m"))
-        return [Hidden("VD_m from your V_X, V_Y", got.get("VD_m") if vd is not None else None, vd, tol_abs=0.0007),
-                Hidden("md_mm from your m_D", got.get("md_mm") if mD is not None else None,
-                       None if mD is None else mD / v.M * 1000.0, tol_abs=0.0005)]
+        vx, vy = numbers(got.get("VX_m")), numbers(got.get("VY_m"))
+        return [consistency("VD_m from your V_X, V_Y", got.get("VD_m"), 0.0001, math.hypot, [(vx, 0.0001), (vy, 0.0001)]),
+                consistency("md_mm from your m_D", got.get("md_mm"), 0.0001, lambda m: m / v.M * 1000.0,
+                            [(numbers(got.get("mD_m")), 0.0001)])]
 
 
 @dataclass(frozen=True)
@@ -155,10 +159,10 @@ class TriangulationError(Task):
     title = "Triangulation and scanning on your photos"
     points = 2
     spec = (
-        Answer("sigma_um", "σ = 0.5·P, µm", unit="µm"),
-        Answer("mxy_m", "m_x,y = 0.84·M_c·σ, m", unit="m"),
-        Answer("mphi_m", "m_ф = m_D = √2·m_x,y, m", unit="m"),
-        Answer("msc_m", "scanning m_ск = 3 µm · M_c, m", unit="m"),
+        Answer("sigma_um", "σ = 0.5·P, µm", unit="µm", tol_abs=0.05, printed=0.1),
+        Answer("mxy_m", "m_x,y = 0.84·M_c·σ, m", unit="m", printed=0.0001),
+        Answer("mphi_m", "m_ф = m_D = √2·m_x,y, m", unit="m", printed=0.0001),
+        Answer("msc_m", "scanning m_ск = 3 µm · M_c, m", unit="m", printed=0.0001),
     )
 
     def inputs(self, v) -> Case:
@@ -173,16 +177,19 @@ class TriangulationError(Task):
         c = case_of(v)
         mxy, mD = bu.triangulation_rms_m(c.M_c, c.P_um)
         return {"mxy_m": {"σ is 0.5·P, not P": 2 * mxy, "µm to m is ×10⁻⁶": mxy * 1000.0},
-                "mphi_m": {"m_D = m_x,y·√2 (formula 8), not ·2": 2 * mxy},
+                "mphi_m": {"m_D = m_x,y·√2 (formula 8), not ·2": 2 * mxy,
+                           "that is m_x,y, one coordinate; the plan error m_D = √2·m_x,y (formula 8)": mxy},
                 "msc_m": {"multiply by the photo scale M_c, not the map scale": bu.SCAN_RMS_UM * 1e-6 * c.M_k}}
+
+    methods = (Method("σ = 0.5·P, m_x,y = 0.84·M_c·σ (7), m_ф = √2·m_x,y (8), m_ск = 3 µm·M_c",
+                      "article 003; chapter 17"),)
 
     def hidden(self, v, got) -> list:
         c = case_of(v)
-        s, mxy = submitted_number(got.get("sigma_um")), submitted_number(got.get("mxy_m"))
-        return [Hidden("mxy_m from your σ", got.get("mxy_m") if s is not None else None,
-                       None if s is None else 0.84 * c.M_c * s * 1e-6, tol_rel=0.005),
-                Hidden("mphi_m from your m_x,y", got.get("mphi_m") if mxy is not None else None,
-                       None if mxy is None else mxy * math.sqrt(2.0), tol_rel=0.005)]
+        return [consistency("mxy_m from your σ", got.get("mxy_m"), 0.0001, lambda s: 0.84 * c.M_c * s * 1e-6,
+                            [(numbers(got.get("sigma_um")), 0.1)]),
+                consistency("mphi_m from your m_x,y", got.get("mphi_m"), 0.0001, lambda m: m * math.sqrt(2.0),
+                            [(numbers(got.get("mxy_m")), 0.0001)])]
 
 
 @dataclass(frozen=True)
@@ -193,9 +200,9 @@ class UpdateBudget(Task):
     title = "The error budget of your update"
     points = 4
     spec = (
-        Answer("mrel_m", "relief stage (r_rms/f)·Δh/√12 on the ground, m", unit="m"),
-        Answer("mD_m", "total m_D, formula (10), m", unit="m"),
-        Answer("vd_mm", "mean error v_d = m_D/M/1.25 on the map, mm", unit="mm"),
+        Answer("mrel_m", "relief stage (r_rms/f)·Δh/√12 on the ground, m", unit="m", printed=0.001),
+        Answer("mD_m", "total m_D, formula (10), m", unit="m", printed=0.001),
+        Answer("vd_mm", "mean error v_d = m_D/M/1.25 on the map, mm", unit="mm", printed=0.001),
         Answer("ok", "True if v_d ≤ 0.4 mm", kind="bool",
                hint="compare the mean error on the map v_d with 0.4 mm."),
         Answer("dominant", "the stage with the largest error", kind="choice", options=STAGE_NAMES,
@@ -215,7 +222,6 @@ class UpdateBudget(Task):
         B = c.budget()
         r_max, r_rms = bu.working_area_radii_mm(c.frame_mm, c.px_percent, c.py_percent)
         sq = {s.key: s.rms_m**2 for s in B.stages}
-        art = c.budget(transfer_mm=bu.transfer_rms_mm())  # the article's reading of (9): the mean d put in
         linear = sum(s.rms_m for s in B.stages)
         return {
             "mrel_m": {"use the RMS radius r_rms of the working area, not its half-diagonal":
@@ -223,19 +229,37 @@ class UpdateBudget(Task):
                        "heights spread uniformly over Δh have an RMS of Δh/√12 about the mean plane":
                        bu.dtm_displacement_m(c.relief_m, c.f_mm, r_rms)},
             "mD_m": {"independent errors add as squares (formula 10), not linearly": linear,
-                     "formula (10) takes all seven stages": math.sqrt(sum(sq.values()) - sq["dtm"]),
-                     TRANSFER_AS_PRINTED: art.total_m},
-            "vd_mm": {"that is the RMS error m_d; the mean error is m_d/1.25": B.map_rms_mm,
-                      TRANSFER_AS_PRINTED: art.map_mean_mm},
+                     "formula (10) takes all seven stages": math.sqrt(sum(sq.values()) - sq["dtm"])},
+            "vd_mm": {"that is the RMS error m_d; the mean error is m_d/1.25": B.map_rms_mm},
         }
 
+    methods = (Method("the relief stage (r_rms/f)·Δh/√12 for the DEM, the other six as the article gives them, the "
+                      "transfer 0.446 mm (rule (1), then formula 9); formula (10); v_d = m_D/M/1.25",
+                      "article 003, formula (10), table 5; chapter 17", reading="adopted"),
+               Method("the transfer as the article computes it: formula (9) on the mean discrepancy, 0.357 mm",
+                      "article 003's own reading (chapter 17, \"One slip, and its fix\"): accepted, with the "
+                      "total, the mean error, the verdict and the dominant stage that follow",
+                      submit=lambda task, v: task.article_reading(v), reading="other"))
+
+    def article_reading(self, v) -> dict:
+        """The budget with the article's transfer (formula 9 on the mean discrepancy)."""
+        art = case_of(v).budget(transfer_mm=bu.transfer_rms_mm())
+        return {"mD_m": art.total_m, "vd_mm": art.map_mean_mm, "ok": bool(art.meets_tolerance),
+                "dominant": art.dominant.name}
+
+    def accepted(self, v) -> dict:
+        o, a = self.article_reading(v), self.answers(v)
+        return {k: {TRANSFER_AS_PRINTED: o[k] if o[k] != a[k] else None} for k in o}
+
     def hidden(self, v, got) -> list:
-        mD = submitted_number(got.get("mD_m"))
-        vd = submitted_number(got.get("vd_mm"))
-        out = [Hidden("vd_mm from your m_D", got.get("vd_mm") if mD is not None else None,
-                      None if mD is None else mD / v.M * 1000.0 / 1.25, tol_rel=0.005)]
-        out.append(Hidden("ok from your v_d", got.get("ok") if vd is not None else None,
-                          None if vd is None else vd <= bu.TOLERANCE_MEAN_MM, kind="bool"))
+        vd = numbers(got.get("vd_mm"))
+        out = [consistency("vd_mm from your m_D", got.get("vd_mm"), 0.001, lambda m: m / v.M * 1000.0 / 1.25,
+                           [(numbers(got.get("mD_m")), 0.001)])]
+        if vd is None:
+            out.append(Hidden("ok from your v_d", None, None, kind="bool"))
+        else:
+            out.append(verdict_check("ok from your v_d", got.get("ok"), [vd], [bu.TOLERANCE_MEAN_MM],
+                                     [allowance(vd, 0.001)]))
         return out
 
 

@@ -477,8 +477,9 @@ def open_lab_notebook(page, server: LabServer, notebook: str) -> None:
     wait_lab_notebook(page, notebook)
 
 
-def wait_lab_notebook(page, notebook: str) -> None:
-    """Wait until the page's JupyterLab shows ``notebook`` with its kernel idle; tag its cells with their ids."""
+def wait_lab_notebook(page, notebook: str, *, timeout: int = T_RUN) -> None:
+    """Wait until the page's JupyterLab shows ``notebook`` with its kernel idle (at most ``timeout`` ms); tag its
+    cells with their ids."""
     page.wait_for_function(
         """(name) => {
           const app = window.jupyterapp; if (!app || !app.shell) return false;
@@ -488,7 +489,7 @@ def wait_lab_notebook(page, notebook: str) -> None:
           return !!(s && s.session && s.session.kernel && s.session.kernel.status === 'idle'
                     && w.content.widgets.length > 0);
         }""",
-        arg=notebook, timeout=T_RUN, polling=250,
+        arg=notebook, timeout=timeout, polling=250,
     )
     # tag every cell's node with its stable id so selectors can find a demo cell
     page.evaluate("""() => {
@@ -497,8 +498,8 @@ def wait_lab_notebook(page, notebook: str) -> None:
     }""")
 
 
-def run_all_cells(page) -> None:
-    """Run → Run All Cells, then wait until every code cell ran and the kernel is idle."""
+def run_all_cells(page, *, timeout: int = T_RUN) -> None:
+    """Run → Run All Cells, then wait (at most ``timeout`` ms) until every code cell ran and the kernel is idle."""
     page.evaluate("() => window.jupyterapp.commands.execute('notebook:run-all-cells')")
     page.wait_for_function(
         """() => {
@@ -512,7 +513,7 @@ def run_all_cells(page) -> None:
               || (c.model.executionCount !== null && c.model.executionCount !== undefined
                   && !c.node.querySelector('.jp-InputArea-prompt') ?.textContent.includes('*')));
         }""",
-        timeout=T_RUN, polling=500,
+        timeout=timeout, polling=500,
     )
 
 

@@ -44,6 +44,16 @@ def _shared(tmp_path_factory) -> Path:
     return base.parent if base.name.startswith("popen-gw") else base
 
 
+def _build_log(tmp_path_factory, name: str):
+    """The build's lines (what ran, from the cache or not, and how long) into ``<name>.log`` beside the build."""
+    path = _shared(tmp_path_factory) / f"{name}.log"
+
+    def log(text: str) -> None:
+        with open(path, "a", encoding="utf-8") as f:
+            f.write(text + "\n")
+    return log
+
+
 @pytest.fixture(scope="session")
 def lite_site(tmp_path_factory):
     """The browser book the lite tests build (one build per run, shared by the workers through a lock)."""
@@ -54,7 +64,8 @@ def lite_site(tmp_path_factory):
 @pytest.fixture(scope="session")
 def web_book(tmp_path_factory, lite_site):
     """One build of the whole web book per test run, without the PDFs, shipping the browser book."""
-    site, _seconds = S.built_book(_shared(tmp_path_factory) / "aerophoto-web-book", lite_site, pdf=False)
+    site, _seconds = S.built_book(_shared(tmp_path_factory) / "aerophoto-web-book", lite_site, pdf=False,
+                                  log=_build_log(tmp_path_factory, "aerophoto-web-book"))
     return site
 
 
@@ -63,7 +74,7 @@ def printed_book(tmp_path_factory, lite_site, web_book):
     """A web book of :data:`PRINTED` alone, with its PDFs; built after the whole book (``web_book``), so its
     chapters come from the build's cache of executed notebooks."""
     site, _seconds = S.built_book(_shared(tmp_path_factory) / "aerophoto-printed-book", lite_site, pdf=True,
-                                  only=PRINTED)
+                                  only=PRINTED, log=_build_log(tmp_path_factory, "aerophoto-printed-book"))
     return site
 
 

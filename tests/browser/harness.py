@@ -443,6 +443,12 @@ class ConsoleLog:
          "provided is in the 'broken' state", "ipympl's front end, now and then on a busy machine: a frame's image "
          "is drawn before it decoded (known upstream: matplotlib/matplotlib#19116, matplotlib/ipympl#472); the "
          "next frame repaints, and the tests check that the picture did change"),
+        ("/api/contents/.aerophoto/all.json", "the browser book (JupyterLite) looks for a static listing of the "
+                                              "drive's folder that remembers the record-book number, which lives in "
+                                              "browser storage only: a 404 that jupyterlite/jupyterlite#770 calls "
+                                              "harmless (no indexed content)"),
+        ("/api/contents/Untitled%20Folder/all.json", "the same folder being made: JupyterLite makes a new folder "
+                                                     "as \"Untitled Folder\" and renames it"),
     )
 
     def attach(self, page) -> "ConsoleLog":
@@ -597,8 +603,10 @@ def figure_is_drawn(png: bytes) -> bool:
 class DemoProbe:
     """One live demo on screen: its sliders (by label), canvas, table and status line."""
 
-    def __init__(self, page, root):
-        self.page, self.root = page, root
+    def __init__(self, page, root, *, sized: bool = True):
+        """``sized``: the demo's figure follows the page's size (its page sensor, :mod:`aerophoto.fit`, reports it;
+        False in the browser book, whose kernel has no anywidget: the figure keeps its natural size there)."""
+        self.page, self.root, self.sized = page, root, sized
 
     def wait_rendered(self) -> None:
         self.root.wait_for(state="visible", timeout=T_RUN)
@@ -613,7 +621,10 @@ class DemoProbe:
         self.page.wait_for_function("() => window.__aero && window.__aero.draws > 0", timeout=T_RUN, polling=250)
         # the demo's top at the top of the screen, as a lecturer would scroll it
         self.root.evaluate("(el) => el.scrollIntoView({block: 'start'})")
-        self.wait_fitted(0)
+        if self.sized:
+            self.wait_fitted(0)
+        else:
+            settle(self.page, 400)
 
     def fit_count(self) -> int:
         """How many times the kernel has sized this demo's figure for the page (its class ``aerophoto-fit-N``)."""

@@ -129,7 +129,7 @@ def test_chapter_runs_in_the_browser(chapter, trapped, lite_site):
         for demo in (ch.demos if ch else ()):
             root = h.lab_demo_root(page, demo.cell)
             assert root.count() == 1, f"{where}: cell {demo.cell!r} shows no live demo"
-            probe = h.DemoProbe(page, root)
+            probe = h.DemoProbe(page, root, sized=L.demos_sized())
             probe.wait_rendered()
             assert h.figure_is_drawn(probe.canvas_png()), f"{where} [{demo.cell}]: blank figure"
             for label, key in demo.sliders:

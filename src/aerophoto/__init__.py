@@ -60,6 +60,7 @@ _SUBMODULES = (
     "labs",
     "tasks",
     "plots",
+    "tables",
     "blit",
     "widgets",
     "fit",

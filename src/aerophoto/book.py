@@ -364,29 +364,65 @@ def chapter(name_or_number: str | int) -> Chapter:
 
 
 def _title(c: Chapter) -> str:
-    return c.title[0].upper() + c.title[1:]
+    """The chapter's topic with a capital, in the language in use (:mod:`aerophoto.i18n.chapters`)."""
+    from .i18n import t
+
+    title = t(c.title)
+    return title[0].upper() + title[1:]
 
 
-def chapter_table_markdown(*, prefix: str = "") -> str:
-    """The chapter table of the README (``prefix="notebooks/"``) and of chapter 00 (generated; a test keeps both current)."""
-    lines = ["| notebook | source | topic | live demos |", "|---|---|---|---|"]
-    for c in CHAPTERS:
-        demos = "; ".join(d.name for d in c.demos) or "—"
-        lines.append(f"| [`{c.name}`]({prefix}{c.notebook}) | {c.source} | {c.title} ({c.title_ru}) | {demos} |")
+def _source(c: Chapter) -> str:
+    """:attr:`Chapter.source` in the language in use: ``"guide §4"``, ``"руководство, §4"``."""
+    from .i18n import t
+
+    if c.section is not None:
+        return t("guide §{section}", section=c.section)
+    return t("article {article}", article=c.article)
+
+
+#: the generated tables' header rows, per language
+_HEADS = {
+    "chapters": {"en": "| notebook | source | topic | live demos |",
+                 "ru": "| тетрадь | источник | тема | интерактивные демонстрации |"},
+    "demos": {"en": "| lecture page | demo | move | what the class sees |",
+              "ru": "| лекционная страница | демонстрация | что двигать | что видит аудитория |"},
+}
+#: the headings of the generated cells (chapter 00's ``chapters``, the lecture index's ``demos``), per language
+_HEADINGS = {"chapters": {"en": "## The chapters", "ru": "## Главы"},
+             "demos": {"en": "## The demonstrations", "ru": "## Демонстрации"}}
+
+
+def chapter_table_markdown(*, prefix: str = "", lang: str = "en") -> str:
+    """The chapter table of the README (``prefix="notebooks/"``) and of chapter 00 (generated; a test keeps both current).
+
+    ``lang="ru"``: the Russian table of chapter 00's Russian text (``notebooks/ru/00_start_here.md``), its topics,
+    demo names and sources from the catalogue (:mod:`aerophoto.i18n.chapters`; a text without Russian stays English).
+    """
+    from .i18n import language, t
+
+    lines = [_HEADS["chapters"][lang], "|---|---|---|---|"]
+    with language(lang):
+        for c in CHAPTERS:
+            demos = "; ".join(t(d.name) for d in c.demos) or "—"
+            topic = f"{c.title} ({c.title_ru})" if lang == "en" else t(c.title)
+            lines.append(f"| [`{c.name}`]({prefix}{c.notebook}) | {_source(c)} | {topic} | {demos} |")
     return "\n".join(lines)
 
 
-def lecture_table_markdown() -> str:
+def lecture_table_markdown(*, lang: str = "en") -> str:
     """The lecture index's table of demos (generated; a test keeps ``notebooks/lectures.ipynb`` current).
 
     Each chapter links its lecture page (``lectures/NN_slug.ipynb``: the demos only, the guide's example) and,
-    beside it, the whole chapter.
+    beside it, the whole chapter.  ``lang="ru"``: the Russian table of ``notebooks/ru/lectures.md``.
     """
-    lines = ["| lecture page | demo | move | what the class sees |", "|---|---|---|---|"]
-    for c in CHAPTERS:
-        for d in c.demos:
-            lines.append(f"| [{c.number} · {_title(c)} ({c.source})]({lecture_page(c)}) "
-                         f"<br>([whole chapter]({c.notebook})) | {d.name} | {d.move} | {d.sees} |")
+    from .i18n import language, t
+
+    lines = [_HEADS["demos"][lang], "|---|---|---|---|"]
+    with language(lang):
+        for c in CHAPTERS:
+            for d in c.demos:
+                lines.append(f"| [{c.number} · {_title(c)} ({_source(c)})]({lecture_page(c)}) "
+                             f"<br>([{t('whole chapter')}]({c.notebook})) | {t(d.name)} | {t(d.move)} | {t(d.sees)} |")
     return "\n".join(lines)
 
 
@@ -427,7 +463,7 @@ def _lecture_demo(source: str, c: Chapter, d: Demo, where: str) -> str:
     if not (isinstance(last, ast.Expr) and isinstance(last.value, ast.Name) and last.lineno == len(body)):
         raise ValueError(f"{where}: the demo cell must end with the demo's name on a line of its own (e.g. `demo`)")
     name = last.value.id
-    title = f"{c.number} · {_title(c)} ({c.source})"
+    title = f"{c.number} · {c.title[0].upper() + c.title[1:]} ({c.source})"
     subtitle = f"{d.name} · the guide's example (variant 00)"
     screen = ", full_screen=True" if len(c.demos) > 1 else ""   # several demos: each fills a screen
     return "\n".join([*body[:-1], f"lecture_view({name}, {title!r}, {subtitle!r}{screen})"])
@@ -455,12 +491,24 @@ def lecture_notebook(c: Chapter, root=None):
         if d.cell not in cells:
             raise ValueError(f"{where} has no cell {d.cell!r} (aerophoto.book.CHAPTERS names it)")
         out.append(nbtools.code(_lecture_demo(cells[d.cell].source, c, d, f"{where} [{d.cell}]"), id=d.cell))
-        out.append(nbtools.md(f"**{d.name}.** Move: {d.move}. The class sees: {d.sees}.", id=f"{d.cell}-notes"))
-    out.append(nbtools.md(
-        f"{_GENERATED_NOTE}\n[← every lecture page](../{LECTURE_INDEX}) · "
-        f"[the whole chapter {c.number}, with the theory and the tasks](../{c.notebook}) · {c.source} · "
-        "the demos open on the guide's worked example (variant 00); **Reset** returns there.", id="links"))
-    return nbtools.notebook(out, title=f"{c.number} · {_title(c)} — lecture")
+        out.append(nbtools.md(_lecture_texts(c)[f"{d.cell}-notes"], id=f"{d.cell}-notes"))
+    out.append(nbtools.md(_lecture_texts(c)["links"], id="links"))
+    return nbtools.notebook(out, title=f"{c.number} · {c.title[0].upper() + c.title[1:]} — lecture")
+
+
+def _lecture_texts(c: Chapter, lang: str = "en") -> dict:
+    """The Markdown cells of chapter ``c``'s lecture page by id (``<demo cell>-notes``, ``links``) in ``lang``;
+    in Russian they are the page's translation, ``notebooks/lectures/ru/NN_slug.md`` (written by :func:`sync_generated`)."""
+    from .i18n import language, t
+
+    with language(lang):
+        out = {f"{d.cell}-notes": t("**{name}.** Move: {move}. The class sees: {sees}.", name=t(d.name), move=t(d.move),
+                                    sees=t(d.sees)) for d in c.demos}
+        out["links"] = _GENERATED_NOTE + "\n" + t(
+            "[← every lecture page](../{index}) · [the whole chapter {number}, with the theory and the tasks](../{notebook})"
+            " · {source} · the demos open on the guide's worked example (variant 00); **Reset** returns there.",
+            index=LECTURE_INDEX, number=c.number, notebook=c.notebook, source=_source(c))
+    return out
 
 
 # =========================================================================== the glossary page
@@ -523,19 +571,30 @@ _README_MARK = ("<!-- BEGIN chapters (generated from aerophoto.book.CHAPTERS: py
                 "<!-- END chapters -->")
 
 
+def _table_cell(cell: str, lang: str = "en") -> str:
+    """The source of a generated table's cell (chapter 00's ``chapters``, the lecture index's ``demos``)."""
+    table = chapter_table_markdown(lang=lang) if cell == "chapters" else lecture_table_markdown(lang=lang)
+    return _HEADINGS[cell][lang] + "\n\n" + table
+
+
 def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     """[(file, kind, place, content)]: kind "markdown-section" (between markers), "cell" (a notebook cell by
-    id) or "notebook" (a whole generated notebook: a lecture page)."""
+    id), "translation" (a generated cell's block in a Russian text: content (English, Russian)), "translation-file"
+    (a lecture page's whole Russian text) or "notebook" (a whole generated notebook: a lecture page)."""
     out = [
         (root / "README.md", "markdown-section", "chapters", chapter_table_markdown(prefix="notebooks/")),
-        (root / "notebooks" / LECTURE_INDEX, "cell", "demos",
-         "## The demonstrations\n\n" + lecture_table_markdown()),
-        (root / "notebooks" / CHAPTERS[0].notebook, "cell", "chapters",
-         "## The chapters\n\n" + chapter_table_markdown()),
+        (root / "notebooks" / LECTURE_INDEX, "cell", "demos", _table_cell("demos")),
+        (root / "notebooks" / CHAPTERS[0].notebook, "cell", "chapters", _table_cell("chapters")),
+        (root / "notebooks" / "ru" / f"{CHAPTERS[0].name}.md", "translation", "chapters",
+         (_table_cell("chapters"), _table_cell("chapters", "ru"))),
+        (root / "notebooks" / "ru" / LECTURE_INDEX.replace(".ipynb", ".md"), "translation", "demos",
+         (_table_cell("demos"), _table_cell("demos", "ru"))),
     ]
     for c in CHAPTERS:
         if c.demos:
             out.append((root / "notebooks" / lecture_page(c), "notebook", "lecture page", c))
+            out.append((root / "notebooks" / LECTURES_DIR / "ru" / f"{c.name}.md", "translation-file", "lecture page",
+                        c))
     out.append((root / "notebooks" / GLOSSARY_PAGE, "page", "glossary", glossary_notebook()))
     return out
 
@@ -544,11 +603,13 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
     """Check (or with ``write=True`` rewrite) what is generated from :data:`CHAPTERS`; returns the stale places.
 
     README.md's chapter table (between the ``BEGIN chapters``/``END chapters`` markers), the lecture index's
-    ``demos`` cell, chapter 00's ``chapters`` cell, and the lecture pages ``notebooks/lectures/NN_slug.ipynb``
+    ``demos`` cell, chapter 00's ``chapters`` cell, their Russian blocks (``notebooks/ru/``), the lecture pages' Russian
+    text (``notebooks/lectures/ru/NN_slug.md``) and the lecture pages ``notebooks/lectures/NN_slug.ipynb``
     (:func:`lecture_notebook`, one per chapter with demos; a page without its chapter is stale and removed).
     Safe to re-run: cells are found by id.
     """
     from . import nbtools
+    from .i18n import prose
 
     root = Path(root) if root is not None else Path(__file__).resolve().parents[2]
     stale = []
@@ -575,6 +636,15 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
                 if write:
                     path.parent.mkdir(parents=True, exist_ok=True)
                     nbtools.write(lecture_notebook(content, root), path)
+        elif kind == "translation":  # a generated cell's block in a chapter's Russian text
+            if prose.sync_block(path, place, *content, write=write):
+                stale.append(f"{path.relative_to(root / 'notebooks')} [{place}]")
+        elif kind == "translation-file":  # a lecture page's Russian text: every block generated
+            pages.add(path)
+            en, ru = _lecture_texts(content), _lecture_texts(content, "ru")
+            blocks = [prose.Block(cell, prose.cell_key(en[cell]), ru[cell]) for cell in en]
+            if prose.sync_file(path, blocks, write=write):
+                stale.append(f"{path.relative_to(root / 'notebooks')} [{place}, Russian]")
         elif kind == "page":  # a whole generated page (the glossary)
             text = _notebook_text(content)
             old = path.read_text(encoding="utf-8") if path.is_file() else None
@@ -590,7 +660,8 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
                 if write:
                     nbtools.set_cell(nb, place, content)
                     nbtools.write(nb, path)
-    for extra in sorted((root / "notebooks" / LECTURES_DIR).glob("*.ipynb")):
+    lectures = root / "notebooks" / LECTURES_DIR
+    for extra in sorted([*lectures.glob("*.ipynb"), *(lectures / "ru").glob("*.md")]):
         if extra not in pages:
             stale.append(f"{extra.relative_to(root / 'notebooks')} [no such chapter with demos]")
             if write:

@@ -464,7 +464,7 @@ def _fit_titles(fig) -> None:
         text.set_fontsize(size)
         width = text.get_window_extent(renderer).width
         if width > room > 0:
-            text.set_fontsize(max(size * room / width, 0.6 * size))
+            text.set_fontsize(max(size * room / width, 0.5 * size))  # never below half its size
 
 
 def snapped_limits(lo: float, hi: float, *, steps: int = 40) -> tuple[float, float]:

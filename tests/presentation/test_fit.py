@@ -124,7 +124,7 @@ def test_tables_have_real_headers_and_numbers_that_do_not_break():
     html = plots.html_table(df, caption="Seams")
     assert "<th scope='col'>value</th>" in html and "<th scope='row' class='num'>1a–4a</th>" in html
     assert "<th></th>" not in html and "<td></td>" in html   # the corner cell is no empty header
-    assert "<td class='num'>1.204e+04</td>" in html and "<td>regular grid (bilinear)</td>" in html
+    assert "<td class='num'>12\u202f043</td>" in html and "<td>regular grid (bilinear)</td>" in html
     folded = plots.html_table(df, caption="Seams", fold=True)
     assert "<details data-fold='Seams'><summary>Seams</summary>" in folded and "<caption" not in folded
     assert "<details data-fold='Seams' open>" in plots.html_table(df, caption="Seams", fold="open")

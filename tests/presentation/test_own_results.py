@@ -106,7 +106,7 @@ def test_flight_overview_of_a_large_plan_is_a_readable_schematic():
         p = demo.result.plan
         assert (p.K, p.n) == (41, 66)
         title = demo.view.ax_plan.get_title()
-        assert "schematic: 1 in 3 strips and 1 in 3 photos drawn" in title and "2 706" in title
+        assert "schematic: 1 in 3 strips and 1 in 3 photos drawn" in title and "N = 2706 photos" in title  # 4 digits: no group
         ys = np.unique(np.asarray(demo.view.centres.get_offsets())[:, 1])
         assert len(ys) <= 25 and np.min(np.diff(ys)) >= 2 * p.By_km   # the drawn strips stay apart
         # the drawn strips still fly both ways (an odd step): arrows east and west

@@ -24,8 +24,8 @@ ALLOW = {
     # the guide's symbols of segments and lines: on, oc (from o to n, c), hh (the principal horizontal), Bx, By,
     # Lx, Ly, LS, px, py, tmax (the flight's quantities as the guide writes them, §2), Zmax, Zmin
     "on", "oc", "hh", "Bx", "By", "bx", "by", "Lx", "Ly", "LS", "px", "py", "Px", "Py", "tmax", "Zmax", "Zmin", "TS",
-    # functions in formulas: tg, cos, sin (Russian notation), and RGB of a band composite, a point's name II–IV
-    "tg", "cos", "sin", "RGB", "II", "III", "IV",
+    # functions in formulas: tg, arctg, cos, sin (Russian notation), and RGB of a band composite, a point's name II–IV
+    "tg", "arctg", "cos", "sin", "RGB", "II", "III", "IV",
     # the Landsat sensor's name, as the Russian literature writes it (chapter 13's band composites)
     "Thematic", "Mapper",
     # Baarda's method, named in brackets after its Russian name as the Russian literature does (chapter 15)

@@ -19,6 +19,7 @@ _SUBMODULES = (
     "reduction",  # the reduction explorer: free radial strip, error triangles, k, v (chapters 06, 12)
     "quality",  # rough mosaic and the §3 verdicts of a simulated flight (chapter 02)
     "fotoschema",  # the live single-strip fotoschema: seams, RMS, mean scale (chapter 05)
+    "fotoschema_sheet",  # the fotoschema's finished sheet and the student's own (chapter 05, the report)
     "plan_correction",  # mutual projective grids: a new photo's changes carried onto the old plan (chapter 09)
     "control",  # control design on a block and the resection with its danger circle (chapter 10)
     "rectification",  # the photo transformer's sequence converging on the base (chapter 11)

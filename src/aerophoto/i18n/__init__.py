@@ -15,7 +15,7 @@ either language::
 The English text itself is the message's id, so English output is the code's
 own string, byte for byte, and a string without a Russian entry falls back to
 it.  The catalogue is split by area (:mod:`.demos`, :mod:`.figures`,
-:mod:`.live`, :mod:`.checks`, :mod:`.slips`, :mod:`.cli`); :mod:`.glossary` holds the key
+:mod:`.live`, :mod:`.checks`, :mod:`.slips`, :mod:`.cli`, :mod:`.chapters`); :mod:`.glossary` holds the key
 terms EN ↔ RU with the guide's sections (the glossary page is generated from
 it).
 
@@ -88,10 +88,10 @@ def catalogue() -> dict:
     """English → Russian, every area merged (built on first use)."""
     global _catalogue
     if _catalogue is None:
-        from . import checks, cli, demos, figures, live, slips
+        from . import chapters, checks, cli, demos, figures, live, slips
 
         merged: dict = {}
-        for part in (demos.MESSAGES, figures.MESSAGES, live.MESSAGES, checks.MESSAGES, slips.MESSAGES, cli.MESSAGES):
+        for part in (chapters.MESSAGES, demos.MESSAGES, figures.MESSAGES, live.MESSAGES, checks.MESSAGES, slips.MESSAGES, cli.MESSAGES):
             merged.update(part)
         _catalogue = merged
     return _catalogue

@@ -83,6 +83,12 @@ _HELP = {
     "the record-book number (default: RECORD_BOOK in the notebooks' first cell)":
         "номер зачётной книжки (по умолчанию: RECORD_BOOK в первой ячейке тетрадей)",
     "the teacher who checks it (the sheet's «Проверил»)": "преподаватель, который проверяет (графа «Проверил»)",
+    "the supervisor who checks it (the title page, the sheet's «Проверил»)":
+        "руководитель, который проверяет работу (титульный лист, графа «Проверил» листа)",
+    "the title page's topic (default: the course's)": "тема на титульном листе (по умолчанию: тема курсовой работы)",
+    "the note's language (default: ru)": "язык записки (по умолчанию: ru)",
+    "compute everything afresh (default: keep the slow parts in your own verified cache)":
+        "вычислить всё заново (по умолчанию медленные части берутся из вашего проверенного кэша)",
     "the report's date, YYYY-MM-DD (default: today)": "дата записки, ГГГГ-ММ-ДД (по умолчанию: сегодня)",
     "the title page's university (default: the guide's, PGUAS)": "вуз на титульном листе (по умолчанию: из пособия, ПГУАС)",
     "the title page's department": "кафедра на титульном листе",

@@ -316,6 +316,8 @@ _TOOLTIPS = {
     "the mark on the left photo, from the area's centre": "марка на левом снимке, от центра участка",
     "the mark's x-parallax: the drum of the parallax bar": "продольный параллакс марки: барабан параллактического винта",
     "the rows of table 10 that the site shows, in the table's order": "строки таблицы 10, видимые на участке, по порядку таблицы",
+    "the rows of table 10 that the site shows, in the table's order, counted from 1":
+        "строки таблицы 10, видимые на участке, по порядку таблицы, считая с 1",
     "the station's offset east of the centre of I, II, III": "смещение станции к востоку от центра I, II, III",
     "the station's offset north of the centre of I, II, III": "смещение станции к северу от центра I, II, III",
     "the sun's elevation above the horizon (it matters through the clods' shadows)":
@@ -495,3 +497,6 @@ _LOUPE = {
     "the close-up: full detail when the slider rests": "участок: все подробности, когда ползунок остановится",
 }
 MESSAGES = {**MESSAGES, **_LOUPE}
+
+# a variant without a record-book number shows as "(variant NN)" in the variant's table (aerophoto.variants)
+MESSAGES = {**MESSAGES, **{f"(variant {i:02d})": f"(вариант {i:02d})" for i in range(100)}}

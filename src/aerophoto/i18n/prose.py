@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 __all__ = ["TODO", "UPDATE", "cell_key", "Block", "read_translations", "write_translations", "ChapterStatus",
-           "status", "skeleton", "russian_notebook", "translation_path", "markdown_cells"]
+           "status", "skeleton", "russian_notebook", "translation_path", "markdown_cells", "sync_block", "sync_file"]
 
 #: the first line of a block not translated yet (the English text follows it)
 TODO = "<!-- TODO translate -->"
@@ -92,6 +92,31 @@ def write_translations(path, blocks) -> None:
         out.append(f"<!-- cell: {b.cell} · en: {b.key} -->\n{b.text.strip(chr(10))}\n")
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     Path(path).write_text("\n".join(out), encoding="utf-8")
+
+
+def sync_block(path, cell: str, english: str, russian: str, *, write: bool = False) -> bool:
+    """Whether block ``cell`` of the translation file ``path`` differs from ``russian`` keyed to ``english`` (a
+    generated cell's Russian, :func:`aerophoto.book.sync_generated`); with ``write``, put it there (in place, or last
+    when missing), the other blocks kept."""
+    blocks = read_translations(path)
+    want = Block(cell, cell_key(english), russian)
+    if want in blocks:
+        return False
+    if write:
+        found = any(b.cell == cell for b in blocks)
+        write_translations(path, [want if b.cell == cell else b for b in blocks] + ([] if found else [want]))
+    return True
+
+
+def sync_file(path, blocks, *, write: bool = False) -> bool:
+    """Whether the translation file ``path`` holds other blocks than ``blocks`` (a generated page's whole Russian
+    text); with ``write``, write them."""
+    blocks = list(blocks)
+    if read_translations(path) == blocks:
+        return False
+    if write:
+        write_translations(path, blocks)
+    return True
 
 
 def markdown_cells(nb: dict) -> list[tuple[str, str]]:

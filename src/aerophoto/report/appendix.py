@@ -60,52 +60,52 @@ def _key_results(w, T) -> list:
     """The student's key numbers, section by section (only what they did)."""
     out = []
 
-    def t(tid):
+    def done(tid):  # the task's record when the student attempted it
         x = T.get(tid)
         return x if x is not None and x.attempted else None
 
     v = w.v
-    if t("task-01-1") and t("task-01-1").number("H_m") is not None:
-        x = t("task-01-1")
+    if done("task-01-1") and done("task-01-1").number("H_m") is not None:
+        x = done("task-01-1")
         s = f"высота фотографирования H = {w.n(x.number('H_m'), 0)} м"
         if x.number("Px_percent") is not None:
             s += f", продольное перекрытие с поправкой за рельеф {w.n(x.number('Px_percent'), 1)} %"
-        if t("task-01-2") and t("task-01-2").number("N") is not None:
-            y = t("task-01-2")
+        if done("task-01-2") and done("task-01-2").number("N") is not None:
+            y = done("task-01-2")
             s += f"; {w.count(y.number('K'))} маршрутов по {w.count(y.number('n'))} снимков, всего {w.count(y.number('N'))}"
-        if t("task-01-3") and t("task-01-3").number("TS_h") is not None:
-            s += f"; время съёмки {w.n(t('task-01-3').number('TS_h'), 1)} ч"
+        if done("task-01-3") and done("task-01-3").number("TS_h") is not None:
+            s += f"; время съёмки {w.n(done('task-01-3').number('TS_h'), 1)} ч"
         out.append(s + " (раздел 1)")
-    if t("task-02-2"):
-        flags = [t("task-02-2").flag(k) for k in ("px_ok", "dm_ok", "n_ok", "crab_ok", "tilt_ok")]
+    if done("task-02-2"):
+        flags = [done("task-02-2").flag(k) for k in ("px_ok", "dm_ok", "n_ok", "crab_ok", "tilt_ok")]
         if all(f is not None for f in flags):
             out.append("материалы аэрофотосъёмки " + ("удовлетворяют требованиям §3" if all(flags) else
                                                       f"не удовлетворяют требованиям §3 по {flags.count(False)} "
                                                       "показателям") + " (раздел 2)")
     for tid, name, key, sec in (("task-03-2", "за рельеф", "dh_mm", 3), ("task-04-3", "за наклон снимка", "da_mm", 4)):
-        x = t(tid)
+        x = done(tid)
         if x and x.numbers(key):
             big = max(abs(e) for e in x.numbers(key))
             out.append(f"наибольшее смещение точек {name} {w.n(big, 2)} мм (раздел {sec})")
-    if t("task-05-2") and t("task-05-2").number("m_mean") is not None:
-        s = f"средний масштаб фотосхемы {w.scale(round(t('task-05-2').number('m_mean') / 100) * 100)}"
-        if t("task-05-1") and t("task-05-1").number("m_rms_mm") is not None:
-            s += f", погрешность монтажа {w.n(t('task-05-1').number('m_rms_mm'), 2)} мм"
+    if done("task-05-2") and done("task-05-2").number("m_mean") is not None:
+        s = f"средний масштаб фотосхемы {w.scale(round(done('task-05-2').number('m_mean') / 100) * 100)}"
+        if done("task-05-1") and done("task-05-1").number("m_rms_mm") is not None:
+            s += f", погрешность монтажа {w.n(done('task-05-1').number('m_rms_mm'), 2)} мм"
         out.append(s + " (раздел 5)")
-    if t("task-06-2") and t("task-06-2").number("k_mean") is not None:
-        out.append(f"коэффициент редуцирования ряда {w.n(t('task-06-2').number('k_mean'), 4)} (раздел 6)")
-    if t("task-07-2") and t("task-07-2").number("dhD_m") is not None:
-        out.append(f"высоты объектов по параллаксам — до {w.n(t('task-07-2').number('dhD_m'), 1)} м (раздел 7)")
-    if t("task-10-1") and t("task-10-1").number("X_m") is not None:
-        x = t("task-10-1")
+    if done("task-06-2") and done("task-06-2").number("k_mean") is not None:
+        out.append(f"коэффициент редуцирования ряда {w.n(done('task-06-2').number('k_mean'), 4)} (раздел 6)")
+    if done("task-07-2") and done("task-07-2").number("dhD_m") is not None:
+        out.append(f"высоты объектов по параллаксам — до {w.n(done('task-07-2').number('dhD_m'), 1)} м (раздел 7)")
+    if done("task-10-1") and done("task-10-1").number("X_m") is not None:
+        x = done("task-10-1")
         out.append(f"координаты опознака X = {w.n(x.number('X_m'), 2)} м, Y = {w.n(x.number('Y_m'), 2)} м "
                    "(раздел 10)")
-    if t("task-11-1") and t("task-11-1").number("t_mm") is not None:
-        out.append(f"толщина подложки при трансформировании {w.n(t('task-11-1').number('t_mm'), 2)} мм (раздел 11)")
-    if t("task-12-1") and t("task-12-1").number("n_max") is not None:
-        out.append(f"опознаки фототриангуляции — через {w.count(t('task-12-1').number('n_max'))} базиса (раздел 12)")
-    if t("task-17-3") and isinstance(t("task-17-3").get("vd_mm"), (int, float)):
-        out.append(f"средняя ошибка обновлённой карты {w.n(t('task-17-3').get('vd_mm'), 2)} мм (раздел 17)")
+    if done("task-11-1") and done("task-11-1").number("t_mm") is not None:
+        out.append(f"толщина подложки при трансформировании {w.n(done('task-11-1').number('t_mm'), 2)} мм (раздел 11)")
+    if done("task-12-1") and done("task-12-1").number("n_max") is not None:
+        out.append(f"опознаки фототриангуляции — через {w.count(done('task-12-1').number('n_max'))} базиса (раздел 12)")
+    if done("task-17-3") and isinstance(done("task-17-3").get("vd_mm"), (int, float)):
+        out.append(f"средняя ошибка обновлённой карты {w.n(done('task-17-3').get('vd_mm'), 2)} мм (раздел 17)")
     del v
     return out
 

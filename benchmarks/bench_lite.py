@@ -66,7 +66,7 @@ def _open_demo(h, L, page, server, ch, demo) -> float:
     L.open_notebook(page, server, ch.notebook)
     h.run_all_cells(page)
     root = h.lab_demo_root(page, demo.cell)
-    h.DemoProbe(page, root).wait_rendered()
+    h.DemoProbe(page, root, sized=L.demos_sized()).wait_rendered()
     # wait_rendered ends with a 500 ms quiet period and a scroll: not part of the student's wait
     return time.monotonic() - t0 - 0.5
 

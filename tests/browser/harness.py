@@ -443,6 +443,12 @@ class ConsoleLog:
          "provided is in the 'broken' state", "ipympl's front end, now and then on a busy machine: a frame's image "
          "is drawn before it decoded (known upstream: matplotlib/matplotlib#19116, matplotlib/ipympl#472); the "
          "next frame repaints, and the tests check that the picture did change"),
+        ("/api/contents/.aerophoto/all.json", "the browser book (JupyterLite) looks for a static listing of the "
+                                              "drive's folder that remembers the record-book number, which lives in "
+                                              "browser storage only: a 404 that jupyterlite/jupyterlite#770 calls "
+                                              "harmless (no indexed content)"),
+        ("/api/contents/Untitled%20Folder/all.json", "the same folder being made: JupyterLite makes a new folder "
+                                                     "as \"Untitled Folder\" and renames it"),
     )
 
     def attach(self, page) -> "ConsoleLog":
@@ -477,8 +483,9 @@ def open_lab_notebook(page, server: LabServer, notebook: str) -> None:
     wait_lab_notebook(page, notebook)
 
 
-def wait_lab_notebook(page, notebook: str) -> None:
-    """Wait until the page's JupyterLab shows ``notebook`` with its kernel idle; tag its cells with their ids."""
+def wait_lab_notebook(page, notebook: str, *, timeout: int = T_RUN) -> None:
+    """Wait until the page's JupyterLab shows ``notebook`` with its kernel idle (at most ``timeout`` ms); tag its
+    cells with their ids."""
     page.wait_for_function(
         """(name) => {
           const app = window.jupyterapp; if (!app || !app.shell) return false;
@@ -488,7 +495,7 @@ def wait_lab_notebook(page, notebook: str) -> None:
           return !!(s && s.session && s.session.kernel && s.session.kernel.status === 'idle'
                     && w.content.widgets.length > 0);
         }""",
-        arg=notebook, timeout=T_RUN, polling=250,
+        arg=notebook, timeout=timeout, polling=250,
     )
     # tag every cell's node with its stable id so selectors can find a demo cell
     page.evaluate("""() => {
@@ -497,8 +504,8 @@ def wait_lab_notebook(page, notebook: str) -> None:
     }""")
 
 
-def run_all_cells(page) -> None:
-    """Run → Run All Cells, then wait until every code cell ran and the kernel is idle."""
+def run_all_cells(page, *, timeout: int = T_RUN) -> None:
+    """Run → Run All Cells, then wait (at most ``timeout`` ms) until every code cell ran and the kernel is idle."""
     page.evaluate("() => window.jupyterapp.commands.execute('notebook:run-all-cells')")
     page.wait_for_function(
         """() => {
@@ -512,7 +519,7 @@ def run_all_cells(page) -> None:
               || (c.model.executionCount !== null && c.model.executionCount !== undefined
                   && !c.node.querySelector('.jp-InputArea-prompt') ?.textContent.includes('*')));
         }""",
-        timeout=T_RUN, polling=500,
+        timeout=timeout, polling=500,
     )
 
 
@@ -596,8 +603,10 @@ def figure_is_drawn(png: bytes) -> bool:
 class DemoProbe:
     """One live demo on screen: its sliders (by label), canvas, table and status line."""
 
-    def __init__(self, page, root):
-        self.page, self.root = page, root
+    def __init__(self, page, root, *, sized: bool = True):
+        """``sized``: the demo's figure follows the page's size (its page sensor, :mod:`aerophoto.fit`, reports it;
+        False in the browser book, whose kernel has no anywidget: the figure keeps its natural size there)."""
+        self.page, self.root, self.sized = page, root, sized
 
     def wait_rendered(self) -> None:
         self.root.wait_for(state="visible", timeout=T_RUN)
@@ -612,7 +621,10 @@ class DemoProbe:
         self.page.wait_for_function("() => window.__aero && window.__aero.draws > 0", timeout=T_RUN, polling=250)
         # the demo's top at the top of the screen, as a lecturer would scroll it
         self.root.evaluate("(el) => el.scrollIntoView({block: 'start'})")
-        self.wait_fitted(0)
+        if self.sized:
+            self.wait_fitted(0)
+        else:
+            settle(self.page, 400)
 
     def fit_count(self) -> int:
         """How many times the kernel has sized this demo's figure for the page (its class ``aerophoto-fit-N``)."""

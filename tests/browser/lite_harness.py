@@ -49,6 +49,14 @@ QUIET_ARGS = ["--disable-features=AutofillServerCommunication,OptimizationHints,
 LITE_NOTE_TEXT = "running in your browser"
 
 
+def demos_sized() -> bool:
+    """Whether the browser book's demos are sized by their page: only with anywidget in the browser's kernel
+    (``aerophoto.lite.NOT_IN_BROWSER`` leaves it out, so the figures keep their natural size there)."""
+    from aerophoto import lite
+
+    return "anywidget" not in lite.NOT_IN_BROWSER
+
+
 def site_problem(site: Path = SITE) -> str | None:
     """Why ``site`` is not a built browser book, or None."""
     if not (site / MANIFEST).is_file() or not (site / "jupyter-lite.json").is_file():

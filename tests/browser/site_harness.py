@@ -21,9 +21,10 @@ except ImportError:  # pragma: no cover - the benchmark's way: it loaded lite_ha
 ROOT = L.ROOT
 
 
-def built_book(dest: Path, lite_site: Path, *, log=None) -> tuple[Path, float]:
-    """Build the web book into ``dest`` once (``aerophoto.website.build``, shipping the browser book ``lite_site``),
-    under a file lock so that parallel workers share one build; returns (site, seconds this call spent building)."""
+def built_book(dest: Path, lite_site: Path, *, pdf: bool = True, only=None, log=None) -> tuple[Path, float]:
+    """Build the web book into ``dest`` once (``aerophoto.website.build``, shipping the browser book ``lite_site``;
+    ``pdf``, ``only`` as there), under a file lock so that parallel workers share one build; returns (site, seconds
+    this call spent building)."""
     from aerophoto import website
 
     dest = Path(dest)
@@ -33,7 +34,7 @@ def built_book(dest: Path, lite_site: Path, *, log=None) -> tuple[Path, float]:
         if (dest / website.MANIFEST).is_file():
             return dest, 0.0
         t0 = time.monotonic()
-        website.build(dest, lite_dir=lite_site, out=log or (lambda _text: None))
+        website.build(dest, lite_dir=lite_site, pdf=pdf, only=only, out=log or (lambda _text: None))
         return dest, time.monotonic() - t0
 
 

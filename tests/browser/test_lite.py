@@ -129,7 +129,7 @@ def test_chapter_runs_in_the_browser(chapter, trapped, lite_site):
         for demo in (ch.demos if ch else ()):
             root = h.lab_demo_root(page, demo.cell)
             assert root.count() == 1, f"{where}: cell {demo.cell!r} shows no live demo"
-            probe = h.DemoProbe(page, root)
+            probe = h.DemoProbe(page, root, sized=L.demos_sized())
             probe.wait_rendered()
             assert h.figure_is_drawn(probe.canvas_png()), f"{where} [{demo.cell}]: blank figure"
             for label, key in demo.sliders:
@@ -137,7 +137,8 @@ def test_chapter_runs_in_the_browser(chapter, trapped, lite_site):
                 h.lab_kernel_idle(page)
                 assert r["value_after"] != r["value_before"], f"{where}: {key} did not move {label!r}"
                 change = h.pixel_change(r["png_before"], r["png_after"])
-                assert change >= 0.001, f"{where}: moving {label!r} changed {change:.4%} of the figure"
+                # the one-ray demo (chapter 00) moves one thin line: 0.026 % of its pixels; any demo changes more
+                assert change >= 0.0001, f"{where}: moving {label!r} changed {change:.4%} of the figure"
                 assert r["table_after"] != r["table_before"], f"{where}: moving {label!r} left the table as it was"
                 assert not probe.status_text(), f"{where}: {probe.status_text()}"
         assert not log.relevant(), f"{where}: console errors {log.relevant()}"

@@ -14,6 +14,7 @@ import pytest
 
 from aerophoto import book
 from aerophoto.website import chrome, execute, live, pages, project, snapshot
+from aerophoto import website
 from aerophoto.website import check_site, page_title
 
 
@@ -142,6 +143,22 @@ def test_the_execution_key_follows_what_decides_the_outputs():
     assert k != execute.execution_key(nb, "en", "0" * 64)
 
 
+def test_a_build_kernel_runs_as_a_student_who_typed_nothing(tmp_path):
+    """The build's kernel: the book's language, an empty home (no record-book number: variant 00), widgets as
+    static pictures, and the build's shared heavy-data cache (aerophoto.cache) — one real kernel."""
+    nb = {"cells": [{"cell_type": "code", "id": "probe", "metadata": {}, "execution_count": None, "outputs": [],
+                     "source": "import os, ipywidgets as w, aerophoto.cache as c\n"
+                               "f = get_ipython().display_formatter.mimebundle_formatter\n"
+                               "print(os.environ['AEROPHOTO_LANG'], c.cache_dir(), w.Widget in f.type_printers,\n"
+                               "      os.environ.get('AEROPHOTO_RECORD_BOOK'), os.listdir(os.environ['AEROPHOTO_HOME']))"}],
+          "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3", "language": "python"}},
+          "nbformat": 4, "nbformat_minor": 5}
+    done = execute.execute(nb, "ru", cwd=tmp_path, name="probe", data_cache=tmp_path / "data")
+    text = "".join("".join(o.get("text", "")) for o in done["cells"][0]["outputs"])  # a stream's text: str or lines
+    assert text.split() == ["ru", str(tmp_path / "data"), "True", "None", "[]"], done["cells"][0]["outputs"]
+    assert nb["cells"][0]["outputs"] == []  # the notebook given is not changed
+
+
 def test_only_a_check_cell_may_raise():
     nb = {"cells": [{"cell_type": "code", "id": "task-03-1-check", "outputs": [{"output_type": "error", "ename": "A",
                                                                                  "evalue": "no answer yet"}]},
@@ -166,6 +183,10 @@ def test_the_bar_links_the_other_language_and_the_live_chapter():
     assert 'href="../../ru/manual/website.html"' in deep and "Open the book in the browser" in deep
     assert conf["language"] == "en" and conf["mathjax_path"] == "../../_assets/mathjax/tex-svg.js"
     assert project.live_path("03_relief_displacement.ipynb", "ru") == "live/lab/index.html?path=ru/03_relief_displacement.ipynb"
+    printless = {**cfg, "pdf": ""}  # a site built without its PDFs (build(pdf=False)) links none
+    assert "aerophoto-pdf" not in sphinx_ext._bar(printless, "03_relief_displacement")
+    assert ".pdf" not in website._front_door(("en", "ru"), pdf=False)
+    assert "href='aerophoto-ru.pdf'" in website._front_door(("en", "ru"), pdf=True)
 
 
 def test_the_front_page_lists_the_chapters_in_the_guides_order():
@@ -182,6 +203,11 @@ def test_the_site_check_finds_remote_resources_and_missing_pictures(tmp_path):
     (tmp_path / "en" / "b.html").write_text("<a href='https://example.org/'>a link is fine</a>", encoding="utf-8")
     problems = check_site(tmp_path)
     assert len(problems) == 2 and "cdn.example.org" in problems[0] and "missing picture" in problems[1]
+    (tmp_path / "en" / "c.html").write_text('<a class="aerophoto-pdf" href="../aerophoto-en.pdf">PDF</a>',
+                                            encoding="utf-8")
+    assert check_site(tmp_path)[2:] == ["en/c.html: missing PDF ../aerophoto-en.pdf"]
+    (tmp_path / "aerophoto-en.pdf").write_bytes(b"%PDF-1.4")
+    assert len(check_site(tmp_path)) == 2
 
 
 def test_the_browser_book_gets_the_russian_chapters_and_lecture_apps(tmp_path):

@@ -83,7 +83,8 @@ def page_title(nb: dict, default: str) -> str:
 
 
 def check_site(site: Path) -> list[str]:
-    """What is wrong with a built site: a page naming another host for a resource, a picture that is missing."""
+    """What is wrong with a built site: a page naming another host for a resource, a picture that is missing, a
+    link to a PDF that is not there."""
     problems = []
     for p in sorted(site.rglob("*.html")):
         if p.relative_to(site).parts[0] == "live":
@@ -94,23 +95,29 @@ def check_site(site: Path) -> list[str]:
         for src in re.findall(r"""<img[^>]+src=["']([^"'#?]+)""", text):
             if not src.startswith("data:") and not (p.parent / src).is_file():
                 problems.append(f"{p.relative_to(site)}: missing picture {src}")
+        for href in re.findall(r"""<a\b[^>]*\shref=["']([^"'#?:]+\.pdf)["']""", text):
+            if not (p.parent / href).is_file():
+                problems.append(f"{p.relative_to(site)}: missing PDF {href}")
     for p in sorted(site.rglob("*.css")):
         if p.relative_to(site).parts[0] != "live" and _REMOTE.search(p.read_text(encoding="utf-8", errors="replace")):
             problems.append(f"{p.relative_to(site)} names another host")
     return problems
 
 
-def _front_door(langs, titles: dict) -> str:
+def _front_door(langs, *, pdf: bool = True) -> str:
     from .chrome import LANG_NAMES, say
+    from .project import PDF_NAME
 
     cards = []
     for lang in langs:
         t = html.escape(say("Aerial photogrammetry — an interactive workbook", lang))
+        printed = (f"<p><a href='{PDF_NAME.format(lang=lang)}'>{html.escape(say('The whole book as PDF', lang))}</a></p>"
+                   if pdf else "")
         cards.append(
             f"<section lang='{lang}'><h2>{t}</h2><p><a class='read' href='{lang}/index.html'>"
             f"{html.escape(say('Read the book', lang))} ({LANG_NAMES[lang]})</a></p>"
             f"<p><a href='{html.escape(_live_default(lang), quote=True)}'>▶ {html.escape(say('Open the book in the browser', lang))}"
-            f"</a></p><p><a href='aerophoto-{lang}.pdf'>{html.escape(say('The whole book as PDF', lang))}</a></p></section>")
+            f"</a></p>{printed}</section>")
     return ("<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
             "<meta name='viewport' content='width=device-width, initial-scale=1'>"
             f"<title>aerophoto — {html.escape(say('Aerial photogrammetry — an interactive workbook', 'en'))}</title>"
@@ -144,11 +151,12 @@ def _live(tmp: Path, lite_dir, root: Path, out) -> tuple[Path, dict]:
     return dest, json.loads((dest / lite.MANIFEST).read_text(encoding="utf-8"))
 
 
-def _book(lang: str, executed: list, *, src: Path, root: Path, hub_url, out) -> dict:
-    """Write one book's Sphinx source from its executed notebooks; returns its summary per chapter."""
+def _book(lang: str, executed: list, *, src: Path, root: Path, hub_url, pdf: bool, out) -> dict:
+    """Write one book's Sphinx source from its executed notebooks (``pdf``: the bar links the printed book);
+    returns its summary per chapter."""
     from .. import book
     from .pages import FIGURE_DIR, page_notebook
-    from .project import live_path, write_book
+    from .project import PDF_NAME, live_path, write_book
 
     names = {ch.name for ch in book.CHAPTERS}
     demos = {d.cell: d for ch in book.CHAPTERS for d in ch.demos}
@@ -166,7 +174,8 @@ def _book(lang: str, executed: list, *, src: Path, root: Path, hub_url, out) -> 
             glossary = page
     settings = {"live": {n: live_path(f"{n}.ipynb", lang) for n in pages}, "live_default": _live_default(lang),
                 "hub": ({n: f"{hub_url.rstrip('/')}/hub/user-redirect/lab/tree/workbook/{n}.ipynb" for n in pages}
-                        if hub_url else {})}
+                        if hub_url else {}),
+                "pdf": PDF_NAME.format(lang=lang) if pdf else ""}
     css = (Path(__file__).with_name("site.css")).read_text(encoding="utf-8")
     write_book(src, lang=lang, pages=pages, glossary=glossary, titles=titles, settings=settings, root=root, css=css)
     return summary
@@ -222,7 +231,7 @@ def build(out_dir="_book", *, root=None, notebooks=None, cache=None, hub_url=Non
         for lang in langs:
             pairs = [(item, d) for (lg, item), d in zip(todo, done) if lg == lang]
             src = tmp / f"src-{lang}"
-            summary[lang] = _book(lang, pairs, src=src, root=root, hub_url=hub_url, out=out)
+            summary[lang] = _book(lang, pairs, src=src, root=root, hub_url=hub_url, pdf=pdf, out=out)
             html_out = tmp / "html" / lang  # myst-nb writes jupyter_execute/ beside the output folder: not in the site
             times[f"sphinx_{lang}_s"] = round(stack.sphinx_build(bindir, src, html_out, jobs=jobs, out=out), 1)
             for p in html_out.rglob("*.map"):  # the theme's source maps: for its developers, 3.5 MB a book
@@ -240,7 +249,7 @@ def build(out_dir="_book", *, root=None, notebooks=None, cache=None, hub_url=Non
                 times[f"pdf_{lang}_s"] = round(stack.print_pdf(single / "index.html", site / PDF_NAME.format(lang=lang),
                                                               title=say("Aerial photogrammetry — an interactive "
                                                                         "workbook", lang), out=out), 1)
-        (site / "index.html").write_text(_front_door(langs, {}), encoding="utf-8")
+        (site / "index.html").write_text(_front_door(langs, pdf=pdf), encoding="utf-8")
         (site / ".nojekyll").write_text("", encoding="utf-8")  # GitHub Pages: serve _static/, _assets/ as they are
         problems = check_site(site)
         if problems:
@@ -254,6 +263,8 @@ def build(out_dir="_book", *, root=None, notebooks=None, cache=None, hub_url=Non
             "bytes": sizes,
             "languages": list(langs),
             "hub_url": hub_url,
+            "pdf": bool(pdf),
+            "pages": sorted(only) if only is not None else None,
             "versions": {"sphinx": "9.0.4", "myst-nb": "1.4.0", "sphinx-book-theme": "1.4.0",
                          "pydata-sphinx-theme": "0.20.0", "mathjax": "3.2.2",
                          "jupyterlite-core": live_manifest.get("versions", {}).get("jupyterlite-core")},

@@ -12,6 +12,11 @@ the language, the package's source files (``src/aerophoto``, every ``.py`` and d
 snapshot module — so an unchanged chapter is not run again; any change to the package runs every chapter again
 (a change anywhere may change a figure).  Kernels run ``jobs`` at a time (default 2: the project's machines have
 2 cores).
+
+The kernels of one build share the book's disk cache of heavy data (:mod:`aerophoto.cache`: the test site, the
+guide's stereo pair, chapter 07's height model) in ``<cache>/data`` (``AEROPHOTO_CACHE_DIR``), so the Russian book
+reads what the English one computed, and the next build what this one did; an entry read equals the value built
+bit for bit, so the pages do not depend on it.
 """
 
 from __future__ import annotations
@@ -76,17 +81,21 @@ def _profile(tmp: Path) -> Path:
     return ipdir
 
 
-def _env(tmp: Path, lang: str) -> dict:
+def _env(tmp: Path, lang: str, data_cache: Path | None) -> dict:
     env = {k: v for k, v in os.environ.items() if not k.startswith("AEROPHOTO_")}
     home = tmp / "home"
     home.mkdir(parents=True, exist_ok=True)
     env.update(AEROPHOTO_HOME=str(home), AEROPHOTO_LANG=lang, IPYTHONDIR=str(_profile(tmp)),
                MPLBACKEND="module://ipympl.backend_nbagg", PYTHONHASHSEED="0", AEROPHOTO_WEBSITE="1")
+    if data_cache is not None:
+        env["AEROPHOTO_CACHE_DIR"] = str(data_cache)
     return env
 
 
-def execute(nb: dict, lang: str, *, cwd: Path, name: str = "notebook", timeout: int = CELL_TIMEOUT_S) -> dict:
-    """Run ``nb`` (not changed) in a fresh kernel and return the executed copy; raises :class:`ExecutionError`."""
+def execute(nb: dict, lang: str, *, cwd: Path, name: str = "notebook", timeout: int = CELL_TIMEOUT_S,
+            data_cache: Path | None = None) -> dict:
+    """Run ``nb`` (not changed) in a fresh kernel and return the executed copy; raises :class:`ExecutionError`.
+    ``data_cache``: the folder of the book's heavy-data cache the kernel uses (None: its own empty home's)."""
     import nbformat
     from nbclient import NotebookClient
     from nbclient.exceptions import CellExecutionError
@@ -97,7 +106,7 @@ def execute(nb: dict, lang: str, *, cwd: Path, name: str = "notebook", timeout: 
                                 store_widget_state=False, record_timing=False,
                                 resources={"metadata": {"path": str(cwd)}})
         try:
-            client.execute(env=_env(Path(tmp), lang))
+            client.execute(env=_env(Path(tmp), lang, data_cache))
         except CellExecutionError as exc:
             raise ExecutionError(f"{name} ({lang}) failed to execute: {str(exc)[:2000]}") from None
     out = json.loads(nbformat.writes(run))
@@ -124,6 +133,8 @@ def execute_all(jobs_in: list, *, cache: Path, cwd: Path, jobs: int = 2, out=pri
     """Execute ``[(name, lang, notebook dict)]``, each from the cache when it holds it; returns the executed
     notebooks in the same order.  Prints one line per notebook run (with its seconds)."""
     digest = package_digest()
+    data = Path(cache) / "data"
+    data.mkdir(mode=0o700, parents=True, exist_ok=True)  # aerophoto.cache reads no folder others may write
     cache = Path(cache) / "executed"
     cache.mkdir(parents=True, exist_ok=True)
 
@@ -134,7 +145,7 @@ def execute_all(jobs_in: list, *, cache: Path, cwd: Path, jobs: int = 2, out=pri
         if path.is_file():
             return json.loads(path.read_text(encoding="utf-8")), False
         t0 = time.monotonic()
-        done = execute(nb, lang, cwd=cwd, name=name)
+        done = execute(nb, lang, cwd=cwd, name=name, data_cache=data)
         tmp = path.with_suffix(".tmp")
         tmp.write_text(json.dumps(done, ensure_ascii=False), encoding="utf-8")
         tmp.replace(path)

@@ -40,12 +40,13 @@ def lecture_app_path(notebook: str, lang: str) -> str:
 
 
 def conf_py(lang: str, settings: dict) -> str:
-    """The book's conf.py (Sphinx configuration), as text."""
+    """The book's conf.py (Sphinx configuration), as text; ``settings`` holds the bar's links
+    (:mod:`aerophoto.website.sphinx_ext`; ``"pdf": ""`` for a site built without the PDFs)."""
     words = {"run": say("Run this chapter in the browser", lang), "run_book": say("Open the book in the browser", lang),
              "hub": say("Open on the course hub", lang), "pdf": say("The whole book as PDF", lang),
              "bar": say("This page", lang)}
     other = "ru" if lang == "en" else "en"
-    site = {**settings, "other": other, "other_name": LANG_NAMES[other], "pdf": PDF_NAME.format(lang=lang),
+    site = {"pdf": PDF_NAME.format(lang=lang), **settings, "other": other, "other_name": LANG_NAMES[other],
             "words": words}
     title = say("Aerial photogrammetry — an interactive workbook", lang)
     return f'''# The {LANG_NAMES[lang]} book of the aerophoto web book: written by aerophoto.website.project (do not edit)

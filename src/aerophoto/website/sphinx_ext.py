@@ -10,7 +10,7 @@ conf.py):
 ``hub``           page name → the course hub's URL (absolute), for the chapters; {} when no hub is configured
 ``other``         the other language's folder ("ru" in the English book)
 ``other_name``    its name in itself ("Русский")
-``pdf``           the book's PDF, relative to the site's root
+``pdf``           the book's PDF, relative to the site's root; empty when the site is built without the PDFs
 ``words``         the bar's texts in this book's language
 """
 
@@ -30,7 +30,9 @@ def _bar(cfg: dict, pagename: str) -> str:
     hub = cfg["hub"].get(pagename)
     if hub:
         items.append(f'<a class="aerophoto-hub" href="{html.escape(hub, quote=True)}">{html.escape(words["hub"])}</a>')
-    items.append(f'<a class="aerophoto-pdf" href="{html.escape(up + cfg["pdf"], quote=True)}">{html.escape(words["pdf"])}</a>')
+    if cfg.get("pdf"):
+        items.append(f'<a class="aerophoto-pdf" href="{html.escape(up + cfg["pdf"], quote=True)}">'
+                     f'{html.escape(words["pdf"])}</a>')
     other = f"{up}{cfg['other']}/{pagename}.html"
     items.append(f'<a class="aerophoto-lang" href="{html.escape(other, quote=True)}" hreflang="{cfg["other"]}" '
                  f'lang="{cfg["other"]}">{html.escape(cfg["other_name"])}</a>')

@@ -102,8 +102,8 @@ displacement, from the point's image on the (turned) vertical photo to its image
 the guide's formula, drawn along the same line. The table gives the largest of each and the formula's
 error. Arrows are lengthened by the factor in the title.
 
-Like every demo of the book it opens on the guide's worked example — $f = 100$ mm, 1:12 000, $\\alpha = 3^\\circ$,
-$\\lambda = -60^\\circ$ (variant 00) — not on your variant; its $f$ slider reaches 1100 mm, the longest lens of
+Like every demo of the book it opens on the guide's worked example — $f = 100$ mm, 1:12 000, $\alpha = 3^\circ$,
+$\lambda = -60^\circ$ (variant 00) — not on your variant; its $f$ slider reaches 1100 mm, the longest lens of
 the guide's scheme.
 """, id="demo-theory"),
     code("""

@@ -80,6 +80,14 @@ def test_no_control_characters(path):
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_no_doubled_backslash_in_a_formula(path):
+    """``\\alpha`` in a formula is a line break and the word "alpha" in MathJax: a backslash escaped twice (a raw
+    string written like a plain one); the book's formulas never break lines inside $…$."""
+    bad = [(cell_id, tex) for cell_id, tex in formulas(path) if re.search(r"\\\\[A-Za-z]", tex)]
+    assert not bad, f"formulas with a doubled backslash before a command: {bad}"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
 def test_math_typesets(path):
     parser = MathTextParser("path")
     failed = []

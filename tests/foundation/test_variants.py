@@ -43,7 +43,8 @@ def test_the_variant_table_and_dict():
     from aerophoto.plots import html_table
 
     # shown in the book's format: unit "1:" beside 17 700 with a narrow no-break space (numfmt)
-    assert "<td>1:</td><td>17\u202f700</td>" in html_table(t, precision=t.attrs["aerophoto"].get("precision"))
+    shown = html_table(t, precision=t.attrs["aerophoto"].get("precision"))
+    assert "<td class='num'>1:</td><td class='num'>17\u202f700</td>" in shown
     assert t.loc["Frame size", "value"] == "18×18"
     assert v.as_dict()["lambda_deg"] == -3.0 and len(v.as_dict()) == 15
 

@@ -217,7 +217,23 @@ def _given(obj, depth: int = 0) -> set[float]:
                            *(_given(getattr(obj, f.name), depth + 1) for f in dataclasses.fields(obj)))
     if isinstance(obj, (list, tuple)):
         return set().union(set(), *(_given(x, depth + 1) for x in obj[:_MAX_INPUT_NUMBERS]))
-    return numbers_in(str(obj)[:20000])
+    # a lab object (a stereo pair, a sheet): its repr and the tables it hands the student as attributes (chapter 07's
+    # measured tops and feet, `lab.points`); a withheld name raises and is not given
+    # (tables only, by attribute — a lazy one too, chapter 07's `points` — never a method, and never one named as a
+    # solution: truth, reference, answer, solution)
+    out = numbers_in(str(obj)[:20000])
+    for name in dir(obj):
+        if name.startswith("_") or any(w in name for w in ("truth", "reference", "answer", "solution")):
+            continue
+        if callable(getattr(type(obj), name, None)):
+            continue
+        try:
+            value = getattr(obj, name)  # a withheld name raises: not given
+        except Exception:
+            continue
+        if hasattr(value, "to_numpy") and hasattr(value, "columns"):
+            out |= _given(value, depth + 1)
+    return out
 
 
 def _input_numbers(v, chapter_tasks) -> set[float]:

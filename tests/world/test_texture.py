@@ -150,7 +150,11 @@ def test_the_sites_crowns_make_the_canopy(isite):
     seen = idx >= 0
     assert seen.mean() > 0.9
     diff = np.abs(objs.canopy_at(X[seen], Y[seen]) - h[seen])  # the raster's columns against the surface
-    assert np.median(diff) < 0.3 and diff.max() < 3.0  # a steep cone's column spans its slope over a texel
+    # a column of the raster spans its crown's slope over one texel: at most the steepest shape's slope (2·top/R)
+    # across a texel's diagonal (measured: the largest difference is 0.18 of that bound, the median 8 cm)
+    i = idx[seen]
+    bound = 2.0 * cr.top_m[i] / cr.r_m[i] * objs.texel_m * np.sqrt(2.0)
+    assert np.median(diff) < 0.3 and (diff <= bound).all()
     codes = {cover.CLASS_CODES[n] for n in ("pine forest", "spruce forest", "deciduous forest", "shrub")}
     assert set(np.unique(cr.cls)) <= codes
     for name in ("pine forest", "spruce forest"):

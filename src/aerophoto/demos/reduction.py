@@ -671,7 +671,10 @@ class ReductionDemo(LiveDemo):
         df = result.reduction.coefficients.table()[["l_base (l_осн), mm", "l_template (l_воск), mm", "k", "Δk"]]
         hl = np.zeros(df.shape, dtype=bool)
         hl[:, 3] = ~result.reduction.coefficients.ok
-        self.table.value = plots.html_table(df, caption="Reduction coefficients (table 12)", float_format="{:.4f}",
+        # as the guide's table 12 prints them: lengths to 0.01 mm, k and Δk to 0.001 (and the table fits the
+        # lecture page's column at 1280 px)
+        prec = {"l_base (l_осн), mm": 2, "l_template (l_воск), mm": 2, "k": 3, "Δk": 3}
+        self.table.value = plots.html_table(df, caption="Reduction coefficients (table 12)", precision=prec,
                                             notes=notes, highlight=hl)
 
 

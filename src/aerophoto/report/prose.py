@@ -95,7 +95,7 @@ _GREEK = {"alpha": "alpha", "phi": "phi", "tau": "tau", "sigma": "sigma", "gamma
 _SPECIAL = {"da": 'delta_alpha', "dh": "delta_h", "m_rms": "m", "dm": "Delta m", "rc": "r_c", "K_d": "K_d"}
 
 
-def symbol(name: str, position: int | None = None) -> str | None:
+def symbol(name: str) -> str | None:
     """A task's answer variable as a symbol to print (Typst math, never the Python name): ``TS_h`` → $T_"S"$,
     ``Px_percent`` → $P_"x"$, ``dgamma_arcsec`` → $Delta gamma$; the subscript always a quoted string.  None when
     the name makes no clean symbol (a subscript that is a word): the caller names the answer by its place instead."""

@@ -669,6 +669,7 @@ class ReductionDemo(LiveDemo):
         if result.note:
             notes.append(result.note)
         df = result.reduction.coefficients.table()[["l_base (l_осн), mm", "l_template (l_воск), mm", "k", "Δk"]]
+        df.index = df.index.map(lambda b: str(b).replace(" – ", "–"))  # the bases as the figure's ticks name them
         hl = np.zeros(df.shape, dtype=bool)
         hl[:, 3] = ~result.reduction.coefficients.ok
         # as the guide's table 12 prints them: lengths to 0.01 mm, k and Δk to 0.001 (and the table fits the

@@ -51,7 +51,7 @@ def test_chapter_02_inputs_are_the_table_the_notebook_shows():
 def test_chapter_02_tolerances_are_todays():
     tol = {a.name: a.tol_abs for t in tasks.chapter_tasks("02") for a in t.spec if a.kind == "value"}
     assert tol == {"Px_percent": 0.05, "dm_percent": 0.02, "n_percent": 0.02, "crab_limit_deg": 0.05,
-                   "alpha_read_deg": 0.01}
+                   "alpha_read_deg": 0.05}  # half a printed unit of 0.1° (issue 27); its hidden check keeps 30′ steps
     assert [a.name for a in ch02.JudgeStrip.spec if a.kind == "bool"] == ["px_ok", "dm_ok", "n_ok", "crab_ok",
                                                                           "tilt_ok"]
 

@@ -830,7 +830,10 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
                          "worked example (variant 00); leave record_book at None")
     ip = _in_ipython()
     if live and ip is not None:
-        ip.run_line_magic("matplotlib", "widget")
+        try:
+            ip.run_line_magic("matplotlib", "widget")
+        except NotImplementedError:  # a shell with no event loop (a plain InteractiveShell): figures stay static
+            pass
     if lecture:
         return variant_for_index(0, "lecture — the guide's worked example")
     note = ""

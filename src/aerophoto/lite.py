@@ -123,11 +123,10 @@ def cache_dir() -> Path:
 
 
 def sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
+    """A file's SHA-256 (hex), read in 1 MiB blocks: the disk cache's own reader (:mod:`aerophoto.cache`)."""
+    from .cache import _sha256
+
+    return _sha256(Path(path))
 
 
 def _key(*paths: Path) -> str:

@@ -200,7 +200,7 @@ def test_scale_class_bad_input_and_notes():
     for bad in (0, -5, float("nan"), float("inf")):
         with pytest.raises(ValueError, match="scale_denominator"):
             guide.ch13.soil_map_scale_class(bad)
-    assert "between classes" in guide.ch13.scale_class_note(30000) and "25 000" in guide.ch13.scale_class_note(30000)
+    assert "between classes" in guide.ch13.scale_class_note(30000) and "25\u202f000" in guide.ch13.scale_class_note(30000)
     assert len(guide.ch13.scale_table()) == 7  # four classes and three gaps
     assert len(guide.ch13.STEPS) == 5 and guide.ch13.HUMUS_LINEAR_UP_TO_PCT == spectral.HUMUS_LINEAR_PCT
 

@@ -214,7 +214,7 @@ def test_inputs_are_the_students_lab_sheets():
     assert repr(s1) == f"LabSheet(…, inputs of the task: {', '.join(sorted(ch03.SHEET_WITHHELD))} withheld)"
     assert list(s1.heights().columns) == ["Z, m"]
     text = s1.summary().to_string()
-    assert "1:13 200" in text and "220" in text and "-48" in text
+    assert "1:13\u202f200" in text and "220" in text and "-48" in text
 
 
 def test_the_task_templates_and_checks_read_the_same_names():

@@ -85,11 +85,16 @@ def _to_float(token: str) -> float | None:
     return x if math.isfinite(x) else None
 
 
+_GROUP = re.compile(r"(?<=\d)[\u00a0\u2009\u202f](?=\d{3}(?!\d))")
+
+
 def numbers_in(text: str) -> set[float]:
-    """Every number printed in ``text``: with thousands separators read both ways ("5 100" → 5100, 5, 100)."""
+    """Every number printed in ``text``: with an ambiguous thousands separator (a plain space, a comma) read both
+    ways ("5 100" → 5100, 5, 100); a narrow, thin or no-break space between digit groups is only a group separator
+    (the book's :mod:`aerophoto.i18n.numfmt` writes "1:12\u202f300", never two numbers "12" and "300")."""
     out = set()
-    for pattern in (_NUMBER, _SIMPLE):
-        for m in pattern.finditer(text):
+    for pattern, s in ((_NUMBER, text), (_SIMPLE, _GROUP.sub("", text))):
+        for m in pattern.finditer(s):
             x = _to_float(m.group(0))
             if x is not None:
                 out.add(x)
@@ -233,6 +238,8 @@ def _given(obj, depth: int = 0) -> set[float]:
             continue
         if hasattr(value, "to_numpy") and hasattr(value, "columns"):
             out |= _given(value, depth + 1)
+        elif isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
+            out |= set(_numbers(value))  # a number it hands over (chapter 16's block: 10 photos per strip)
     return out
 
 
@@ -409,6 +416,7 @@ def test_numbers_are_read_as_printed():
     assert numbers_in("H = 11 859 m, on = −35.1 mm") >= {11859.0, -35.1}
     assert 11859.0 in numbers_in("<td>11,859</td>")
     assert 12000.0 in numbers_in("1:12\u202f000") and 1.2e4 in numbers_in("1.2e+04")
+    assert 12.0 not in numbers_in("1/m = 1:12\u202f300") and {5.0, 100.0} <= numbers_in("5 100")
     assert numbers_in(html_text("<img src='data:image/png;base64,AAAA1234' alt='limit 7.5°'>")) == {7.5}
     assert numbers_in(html_text("<style>.x{width:340px}</style><b>60.07</b> %")) == {60.07}
 

@@ -127,6 +127,6 @@ def test_tools_on_a_lab_sheet_mark_the_true_points(sheet):
     assert plan.extent_mm == (0.0, float(sheet.plan_size_mm[0]), 0.0, float(sheet.plan_size_mm[1]))
     np.testing.assert_allclose([plan.marks[n][0].get_xdata()[0] for n in sheet.names], sheet.plan_xy_mm[:, 0])
     assert plan.ax.collections  # the contours
-    assert "1:10 000" in plan.ax.get_title()
+    assert "1:10\u202f000" in plan.ax.get_title()  # the book's number format (aerophoto.i18n.numfmt)
     photo.close()
     plan.close()

@@ -130,3 +130,18 @@ def test_tick_labels_in_the_books_format():
     plt.close(fig)
     assert f"{MINUS}10{GROUP}000" in xs and "5000" in xs
     assert f"{MINUS}0,50" in ys and "1,00" in ys
+
+
+def test_no_module_groups_thousands_by_hand():
+    """Every grouped number goes through numfmt: a hand-made ``f"{x:,.0f}".replace(",", " ")`` writes a plain space,
+    which the reader cannot tell from two numbers ("1:12 300" — 12 and 300) and which breaks across a line."""
+    import re
+    from pathlib import Path
+
+    import aerophoto
+
+    src = Path(aerophoto.__file__).parent
+    pattern = re.compile(r""":,[^}]*\}[^\n]*\.replace\(",", " "\)|\.replace\(",", " "\)""")
+    offenders = [f"{p.relative_to(src)}:{i}" for p in sorted(src.rglob("*.py"))
+                 for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if pattern.search(line)]
+    assert not offenders, offenders

@@ -81,7 +81,7 @@ class BudgetView:
             self.texts[i].set_text(f"{v:.3f}" if (v > 0 or BAR_KEYS[i] != "interior") else t("left out"))
         self.ax.set_xlim(0, top)
         verdict = t("≤ 0.4 mm: meets") if B.meets_tolerance else t("> 0.4 mm: fails")
-        mk, mc = (f"{x:,.0f}".replace(",", " ") for x in (B.M_k, B.M_c))
+        mk, mc = (fmt_number(x, 0) for x in (B.M_k, B.M_c))
         self.title.set_text(t("1:{mk} map, 1:{mc} photos\nv_d = {v:.2f} mm {verdict}", mk=mk, mc=mc, v=B.map_mean_mm,
                               verdict=verdict))
 

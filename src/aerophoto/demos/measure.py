@@ -46,6 +46,7 @@ import pandas as pd
 from matplotlib import patheffects
 
 from .. import plots
+from ..i18n.numfmt import fmt_scale
 
 __all__ = ["MeasureTool", "photo_tool", "plan_tool"]
 
@@ -350,7 +351,7 @@ def plan_tool(sheet, *, contour_interval_m: float = 2.0, **kwargs) -> MeasureToo
     Z = plan.contour_Z_m
     step = float(contour_interval_m)
     levels = np.arange(math.floor(Z.min() / step) * step, Z.max() + step, step)
-    kwargs.setdefault("title", f"Your plan at 1:{sheet.M:,.0f} with contours every {step:g} m".replace(",", " "))
+    kwargs.setdefault("title", f"Your plan at {fmt_scale(sheet.M)} with contours every {step:g} m")
     return MeasureTool(plan.image, plan.extent_mm, sheet.names, marks=sheet.marks("plan"),
                        contours=(plan.contour_x_mm, plan.contour_y_mm, Z, levels), xlabel="plan x (east), mm",
                        ylabel="plan y (north), mm", **kwargs)

@@ -47,6 +47,7 @@ from .. import triangulation as tri
 from .._validate import check_int_range, check_range
 from ..i18n import t
 from ..widgets import LiveDemo, Param
+from ..i18n.numfmt import fmt_number, fmt_scale
 
 __all__ = [
     "ReductionResult",
@@ -196,8 +197,8 @@ def reduction_model(f_mm: float = 100.0, m: float = 12000.0, scale_ratio: float 
     flown = strip.imperfections.max_tilt_deg
     if flown < max_tilt_deg - 1e-9:
         H = g.flying_height_m(f_mm, m)
-        tilt_note = (f"α max reduced from {max_tilt_deg:g}° to {flown:.2f}°: at H = {H:,.0f} m a larger tilt would "
-                     "carry the photos off the 10 × 5 km site").replace(",", " ")
+        tilt_note = (f"α max reduced from {max_tilt_deg:g}° to {flown:.2f}°: at H = {fmt_number(H, 0)} m a larger "
+                     "tilt would carry the photos off the 10 × 5 km site")
         note = f"{note}; {tilt_note}" if note else tilt_note
     tm = tri.measure_templates(strip.camera, strip.poses, pts, pricking_mm=pricking_mm, seed=int(seed))
     fs = tri.lay_free_strip(tm, scale_ratio=scale_ratio, M=M)
@@ -690,9 +691,8 @@ def own_site_figure(variant, ax=None):
     from matplotlib.ticker import FuncFormatter
 
     view = SiteStripView(lab.strip, lab.free.points, site=site_mod.get_site(), ax=ax)
-    m_txt = f"{lab.strip.m:,.0f}".replace(",", " ")
     view.ax.set_title(f"Your strip: photos {lab.strip.shots[0].number}–{lab.strip.shots[-1].number}, "
-                      f"f = {lab.strip.camera.f_mm:g} mm, 1:{m_txt}")
+                      f"f = {lab.strip.camera.f_mm:g} mm, {fmt_scale(lab.strip.m)}")
     # the student's geodetic coordinates (triangulation.geodetic): Y east along the axis, X north up it
     X0, Y0 = tri.GEODETIC_ORIGIN_M
     view.ax.xaxis.set_major_formatter(FuncFormatter(lambda val, _pos: f"{val + Y0:.0f}"))

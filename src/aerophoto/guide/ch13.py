@@ -23,6 +23,7 @@ from __future__ import annotations
 import pandas as pd
 
 from .._validate import check_range
+from ..i18n.numfmt import fmt_scale
 
 __all__ = ["SCALE_CLASSES", "BETWEEN", "CLASS_NAMES", "soil_map_scale_class", "scale_class_note", "scale_table",
            "DIRECTIONS", "REFLECTANCE_FACTS", "WATER_DIPS_UM", "HUMUS_LINEAR_UP_TO_PCT", "PARTICLE_BELOW_MM",
@@ -64,26 +65,26 @@ def scale_class_note(scale_denominator: float) -> str:
     """A sentence naming the class of 1:m, or for a gap the two classes it falls between."""
     m = check_range("scale_denominator", scale_denominator, 1.0, 1e9)
     name = soil_map_scale_class(m)
-    label = f"1:{m:,.0f}".replace(",", " ")
+    label = fmt_scale(m)
     if name != BETWEEN:
         ru = dict((c[0], c[1]) for c in SCALE_CLASSES)[name]
         return f"{label}: a {name} soil map ({ru})"
     below = [c for c in SCALE_CLASSES if c[3] is not None and c[3] < m][-1]
     above = [c for c in SCALE_CLASSES if c[2] is not None and c[2] > m][0]
-    return (f"{label}: between classes — larger than {below[0]} maps (to 1:{below[3]:,}) and smaller than "
-            f"{above[0]} ones (from 1:{above[2]:,}); the guide's list leaves this gap").replace(",", " ")
+    return (f"{label}: between classes — larger than {below[0]} maps (to {fmt_scale(below[3])}) and smaller than "
+            f"{above[0]} ones (from {fmt_scale(above[2])}); the guide's list leaves this gap")
 
 
 def scale_table() -> pd.DataFrame:
     """The classes as the guide lists them, with the printed range and the gaps between them."""
     rows = []
     for i, (name, ru, lo, hi, use) in enumerate(SCALE_CLASSES):
-        rng = (f"1:{hi:,} and larger" if lo is None else f"1:{lo:,} and smaller" if hi is None
-               else f"1:{lo:,} … 1:{hi:,}").replace(",", " ")
+        rng = (f"{fmt_scale(hi)} and larger" if lo is None else f"{fmt_scale(lo)} and smaller" if hi is None
+               else f"{fmt_scale(lo)} … {fmt_scale(hi)}")
         rows.append((name, ru, rng, use))
         if i + 1 < len(SCALE_CLASSES):
             nxt = SCALE_CLASSES[i + 1][2]
-            rows.append((BETWEEN, "(не названы)", f"1:{hi:,} … 1:{nxt:,} (exclusive)".replace(",", " "),
+            rows.append((BETWEEN, "(не названы)", f"{fmt_scale(hi)} … {fmt_scale(nxt)} (exclusive)",
                          "not listed by the guide"))
     return pd.DataFrame(rows, columns=["class", "Russian", "scales", "used for (guide §14)"])
 

@@ -54,6 +54,7 @@ import pandas as pd
 from .. import displacement as d
 from .. import geometry as g
 from .._validate import check_int_range, check_range
+from ..i18n.numfmt import fmt_scale
 
 __all__ = ["RELIEF_NAMES", "RELIEF_BASES", "TILT_NAMES", "TILT_BASES", "PHOTO_PX", "M_PLAN", "OPEN_GROUND",
            "LabSheet", "PlanImage", "relief_sheet", "tilt_sheet", "sheet_for", "photo_of", "plan_of"]
@@ -282,10 +283,10 @@ class LabSheet:
     def summary(self) -> pd.DataFrame:
         """The photo's inputs the student works from: f, 1:m, α, λ, the plan's 1:M (no results)."""
         rows = [("focal length f", "mm", f"{self.camera.f_mm:g}"),
-                ("photo scale 1:m", "", f"1:{self.m:,.0f}".replace(",", " ")),
+                ("photo scale 1:m", "", fmt_scale(self.m)),
                 ("tilt α", "°", f"{self.pose.alpha_deg:g}"),
                 ("principal vertical λ (from +x, counter-clockwise)", "°", f"{self.pose.lambda_deg:g}"),
-                ("plan scale 1:M", "", f"1:{self.M:,.0f}".replace(",", " "))]
+                ("plan scale 1:M", "", fmt_scale(self.M))]
         return pd.DataFrame(rows, columns=["quantity", "unit", "value"]).set_index("quantity")
 
 

@@ -47,7 +47,7 @@ import pandas as pd
 from . import _validate as V
 from . import geometry as g
 from ._validate import check_int_range, check_positive
-from .i18n.numfmt import fmt_number
+from ._digits import whole
 
 __all__ = [
     "PX_MIN_PERCENT",
@@ -711,8 +711,8 @@ class QualityReport:
         """The written conclusion on the survey's fitness (guide §3, items 5–6), generated from the verdicts."""
         n_ph = len(self.photos)
         n_st = len(self.strips)
-        m_txt = fmt_number(self.m, 0)
-        H_txt = fmt_number(self.H_design_m, 0)
+        m_txt = whole(self.m)
+        H_txt = whole(self.H_design_m)
         head = (f"{n_ph} photos in {n_st} strip{'s' if n_st != 1 else ''} were checked "
                 f"(f = {self.f_mm:g} mm, design scale 1:{m_txt}, H = {H_txt} m).")
         photo_note = ("The photographic quality (sharpness, fine detail, defects) was not judged: the photos are "

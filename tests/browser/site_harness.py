@@ -72,11 +72,14 @@ PAGE_STATE_JS = """async () => {
 }"""
 
 
-def run_axe(page, source: str) -> list[dict]:
-    """axe-core on the page (WCAG 2.x A/AA rules and best practices); returns its violations (id, impact, nodes)."""
+def run_axe(page, source: str, within: str | None = None) -> list[dict]:
+    """axe-core on the page (WCAG 2.x A/AA rules and best practices); returns its violations (id, impact, nodes).
+
+    ``within``: a CSS selector — only that part of the page is checked (a JupyterLab chapter's notebook, not Lab's
+    own chrome)."""
     page.add_script_tag(content=source)
-    return page.evaluate("""async () => {
-      const r = await axe.run(document, {resultTypes: ['violations']});
+    return page.evaluate("""async (within) => {
+      const r = await axe.run(within ? {include: [within]} : document, {resultTypes: ['violations']});
       return r.violations.map((v) => ({id: v.id, impact: v.impact, help: v.help,
                                        nodes: v.nodes.slice(0, 3).map((n) => n.target.join(' '))}));
-    }""")
+    }""", within)

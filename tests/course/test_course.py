@@ -157,10 +157,15 @@ def test_release_digest_follows_the_cells_only(release):
 def test_workbook_copies_the_student_book_and_never_overwrites(book, tmp_path):
     dest = tmp_path / "workbook"
     lines = []
+    (book / "ru").mkdir()
+    (book / "ru" / f"{A}.md").write_text("<!-- cell: summary · en: 000000000000 -->\n## Итоги\n", encoding="utf-8")
+    (book / "ru" / "notes.md").write_text("a reader's file, not a chapter's Russian text", encoding="utf-8")
     done = course.write_workbook(dest, book, out=lines.append)
     target = dest / f"{A}.ipynb"
     assert done == [("written", target)]
     assert (dest / "figures" / "frame.png").read_bytes() == b"\x89PNG fake"
+    # the chapters' Russian sources stay in the book (the Russian notebooks are built from them); other files are copied
+    assert not (dest / "ru" / f"{A}.md").exists() and (dest / "ru" / "notes.md").is_file()
     nb = read(target)
     assert "SOLUTION" not in json.dumps(nb) and answer(nb).source.splitlines() == TEMPLATE
 

@@ -2,7 +2,7 @@
 
 The layers (docs/CONTRIBUTING.md, "The house"):
 
-1. foundation — ``_validate``, ``_chapters`` (the chapter modules' naming rule), ``geometry`` (camera, projection, Terrain), ``plane`` (2-D fits, rays), ``variants``, ``cache`` (the disk cache of the chapters' heavy data), ``diskcache`` (the
+1. foundation — ``_validate``, ``_chapters`` (the chapter modules' naming rule), ``_digits`` (whole numbers grouped as the book writes them), ``geometry`` (camera, projection, Terrain), ``plane`` (2-D fits, rays), ``variants``, ``cache`` (the disk cache of the chapters' heavy data), ``diskcache`` (the
    student machine's verified cache)
 2. physics — one module or package per topic, pure functions and frozen dataclasses
 3. the virtual world — ``terrain``, ``site``, ``simulate``, ``render`` (data only)
@@ -26,7 +26,7 @@ import pytest
 PKG = Path(__file__).resolve().parents[2] / "src" / "aerophoto"
 
 LAYERS = {
-    1: ("_validate", "_chapters", "geometry", "plane", "variants", "cache", "diskcache"),
+    1: ("_validate", "_chapters", "_digits", "geometry", "plane", "variants", "cache", "diskcache"),
     2: ("flight", "quality", "displacement", "mosaic", "triangulation", "stereo", "projective", "control",
         "accuracy", "interpretation", "spectral", "bundle", "dem", "budget", "rectify", "soilmap"),
     3: ("terrain", "site", "simulate", "render"),

@@ -82,19 +82,23 @@ def test_scale_figure_zooms_or_lays_out_again():
 
 
 def test_a_title_too_wide_for_the_figure_is_set_smaller():
-    fig = plots.figure(figsize=(6.0, 4.0), layout="constrained")
-    ax = fig.add_subplot()
-    ax.set_title("Fotoschema 1:12 043 · m = 0.19 mm · seams pass")
-    ax.plot([0, 1], [0, 1])
-    fig.canvas.draw()
-    plots.freeze_layout(fig)
-    fig.canvas.draw()
-    plots.scale_figure(fig, 400, 267, 1.3)
-    fig.canvas.draw()
-    assert ax.title.get_window_extent().width <= fig.bbox.width
-    assert ax.title.get_fontsize() < ax.title._aerophoto_size   # set smaller to fit, its own size kept
-    plots.scale_figure(fig, 600, 400, 1.0)   # room again: its own size back
-    assert ax.title.get_fontsize() == ax.title._aerophoto_size
+    """In the book's style (its 13-pt titles: the run order of the tests decided before whether the style was on)."""
+    import matplotlib
+
+    with matplotlib.rc_context(plots.STYLE):
+        fig = plots.figure(figsize=(6.0, 4.0), layout="constrained")
+        ax = fig.add_subplot()
+        ax.set_title("Fotoschema 1:12 043 · m = 0.19 mm · seams pass")
+        ax.plot([0, 1], [0, 1])
+        fig.canvas.draw()
+        plots.freeze_layout(fig)
+        fig.canvas.draw()
+        plots.scale_figure(fig, 400, 267, 1.3)
+        fig.canvas.draw()
+        assert ax.title.get_window_extent().width <= fig.bbox.width
+        assert ax.title.get_fontsize() < ax.title._aerophoto_size   # set smaller to fit, its own size kept
+        plots.scale_figure(fig, 600, 400, 1.0)   # room again: its own size back
+        assert ax.title.get_fontsize() == ax.title._aerophoto_size
 
 
 def test_the_figure_is_drawn_under_its_lock():

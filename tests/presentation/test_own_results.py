@@ -131,7 +131,7 @@ def test_scheme_table_covers_every_variant_and_flags_what_is_beyond_real_practic
     t = ch00.scheme_table()
     assert list(t.index) == [f"{a:02d}–{a + 9:02d}" for a in range(0, 100, 10)]
     assert t.loc["00–09", "f, mm"] == "100–190" and t.loc["90–99", "f, mm"] == "1000–1090"
-    assert t.loc["90–99", "photo scale"] == "1:21 000–21 900" and t.loc["90–99", "W, km/h"] == "1100–1190"
+    assert t.loc["90–99", "photo scale"] == "1:21\u202f000–21\u202f900" and t.loc["90–99", "W, km/h"] == "1100–1190"
     assert "real mapping lenses" in t.loc["00–09", "the lens"]
     assert t.loc["60–69", "the lens"].startswith("beyond real practice")
     assert t.loc["00–09", "the aircraft"] == "survey aircraft"

@@ -190,12 +190,18 @@ def student_version(nb, config=None):
     return out
 
 
+def _is_translation_source(path: Path) -> bool:
+    """A chapter's Russian text (``ru/NN_name.md`` beside ``NN_name.ipynb``, :func:`aerophoto.i18n.prose.translation_path`):
+    the book's source, read where the book is built — never a file of a student's or a teacher's copy."""
+    return path.suffix == ".md" and path.parent.name == "ru" and (path.parent.parent / f"{path.stem}.ipynb").is_file()
+
+
 def _copy_extras(src_dir: Path, dest: Path) -> None:
     for extra in sorted(src_dir.rglob("*")):
         rel = extra.relative_to(src_dir)
         if extra.is_dir() or extra.suffix == ".ipynb" or any(p.startswith(".") for p in rel.parts):
             continue
-        if rel.parts[0] in {"__pycache__"}:
+        if rel.parts[0] in {"__pycache__"} or _is_translation_source(extra):
             continue
         target = dest / rel
         if not target.exists():

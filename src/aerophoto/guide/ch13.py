@@ -23,7 +23,7 @@ from __future__ import annotations
 import pandas as pd
 
 from .._validate import check_range
-from ..i18n.numfmt import fmt_scale
+from .._digits import scale as fmt_scale
 
 __all__ = ["SCALE_CLASSES", "BETWEEN", "CLASS_NAMES", "soil_map_scale_class", "scale_class_note", "scale_table",
            "DIRECTIONS", "REFLECTANCE_FACTS", "WATER_DIPS_UM", "HUMUS_LINEAR_UP_TO_PCT", "PARTICLE_BELOW_MM",

@@ -30,14 +30,12 @@ import math
 import re
 from numbers import Real
 
+from .._digits import GROUP, MINUS, group  # the thousands separator (U+202F) and the minus sign (U+2212)
+
 __all__ = ["GROUP", "MINUS", "NBSP", "DASH", "NUMBER", "decimal_mark", "decimals_for", "fmt_number", "fmt_count",
            "fmt_scale", "fmt_percent", "fmt_quantity", "fmt_signed", "fmt_value", "fmt_spec", "fmt_text",
            "parse_number", "numbers_in", "TickFormatter", "localise_ticks"]
 
-#: the thousands separator: a narrow no-break space
-GROUP = "\u202f"
-#: the minus sign
-MINUS = "\u2212"
 #: a no-break space (between a number and its unit)
 NBSP = "\u00a0"
 #: what a missing value prints as
@@ -85,12 +83,7 @@ def decimals_for(x, sig: int) -> int:
     return max(0, sig - 1 - math.floor(math.log10(abs(x))))
 
 
-def _group(whole: str) -> str:
-    if len(whole) < 5:
-        return whole
-    head = len(whole) % 3 or 3
-    parts = [whole[:head]] + [whole[i:i + 3] for i in range(head, len(whole), 3)]
-    return GROUP.join(parts)
+_group = group  # the grouping rule lives in the foundation (aerophoto._digits), for every layer
 
 
 def fmt_number(x, decimals: int | None = None, *, sig: int | None = None, lang=None, group: bool = True,

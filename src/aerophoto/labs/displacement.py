@@ -54,7 +54,7 @@ import pandas as pd
 from .. import displacement as d
 from .. import geometry as g
 from .._validate import check_int_range, check_range
-from ..i18n.numfmt import fmt_scale
+from .._digits import scale as fmt_scale
 
 __all__ = ["RELIEF_NAMES", "RELIEF_BASES", "TILT_NAMES", "TILT_BASES", "PHOTO_PX", "M_PLAN", "OPEN_GROUND",
            "LabSheet", "PlanImage", "relief_sheet", "tilt_sheet", "sheet_for", "photo_of", "plan_of"]

@@ -15,7 +15,7 @@ from .. import geometry as g
 from .. import variants
 from .base import Answer, Method, Task
 from .rounding import consistency, numbers
-from ..i18n.numfmt import fmt_number
+from .._digits import whole
 
 __all__ = ["ElementsOfTiltedPhoto", "TASKS", "SURVEY_LENSES_MM", "RECONNAISSANCE_MAX_MM", "SURVEY_SPEED_KMH",
            "SURVEY_CEILING_KM", "scheme_table"]
@@ -84,7 +84,7 @@ def _span(lo, hi, fmt="{:g}") -> str:
 
 
 def _thousands(x) -> str:
-    return fmt_number(x, 0)
+    return whole(x)
 
 
 def _lens_note(f_lo: float, f_hi: float) -> str:

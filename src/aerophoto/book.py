@@ -835,6 +835,10 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
         except NotImplementedError:  # a shell with no event loop (a plain InteractiveShell): figures stay static
             pass
     if lecture:
+        if ip is not None and not quiet:
+            from IPython.display import HTML, display
+
+            display(HTML(LINK_CSS))
         return variant_for_index(0, "lecture — the guide's worked example")
     note = ""
     if record_book is not None and str(record_book).strip():
@@ -851,6 +855,12 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
     if not quiet:
         _banner(v, note, ip)
     return v
+
+
+#: links in the chapters' text underlined, not told apart by colour alone (WCAG 1.4.1; axe-core's link-in-text-block
+#: found JupyterLab's and Voilà's plain blue links on the lecture index): written by the setup cell of every page
+LINK_CSS = ("<style>.jp-RenderedHTMLCommon a:not(.jp-InternalAnchorLink):not(.anchor-link) "
+            "{text-decoration: underline; text-underline-offset: 0.15em;}</style>")
 
 
 def _banner(v: Variant, note: str, ip) -> None:
@@ -873,7 +883,8 @@ def _banner(v: Variant, note: str, ip) -> None:
     extra = ""
     if in_browser():
         extra = f"<br><span class='aerophoto-browser-note'>{html.escape(t(BROWSER_NOTE))}</span>"
-    display(HTML(f"<div style='border-left:4px solid #0072B2;padding:4px 8px'><b>{line1}</b><br>{line2}{extra}</div>"))
+    display(HTML(f"{LINK_CSS}<div style='border-left:4px solid #0072B2;padding:4px 8px'><b>{line1}</b><br>{line2}{extra}"
+                 "</div>"))
 
 
 def main(argv=None) -> int:

@@ -26,7 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 __all__ = ["PageBox", "Fit", "chapter_fit", "BESIDE", "lecture_fit", "page_sensor", "TOOLBAR_PX", "COLUMN_PX", "MIN_TEXT",
-           "PROJECTOR_TEXT", "PROJECTOR_MIN", "SIDE_PX", "BOTTOM_PX", "GAP_PX"]
+           "PROJECTOR_TEXT", "PROJECTOR_MIN", "SIDE_PX", "BOTTOM_PX", "PAGE_TOP_PX", "GAP_PX"]
 
 #: the width of ipympl's toolbar beside the canvas (its position "right"), px
 TOOLBAR_PX = 40
@@ -44,6 +44,10 @@ PROJECTOR_MIN = 1.3
 SIDE_PX = {False: (0.30, 330, 560), True: (0.36, 420, 720)}
 #: room kept under a lecture demo, px
 BOTTOM_PX = 24
+#: room kept above a lecture demo's figure row besides the demo's own title and band, px: Voilà's top margin
+#: (35 px; the page's first demo cannot scroll above it) and the figure widget's frame (8 px) — measured at
+#: 1920×1080, where a figure sized without them ran 15 px off the screen's bottom
+PAGE_TOP_PX = 44
 #: the gap between figure and side column, px
 GAP_PX = 12
 #: a figure is never drawn smaller than this fraction of its natural size, nor larger than the last
@@ -113,14 +117,14 @@ def lecture_fit(box: PageBox, natural_px: tuple[float, float], *, projector: boo
     """The figure of a lecture page's demo: whole on the screen with the side column beside it.
 
     The side column takes its share of ``box.width`` (:data:`SIDE_PX`); the figure the rest of the width and the
-    window's height under the sliders (``box.view_h - box.top``, less :data:`BOTTOM_PX`), its aspect kept.  In
+    window's height under the sliders (``box.view_h - box.top``, less :data:`PAGE_TOP_PX` and :data:`BOTTOM_PX`), its aspect kept.  In
     projector mode the side column is wider and the text, lines and markers larger (:data:`PROJECTOR_TEXT`,
     :data:`PROJECTOR_MIN`).
     """
     w0, h0 = natural_px
     share, lo, hi = SIDE_PX[bool(projector)]
     side = int(_clamp(share * box.width, lo, hi))
-    room_h = box.view_h - box.top - BOTTOM_PX
+    room_h = box.view_h - box.top - PAGE_TOP_PX - BOTTOM_PX
     # a side column whose content is taller than the room gets wider (its text wraps less) — by as much as the
     # height it lacks, up to half the width; one that needed it keeps it while its content fills 80 % of the room
     if box.side_w and box.side_h > room_h:

@@ -32,7 +32,7 @@ def test_a_chapter_figure_goes_beside_the_sliders_or_under_them():
 def test_a_lecture_figure_takes_the_room_the_screen_leaves():
     small = fit.lecture_fit(fit.PageBox(1250, 1280, 800, 140), (880, 560))
     assert small.width_px + small.side_px + fit.TOOLBAR_PX + fit.GAP_PX <= 1250
-    assert small.height_px <= 800 - 140 - fit.BOTTOM_PX
+    assert small.height_px <= 800 - 140 - fit.PAGE_TOP_PX - fit.BOTTOM_PX
     assert small.text == pytest.approx(small.width_px / 880, rel=1e-2)   # zoomed whole: no new layout
     big = fit.lecture_fit(fit.PageBox(1890, 1920, 1080, 150), (880, 560))
     assert big.width_px > 1.3 * small.width_px   # the view grows with the screen
@@ -42,9 +42,9 @@ def test_a_lecture_figure_takes_the_room_the_screen_leaves():
 
 
 def test_a_side_column_too_tall_for_the_screen_gets_wider():
-    box = fit.PageBox(1250, 1280, 800, 190, side_w=425, side_h=700)   # room: 800 − 190 − 24 = 586 px
+    box = fit.PageBox(1250, 1280, 800, 190, side_w=425, side_h=700)   # room: 800 − 190 − 44 − 24 = 542 px
     wider = fit.lecture_fit(box, (880, 560), projector=True)
-    assert wider.side_px >= 425 * 700 / 586 and wider.side_px <= 0.5 * 1250
+    assert wider.side_px >= 425 * 700 / 542 and wider.side_px <= 0.5 * 1250
     # once wide enough it stays (no back and forth while its content fills most of the room)
     held = fit.lecture_fit(fit.PageBox(1250, 1280, 800, 190, side_w=wider.side_px, side_h=540), (880, 560),
                            projector=True)

@@ -29,6 +29,7 @@ from pathlib import Path
 
 from . import __version__
 from .plots import register_table_display, use_style
+from .tables import LINK_CSS
 from .variants import Variant, variant, variant_for_index
 
 __all__ = ["setup", "check_installation", "remembered_record_book", "remember_record_book", "state_dir",
@@ -855,12 +856,6 @@ def setup(record_book=None, *, live: bool = True, quiet: bool = False, lecture: 
     if not quiet:
         _banner(v, note, ip)
     return v
-
-
-#: links in the chapters' text underlined, not told apart by colour alone (WCAG 1.4.1; axe-core's link-in-text-block
-#: found JupyterLab's and Voilà's plain blue links on the lecture index): written by the setup cell of every page
-LINK_CSS = ("<style>.jp-RenderedHTMLCommon a:not(.jp-InternalAnchorLink):not(.anchor-link) "
-            "{text-decoration: underline; text-underline-offset: 0.15em;}</style>")
 
 
 def _banner(v: Variant, note: str, ip) -> None:

@@ -9,7 +9,13 @@ import re
 
 import numpy as np
 
-__all__ = ["html_subscripts", "math_subscripts", "html_table", "register_table_display", "legend_html"]
+__all__ = ["html_subscripts", "math_subscripts", "html_table", "register_table_display", "legend_html", "LINK_CSS"]
+
+#: links in the chapters' text underlined, not told apart by colour alone (WCAG 1.4.1; axe-core's link-in-text-block
+#: found JupyterLab's and Voilà's plain blue links on the lecture index): written by the setup cell of every page
+#: (:func:`aerophoto.setup`)
+LINK_CSS = ("<style>.jp-RenderedHTMLCommon a:not(.jp-InternalAnchorLink):not(.anchor-link) "
+            "{text-decoration: underline; text-underline-offset: 0.15em;}</style>")
 
 
 #: a symbol with a subscript in a label: p_x, m_z, λ_t, h_c, m_ЦМР, h_{max} (not words joined by underscores)

@@ -454,10 +454,16 @@ def _fit_titles(fig) -> None:
     for ax in fig.axes:
         texts += [ax.title, ax._left_title, ax._right_title]
     renderer = fig.canvas.get_renderer()
-    room = fig.bbox.width - 6 * fig.dpi / 72
+    margin = 6 * fig.dpi / 72
     for text in texts:
         if not text.get_visible() or not text.get_text():
             continue
+        # a centred title spreads both ways from its anchor (an axes' centre, often right of the figure's): its
+        # room is twice the nearer edge's distance; a left or right title has the figure's width
+        room = fig.bbox.width - margin
+        if text.get_horizontalalignment() == "center":
+            cx = text.get_transform().transform(text.get_position())[0]
+            room = 2 * min(cx - fig.bbox.x0, fig.bbox.x1 - cx) - margin
         size = getattr(text, "_aerophoto_size", None)
         if size is None:
             size = text._aerophoto_size = text.get_fontsize()

@@ -41,9 +41,9 @@ LECTURE_CHAPTERS = ("05_fotoschema", "08_interpretation", "11_rectification", "1
 SCREENS = {"1280x800": {"width": 1280, "height": 800}, "1920x1080": {"width": 1920, "height": 1080}}
 #: the smallest text of projector mode (issue 33: "≥ 18 px at 1280×800")
 PROJECTOR_MIN_PX = 18.0
-#: what projector mode must enlarge: slider labels and readouts, buttons, the tables' cells, the lecture title
+#: what projector mode must enlarge: slider labels and readouts, buttons, the tables' cells, the figures' keys
 PROJECTOR_TEXT = (".widget-slider .widget-label", ".widget-readout", ".widget-button", ".widget-toggle-button",
-                  ".aerophoto-table td", ".aerophoto-table th")
+                  ".aerophoto-table td", ".aerophoto-table th", ".aerophoto-legend")
 
 
 def _inside(box, screen: dict, where: str, what: str) -> None:

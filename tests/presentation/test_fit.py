@@ -101,6 +101,26 @@ def test_a_title_too_wide_for_the_figure_is_set_smaller():
         assert ax.title.get_fontsize() == ax.title._aerophoto_size
 
 
+def test_a_centred_title_over_axes_off_the_figures_centre_stays_on_the_figure():
+    """Chapter 16's lecture demo in projector mode cut "(1225 nodes)" at the right: the title is centred on the
+    axes, which a y label moves right of the figure's centre — its room is twice the nearer edge's distance."""
+    import matplotlib
+
+    with matplotlib.rc_context(plots.STYLE):
+        fig = plots.figure(figsize=(6.0, 4.0), layout="constrained")
+        ax = fig.add_subplot()
+        ax.set_title("h = 0.5 m: RMS of contour heights 0.080 m (1225 nodes)")
+        ax.set_ylabel("y, m")
+        ax.plot([0, 1], [0, 1])
+        fig.canvas.draw()
+        plots.freeze_layout(fig)
+        fig.canvas.draw()   # the layout frozen, as in a live demo
+        plots.scale_figure(fig, 500, 500, 1.5)
+        fig.canvas.draw()
+        box = ax.title.get_window_extent()
+        assert box.x0 >= 0 and box.x1 <= fig.bbox.width, (box, fig.bbox.width)
+
+
 def test_the_figure_is_drawn_under_its_lock():
     fig, _ax = _fixed_figure()
     lock = plots.figure_lock(fig)

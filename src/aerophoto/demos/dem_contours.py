@@ -214,7 +214,7 @@ def legend_html() -> str:
     bar = ("<span style='display:inline-block;width:120px;height:10px;vertical-align:middle;margin:0 4px;"
            "background:linear-gradient(to right,#053061,#4393c3,#f7f7f7,#d6604d,#67001f)'></span>")
     lim = fmt_spec(ERROR_CLIM_M, "{:g}")
-    return (f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{rows}"
+    return (f"<div class='aerophoto-legend' style='font-size:13px;line-height:1.5;margin-bottom:6px'>{rows}"
             f"<div>{t('colour: DEM − true height, −{lim} m', lim=lim)}{bar}{t('+{lim} m (red: DEM too high)', lim=lim)}"
             f"</div><div><span style='color:{_C['grey']}'>●</span> {t('DEM nodes')}</div></div>")
 

@@ -231,7 +231,7 @@ def legend_html() -> str:
             f"{t('points above / below the mean object plane')}</div>")
     marks = (f"<div><b>+ o</b> {t('principal point')}, <b style='color:#D55E00'>▲ n</b> {t('nadir point')}, "
              f"<b style='color:#0072B2'>○ c</b> {t('isocentre')}</div>")
-    return f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{items}{dots}{marks}</div>"
+    return f"<div class='aerophoto-legend' style='font-size:13px;line-height:1.5;margin-bottom:6px'>{items}{dots}{marks}</div>"
 
 
 def nice_factor(max_length_mm: float, target_mm: float = _TARGET_ARROW_MM) -> int:

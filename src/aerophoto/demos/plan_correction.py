@@ -220,7 +220,7 @@ def legend_html() -> str:
         f"{dash[ls]} {col};vertical-align:middle;margin-right:6px'></span>{t(lab)}</div>"
         for col, lw, ls, lab in _LEGEND)
     marks = f"<div><b style='color:{_C['control']}'>△ 1–4</b> {t('control (transformation) points')}</div>"
-    return f"<div style='font-size:13px;line-height:1.5;margin-bottom:6px'>{items}{marks}</div>"
+    return f"<div class='aerophoto-legend' style='font-size:13px;line-height:1.5;margin-bottom:6px'>{items}{marks}</div>"
 
 
 class PlanCorrectionDemo(LiveDemo):

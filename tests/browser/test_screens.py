@@ -102,22 +102,15 @@ def _set_projector(page, on: bool) -> None:
         p.wait_fitted(n)
 
 
-@pytest.fixture(scope="module")
-def voila_page_server(browser):
-    server = h.VoilaServer().start()
-    yield server
-    server.__exit__(None, None, None)
-
-
 @pytest.mark.parametrize("name", LECTURE_CHAPTERS)
-def test_a_lecture_page_fits_1920x1080_and_projector_mode_is_large(name, voila_page_server, tab):
+def test_a_lecture_page_fits_1920x1080_and_projector_mode_is_large(name, voila, tab):
     chapter = book_chapter(name)
     page = tab.page
     url = lecture_page(chapter)
     # 1920×1080, normal mode
     big = SCREENS["1920x1080"]
     page.set_viewport_size(big)
-    h.open_voila(page, voila_page_server, url)
+    h.open_voila(page, voila, url)
     _demos_fit(tab, page, chapter, big, f"Voilà {url} at 1920×1080", "1920x1080")
     # projector mode at 1920×1080: larger text, still one screen
     _set_projector(page, True)
@@ -126,7 +119,7 @@ def test_a_lecture_page_fits_1920x1080_and_projector_mode_is_large(name, voila_p
         # and at 1280×800 after a reload: the mode is remembered by the browser
         small = SCREENS["1280x800"]
         page.set_viewport_size(small)
-        h.open_voila(page, voila_page_server, url)
+        h.open_voila(page, voila, url)
         roots = page.locator(".aerophoto-demo")
         roots.first.wait_for(state="visible", timeout=h.T_RUN)
         page.wait_for_function("(el) => el.classList.contains('aerophoto-projector')",
@@ -175,11 +168,11 @@ def test_a_chapter_in_jupyterlab_fits_beside_the_open_file_browser(lab, tab):
 
 
 @pytest.mark.parametrize("url", [LECTURE_INDEX, lecture_page(book_chapter("05_fotoschema"))])
-def test_no_serious_accessibility_violation_on_the_lecture_pages(url, voila_page_server, tab):
+def test_no_serious_accessibility_violation_on_the_lecture_pages(url, voila, tab):
     from . import site_harness as S
 
     page = tab.page
-    h.open_voila(page, voila_page_server, url)
+    h.open_voila(page, voila, url)
     if url != LECTURE_INDEX:
         h.DemoProbe(page, page.locator(".aerophoto-demo").first).wait_rendered()
     tab.add("axe", page.screenshot())

@@ -46,8 +46,8 @@ from .. import plots
 from .. import triangulation as tri
 from .._validate import check_int_range, check_range
 from ..i18n import t
-from ..widgets import LiveDemo, Param
 from ..i18n.numfmt import fmt_number, fmt_scale
+from ..widgets import LiveDemo, Param
 
 __all__ = [
     "ReductionResult",

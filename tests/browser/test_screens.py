@@ -6,8 +6,8 @@ Issue 33's views, as a lecturer projects them (the 1280×800 lecture pages in no
 * the lecture pages of chapters 05, 08, 11 and 16 (the issue's four) in Voilà at **1920×1080**, then with
   **Projector** on at 1920×1080 and 1280×800: every demo, scrolled to the top of the screen, has its whole figure
   and its whole table on the screen and the page does not scroll sideways — except that in projector mode at
-  1280×800 a long table only has to start beside the figure (chapter 11's 15 rows at 19 px run below the fold;
-  the lecturer scrolls); in projector mode the text of the slider labels and readouts, the buttons and the table
+  1280×800 a long table only has to start beside the figure and its side column scrolls inside the screen
+  (chapter 11's 15 rows at 19 px are taller than the room left); in projector mode the text of the slider labels and readouts, the buttons and the table
   cells is at least 18 px (computed font size), and the mode is remembered by the next page;
 * chapter 03 of the workbook in JupyterLab at 1280×800 **with the file browser open** (Lab's default): after
   Run All each demo's figure and table lie inside the notebook's column — nothing under the side bar, no
@@ -79,8 +79,14 @@ def _demos_fit(tab, page, chapter, screen: dict, where: str, shot: str, *, whole
         table = probe.table().bounding_box()
         if whole_table:
             _inside(table, screen, w, "table")
-        else:  # projector mode at 1280×800: the table starts beside the figure, a long one may run below the fold
+        else:  # projector mode at 1280×800: the table starts beside the figure; the side column holding it stays
+            # on the screen, and a table taller than that column scrolls inside it (the page does not)
             _inside({**table, "height": min(table["height"], 2 * 19 * 1.3)}, screen, w, "table's first rows")
+            side = roots.nth(k).locator(".aerophoto-side")
+            _inside(side.bounding_box(), screen, w, "side column (key, status line, table)")
+            room = side.evaluate("(el) => ({over: el.scrollHeight - el.clientHeight, "
+                                 "scrolls: ['auto', 'scroll'].includes(getComputedStyle(el).overflowY)})")
+            assert room["over"] <= 1 or room["scrolls"], f"{w}: the side column hides {room['over']} px of its table"
     _no_sideways_scroll(page, where)
 
 

@@ -168,7 +168,8 @@ def _sensor_class():
 
 def page_sensor(*, store: str = "", projector: bool = False):
     """The page-side helper of one demo layout (an invisible widget; put it first in the demo's box), or None
-    where anywidget is not installed (the browser book: its figures keep their natural size).
+    where anywidget is not installed (the figures keep their natural size; the browser book has it since the
+    site carries its wheel and front end, :mod:`aerophoto.lite`).
 
     ``store``: the localStorage key the projector mode is remembered under (empty: not remembered).
     Observe its ``box`` (:meth:`PageBox.of`) and ``projector`` traits.

@@ -17,7 +17,7 @@ matplotlib, pandas, IPython, …)          the upstream Pyodide files inside it 
                                          sha256 that Pyodide's own ``pyodide-lock.json`` gives it — else the
                                          build fails
 ipywidgets, jupyterlab_widgets, ipympl,  PyPI, ``deploy/lite/browser-wheels.txt`` (``--require-hashes``)
-comm (kernel side)
+comm, anywidget, psygnal (kernel side)
 the front end and the build tools        PyPI, ``deploy/lite/requirements.txt`` (``--require-hashes``), in a
                                          virtual environment of their own (never the book's)
 aerophoto                                built from this checkout (``pip wheel``, no network)
@@ -69,7 +69,7 @@ CORE_FILES = ("pyodide.js", "pyodide.mjs", "pyodide.asm.js", "pyodide.asm.wasm",
 #: the front-end extensions the site must have, no more, no fewer (jupyterlab_pygments: the syntax colours,
 #: which jupyter_server's nbconvert brings)
 EXTENSIONS = ("@jupyterlite/pyodide-kernel-extension", "@jupyter-widgets/jupyterlab-manager", "jupyter-matplotlib",
-              "jupyterlab_pygments")
+              "jupyterlab_pygments", "anywidget")
 #: requirements of the book that the browser does not get, and what follows
 NOT_IN_BROWSER = {
     "scikit-image": "not among the verified Pyodide 0.27.7 files: the stereo chapter's image matching "
@@ -80,8 +80,6 @@ NOT_IN_BROWSER = {
               "Pulkovo-1942 zone 5) use the package's Krüger-series Gauss–Krüger, within 1e-8 m of PROJ",
     "nbformat": "notebook maintenance (aerophoto.nbtools) and aerophoto-course are not for the browser",
     "widgetsnbextension": "the classic Notebook's widget extension; the kernel's own stub serves",
-    "anywidget": "the page sensor of the demos (aerophoto.fit) is left out of the browser book: its figures keep "
-                 "their natural size (aerophoto.fit.page_sensor returns None without anywidget)",
 }
 #: JupyterLab settings of the site (overrides.json): every cell stays in the page, so a demo below the screen
 #: keeps its live figure (as in the desktop tests' JupyterLab).  JupyterLab 4.4 binds ← and → in command mode

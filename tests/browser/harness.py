@@ -605,7 +605,7 @@ class DemoProbe:
 
     def __init__(self, page, root, *, sized: bool = True):
         """``sized``: the demo's figure follows the page's size (its page sensor, :mod:`aerophoto.fit`, reports it;
-        False in the browser book, whose kernel has no anywidget: the figure keeps its natural size there)."""
+        False where the kernel has no anywidget: the figure keeps its natural size there)."""
         self.page, self.root, self.sized = page, root, sized
 
     def wait_rendered(self) -> None:

@@ -53,7 +53,8 @@ STDERR = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]
 
 def demos_sized() -> bool:
     """Whether the browser book's demos are sized by their page: only with anywidget in the browser's kernel
-    (``aerophoto.lite.NOT_IN_BROWSER`` leaves it out, so the figures keep their natural size there)."""
+    (the site carries it, deploy/lite/browser-wheels.txt; were ``aerophoto.lite.NOT_IN_BROWSER`` to leave it out,
+    the figures would keep their natural size there)."""
     from aerophoto import lite
 
     return "anywidget" not in lite.NOT_IN_BROWSER

@@ -513,49 +513,8 @@ def _lecture_texts(c: Chapter, lang: str = "en") -> dict:
 
 
 # =========================================================================== the glossary page
-GLOSSARY_PAGE = "glossary.ipynb"
-"""The glossary page in ``notebooks/`` (not a chapter: its name does not start with a number)."""
-
-
-def glossary_markdown() -> str:
-    """The glossary's table: every key term English ↔ Russian and the chapters (§) where it appears.
-
-    Generated from :data:`aerophoto.i18n.glossary.TERMS` (the one source); a test keeps
-    ``notebooks/glossary.ipynb`` current.
-    """
-    from .i18n.glossary import terms
-
-    by_source = {c.source: c for c in CHAPTERS}
-    lines = ["| English | Русский | where (chapter · source) |", "|---|---|---|"]
-    for term in terms():
-        where = ", ".join(f"[{by_source[s].number} · {s}]({by_source[s].notebook})" if s in by_source else s
-                          for s in term.where)
-        lines.append(f"| {term.en} | {term.ru} | {where} |")
-    return "\n".join(lines)
-
-
-def glossary_notebook():
-    """The glossary page: the terms' table, and how to switch the book's sliders and messages to Russian."""
-    from . import nbtools
-
-    return nbtools.notebook([
-        nbtools.md("# Glossary · Словарь терминов\n\n"
-                   "Every key term of the book in English and Russian, with the chapters where it appears. The "
-                   "chapters are written in English with the Russian term in brackets at its first use; this page "
-                   "collects them.", id="title"),
-        nbtools.code("import aerophoto\nfrom aerophoto.i18n import glossary   # this page's one source: glossary.TERMS",
-                     id="setup"),
-        nbtools.md("## Русский интерфейс · the book in Russian\n\n"
-                   "The sliders, tables and figures of the live demos, the answer checks and the banner speak Russian "
-                   "after `v = aerophoto.setup(RECORD_BOOK, lang=\"ru\")` in any chapter's first cell; the choice "
-                   "is remembered for the other chapters (`lang=\"en\"` switches back). The prose stays English.",
-                   id="language"),
-        nbtools.md(f"{_GLOSSARY_NOTE}\n## The terms\n\n" + glossary_markdown(), id="terms"),
-    ], title="Glossary — словарь терминов")
-
-
-_GLOSSARY_NOTE = ("<!-- generated from aerophoto.i18n.glossary and aerophoto.book.CHAPTERS by "
-                  "`python -m aerophoto.book`; do not edit -->")
+# aerophoto.glossary_page (the page and its Russian text); its names stay importable from here
+from .glossary_page import GLOSSARY_PAGE, glossary_markdown, glossary_notebook  # noqa: E402
 
 
 def _notebook_text(nb) -> str:
@@ -597,6 +556,7 @@ def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
             out.append((root / "notebooks" / LECTURES_DIR / "ru" / f"{c.name}.md", "translation-file", "lecture page",
                         c))
     out.append((root / "notebooks" / GLOSSARY_PAGE, "page", "glossary", glossary_notebook()))
+    out.append((root / "notebooks" / "ru" / "glossary.md", "translation-page", "glossary", None))
     return out
 
 
@@ -643,6 +603,13 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
         elif kind == "translation-file":  # a lecture page's Russian text: every block generated
             pages.add(path)
             en, ru = _lecture_texts(content), _lecture_texts(content, "ru")
+            blocks = [prose.Block(cell, prose.cell_key(en[cell]), ru[cell]) for cell in en]
+            if prose.sync_file(path, blocks, write=write):
+                stale.append(f"{path.relative_to(root / 'notebooks')} [{place}, Russian]")
+        elif kind == "translation-page":  # the glossary's Russian text: every block generated
+            from .glossary_page import glossary_texts
+
+            en, ru = glossary_texts("en"), glossary_texts("ru")
             blocks = [prose.Block(cell, prose.cell_key(en[cell]), ru[cell]) for cell in en]
             if prose.sync_file(path, blocks, write=write):
                 stale.append(f"{path.relative_to(root / 'notebooks')} [{place}, Russian]")

@@ -9,7 +9,7 @@ The layers (docs/CONTRIBUTING.md, "The house"):
 4. the course's content — ``guide/`` (printed tables and their audits), ``labs/`` (the students' lab worlds),
    ``tasks/`` (graded tasks: rubrics only)
 5. presentation — ``plots``, ``tables``, ``blit``, ``widgets``, ``fit``, ``demos/``, ``i18n``
-6. course — ``checks``, ``gradebook``, ``book``, ``course``, ``nbtools``, ``report``, ``lite``, ``website`` (the web book)
+6. course — ``checks``, ``gradebook``, ``book``, ``glossary_page``, ``course``, ``nbtools``, ``report``, ``lite``, ``website`` (the web book)
 
 A module may import from its own layer or any lower one.  Every import counts, also one inside a function.
 Three rules more: ``labs/`` never imports ``tasks/``; nothing under ``demos/`` or ``report/`` imports ``tasks/``;
@@ -32,7 +32,7 @@ LAYERS = {
     3: ("terrain", "site", "simulate", "render"),
     4: ("guide", "labs", "tasks"),
     5: ("plots", "tables", "blit", "widgets", "fit", "demos", "i18n"),
-    6: ("checks", "gradebook", "book", "course", "nbtools", "report", "lite", "website", "__init__", "__main__"),
+    6: ("checks", "gradebook", "book", "glossary_page", "course", "nbtools", "report", "lite", "website", "__init__", "__main__"),
 }
 LAYER_OF = {name: layer for layer, names in LAYERS.items() for name in names}
 MAX_LINES = 900

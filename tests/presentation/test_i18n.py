@@ -304,3 +304,35 @@ def test_the_glossary_page_is_generated_from_the_one_source():
     assert not re.match(r"^\d\d", book.GLOSSARY_PAGE)  # not a chapter (tests/course/test_book.py)
     assert "| resection | обратная засечка | [06 · guide §7](06_strip_triangulation.ipynb), " \
            "[10 · guide §11](10_ground_control.ipynb) |" in text
+
+
+def test_the_russian_glossary_page_is_whole_and_russian_first():
+    """The Russian book's glossary (notebooks/ru/glossary.md, generated): no cell left English, every term with
+    its Russian and English forms, Russian first and in Russian order, the sources named in Russian."""
+    from aerophoto import glossary_page
+    from aerophoto.i18n import prose
+
+    path = PKG.parents[1] / "notebooks" / book.GLOSSARY_PAGE
+    nb, untranslated = prose.russian_notebook(json.loads(path.read_text(encoding="utf-8")),
+                                              prose.read_translations(prose.translation_path(path)))
+    assert untranslated == []
+    st = prose.status(path)
+    assert (st.missing, st.todo, st.stale) == ([], [], [])
+    text = "".join("".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "markdown")
+    assert text.startswith("# Словарь терминов") and "The prose stays English" not in text
+    rows = [line for line in text.splitlines() if line.startswith("| ") and "---" not in line][1:]
+    assert len(rows) == len(glossary.terms())
+    for term in glossary.terms():
+        assert any(r.startswith(f"| {term.ru} | {term.en} | ") for r in rows), term
+    keys = [r.split(" | ")[0][2:].casefold().replace("ё", "е") for r in rows]
+    assert keys == sorted(keys)
+    assert "| обратная засечка | resection | [06 · руководство, §7](06_strip_triangulation.ipynb), " \
+           "[10 · руководство, §11](10_ground_control.ipynb) |" in text
+    assert "guide §" not in text.split("## Термины", 1)[1]
+    with pytest.raises(ValueError, match="lang = 'de'"):
+        glossary_page.glossary_texts("de")
+
+
+def test_the_generated_pages_are_stable():
+    """Writing the generated pages again changes nothing (the glossary and its Russian text included)."""
+    assert book.sync_generated() == []

@@ -133,6 +133,11 @@ def test_the_pdfs_hold_the_chapters_in_each_language(printed_book):
         body = " ".join(" ".join(page.split()) for page in text.split("\f")[1:])
         where = [body.find(" ".join(_page_heading(printed_book, lang, name).split())) for name in PRINTED]
         assert -1 not in where and where == sorted(where), f"aerophoto-{lang}.pdf: the titles of {PRINTED} at {where}"
+        # and each chapter starts a printed page of its own (site.css: break-before in the theme's print layout)
+        pages = [" ".join(page.split()) for page in text.split("\f")[1:]]
+        for name in PRINTED:
+            head = " ".join(_page_heading(printed_book, lang, name).split())
+            assert any(p.startswith(head) for p in pages), f"aerophoto-{lang}.pdf: {head!r} does not start a page"
         info = subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True, check=True).stdout
         assert int(re.search(r"Pages:\s+(\d+)", info).group(1)) > len(PRINTED), info
         bar = (printed_book / lang / "03_relief_displacement.html").read_text(encoding="utf-8")

@@ -333,6 +333,32 @@ def test_the_russian_glossary_page_is_whole_and_russian_first():
         glossary_page.glossary_texts("de")
 
 
-def test_the_generated_pages_are_stable():
-    """Writing the generated pages again changes nothing (the glossary and its Russian text included)."""
-    assert book.sync_generated() == []
+def test_the_generated_pages_are_stable(tmp_path):
+    """Generating twice changes nothing: in a copy of the book with the glossary page spoilt and its Russian text
+    gone, the first pass writes both back byte for byte as the repository has them, the second finds nothing."""
+    import shutil
+
+    top = PKG.parents[1]
+    shutil.copy(top / "README.md", tmp_path / "README.md")
+    shutil.copytree(top / "notebooks", tmp_path / "notebooks", ignore=shutil.ignore_patterns(".*", "__pycache__"))
+    page, ru = tmp_path / "notebooks" / book.GLOSSARY_PAGE, tmp_path / "notebooks" / "ru" / "glossary.md"
+    page.write_text(page.read_text(encoding="utf-8").replace("Словарь терминов", "Glossary"), encoding="utf-8")
+    ru.unlink()
+    first = book.sync_generated(tmp_path, write=True)
+    assert sorted(first) == ["glossary.ipynb [glossary]", "ru/glossary.md [glossary, Russian]"]
+    assert book.sync_generated(tmp_path, write=True) == []
+    for rel in (book.GLOSSARY_PAGE, "ru/glossary.md"):
+        assert (tmp_path / "notebooks" / rel).read_bytes() == (top / "notebooks" / rel).read_bytes(), rel
+
+
+def test_the_russian_glossary_is_the_web_books_and_no_chapter_text():
+    """The Russian web book's glossary page (aerophoto.website.chapter_notebooks) has no cell left English; the
+    student's workbook treats ru/glossary.md like a chapter's Russian text (the book's source, not copied)."""
+    from aerophoto.course import versions
+    from aerophoto.website import chapter_notebooks
+
+    notebooks = PKG.parents[1] / "notebooks"
+    [(name, nb, untranslated)] = chapter_notebooks(notebooks, "ru", only={"glossary"})
+    assert (name, untranslated) == ("glossary", [])
+    assert "".join(nb["cells"][0]["source"]).startswith("# Словарь терминов · Glossary")
+    assert versions._is_translation_source(notebooks / "ru" / "glossary.md")

@@ -514,7 +514,7 @@ def _lecture_texts(c: Chapter, lang: str = "en") -> dict:
 
 # =========================================================================== the glossary page
 # aerophoto.glossary_page (the page and its Russian text); its names stay importable from here
-from .glossary_page import GLOSSARY_PAGE, glossary_markdown, glossary_notebook  # noqa: E402
+from .glossary_page import GLOSSARY_PAGE, glossary_markdown, glossary_notebook, glossary_texts  # noqa: E402
 
 
 def _notebook_text(nb) -> str:
@@ -540,7 +540,8 @@ def _table_cell(cell: str, lang: str = "en") -> str:
 def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
     """[(file, kind, place, content)]: kind "markdown-section" (between markers), "cell" (a notebook cell by
     id), "translation" (a generated cell's block in a Russian text: content (English, Russian)), "translation-file"
-    (a lecture page's whole Russian text) or "notebook" (a whole generated notebook: a lecture page)."""
+    (a generated page's whole Russian text, a lecture page's or the glossary's: content (English, Russian) cell texts
+    by id), "page" (the glossary) or "notebook" (a whole generated notebook: a lecture page)."""
     out = [
         (root / "README.md", "markdown-section", "chapters", chapter_table_markdown(prefix="notebooks/")),
         (root / "notebooks" / LECTURE_INDEX, "cell", "demos", _table_cell("demos")),
@@ -554,9 +555,10 @@ def _generated(root: Path) -> list[tuple[Path, str, str, object]]:
         if c.demos:
             out.append((root / "notebooks" / lecture_page(c), "notebook", "lecture page", c))
             out.append((root / "notebooks" / LECTURES_DIR / "ru" / f"{c.name}.md", "translation-file", "lecture page",
-                        c))
+                        (_lecture_texts(c), _lecture_texts(c, "ru"))))
     out.append((root / "notebooks" / GLOSSARY_PAGE, "page", "glossary", glossary_notebook()))
-    out.append((root / "notebooks" / "ru" / "glossary.md", "translation-page", "glossary", None))
+    out.append((root / "notebooks" / "ru" / "glossary.md", "translation-file", "glossary",
+                (glossary_texts("en"), glossary_texts("ru"))))
     return out
 
 
@@ -600,16 +602,9 @@ def sync_generated(root=None, *, write: bool = False) -> list[str]:
         elif kind == "translation":  # a generated cell's block in a chapter's Russian text
             if prose.sync_block(path, place, *content, write=write):
                 stale.append(f"{path.relative_to(root / 'notebooks')} [{place}]")
-        elif kind == "translation-file":  # a lecture page's Russian text: every block generated
+        elif kind == "translation-file":  # a generated page's whole Russian text (lecture page, glossary)
             pages.add(path)
-            en, ru = _lecture_texts(content), _lecture_texts(content, "ru")
-            blocks = [prose.Block(cell, prose.cell_key(en[cell]), ru[cell]) for cell in en]
-            if prose.sync_file(path, blocks, write=write):
-                stale.append(f"{path.relative_to(root / 'notebooks')} [{place}, Russian]")
-        elif kind == "translation-page":  # the glossary's Russian text: every block generated
-            from .glossary_page import glossary_texts
-
-            en, ru = glossary_texts("en"), glossary_texts("ru")
+            en, ru = content
             blocks = [prose.Block(cell, prose.cell_key(en[cell]), ru[cell]) for cell in en]
             if prose.sync_file(path, blocks, write=write):
                 stale.append(f"{path.relative_to(root / 'notebooks')} [{place}, Russian]")

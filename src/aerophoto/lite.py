@@ -496,12 +496,12 @@ def font_list(matplotlib_whl: Path) -> dict:
                 rel = name.split("/mpl-data/", 1)[-1]
                 if not (rel.startswith("fonts/") and name.endswith((".ttf", ".afm"))):
                     continue
-                path = Path(tmp) / Path(name).name
-                path.write_bytes(z.read(name))
-                if name.endswith(".ttf"):
+                if name.endswith(".ttf"):  # FreeType reads a file
+                    path = Path(tmp) / Path(name).name
+                    path.write_bytes(z.read(name))
                     entry = fm.ttfFontProperty(fm.get_font(path))
-                else:
-                    entry = fm.afmFontProperty(str(path), _afm.AFM(io.BytesIO(path.read_bytes())))
+                else:  # an AFM is text, parsed from the bytes (its path is only recorded, then replaced)
+                    entry = fm.afmFontProperty(name, _afm.AFM(io.BytesIO(z.read(name))))
                 d = {k: getattr(entry, k) for k in _FONT_FIELDS}
                 d.update(fname=rel, __class__="FontEntry")
                 (ttf if name.endswith(".ttf") else afm).append(d)

@@ -536,6 +536,10 @@ def lab_demo_root(page, cell_id: str):
     return page.locator(f'[data-aero-cell-id="{cell_id}"] .aerophoto-demo').first
 
 
+#: a stderr output (JupyterLab and Voilà draw it in a pink box; an error's traceback has this type too)
+STDERR = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'
+
+
 def error_outputs(page, scope=None) -> list[str]:
     """Error outputs, and stderr outputs carrying a traceback, an error or a warning, on the page.
 
@@ -543,8 +547,7 @@ def error_outputs(page, scope=None) -> list[str]:
     stderr text is that of tests/notebooks/test_notebooks.py.
     """
     root = scope or page
-    sel = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'
-    texts = [t.strip()[:800] for t in root.locator(sel).all_inner_texts()
+    texts = [t.strip()[:800] for t in root.locator(STDERR).all_inner_texts()
              if any(word in t for word in ("Traceback", "Error", "Warning", "error", "warning"))]
     # a widget that failed to render shows this text instead of the widget
     for t in root.locator(".jp-OutputArea-output").all_inner_texts():

@@ -47,8 +47,6 @@ QUIET_ARGS = ["--disable-features=AutofillServerCommunication,OptimizationHints,
               "--disable-client-side-phishing-detection", "--safebrowsing-disable-auto-update", "--disable-default-apps"]
 #: the lite note that ``aerophoto.setup`` shows in the browser book (src/aerophoto/book.py)
 LITE_NOTE_TEXT = "running in your browser"
-#: a stderr output (JupyterLab draws it in a pink box)
-STDERR = '.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'
 
 
 def demos_sized() -> bool:

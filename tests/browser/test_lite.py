@@ -125,7 +125,7 @@ def test_chapter_runs_in_the_browser(chapter, trapped, lite_site):
         shown = [e for e in h.error_outputs(page) if "WrongAnswer" not in e and "no answer yet" not in e]
         assert not shown, f"{where}: error output on the page: {shown}"
         # nothing else in a pink box either: no "Matplotlib is building the font cache" (lite.font_cache_wheel)
-        pink = [t.strip()[:300] for t in page.locator(L.STDERR).all_inner_texts()
+        pink = [t.strip()[:300] for t in page.locator(h.STDERR).all_inner_texts()
                 if "WrongAnswer" not in t and "no answer yet" not in t]
         assert not pink, f"{where}: stderr output on the page: {pink}"
         assert page.locator(".aerophoto-browser-note").count() >= 1, f"{where}: the browser note is not shown"

@@ -68,6 +68,7 @@ _SUBMODULES = (
     "i18n",
     "checks",
     "gradebook",
+    "glossary_page",
     "book",
     "nbtools",
     "course",

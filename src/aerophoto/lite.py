@@ -335,7 +335,8 @@ def _closure(packages: dict, roots) -> list[str]:
 
 # --------------------------------------------------------------------------------------------- the site
 def _contents(notebooks: Path, dest: Path, out) -> list[str]:
-    """The student book (workbook: no solutions), the lecture index and the lecture pages into ``dest``."""
+    """The student book (workbook: no solutions), the glossary, the lecture index and the lecture pages into
+    ``dest``."""
     from . import book
     from .course.versions import write_workbook
 
@@ -344,6 +345,7 @@ def _contents(notebooks: Path, dest: Path, out) -> list[str]:
     if failed:
         raise LiteBuildError(f"chapters that cannot be read: {failed}")
     shutil.copy2(notebooks / book.LECTURE_INDEX, dest / book.LECTURE_INDEX)
+    shutil.copy2(notebooks / book.GLOSSARY_PAGE, dest / book.GLOSSARY_PAGE)
     lectures = notebooks / book.LECTURES_DIR
     (dest / book.LECTURES_DIR).mkdir(exist_ok=True)
     for page in sorted(lectures.glob("*.ipynb")):

@@ -210,7 +210,8 @@ def test_the_site_check_finds_remote_resources_and_missing_pictures(tmp_path):
     assert len(check_site(tmp_path)) == 2
 
 
-def test_the_browser_book_gets_the_russian_chapters_and_lecture_apps(tmp_path):
+def test_the_browser_book_gets_the_russian_chapters_glossary_and_lecture_apps(tmp_path):
+    import re
     import shutil
 
     root = __import__("pathlib").Path(__file__).resolve().parents[2]
@@ -219,7 +220,8 @@ def test_the_browser_book_gets_the_russian_chapters_and_lecture_apps(tmp_path):
     for ch in book.CHAPTERS:  # the student book as the browser book's contents hold it (lite._contents)
         shutil.copy2(root / "notebooks" / ch.notebook, contents / ch.notebook)
     (contents / "lectures").mkdir()
-    (contents / book.LECTURE_INDEX).write_text((root / "notebooks" / book.LECTURE_INDEX).read_text(encoding="utf-8"))
+    for page in (book.LECTURE_INDEX, book.GLOSSARY_PAGE):
+        shutil.copy2(root / "notebooks" / page, contents / page)
     src = root / "notebooks" / "lectures" / "03_relief_displacement.ipynb"
     (contents / "lectures" / src.name).write_text(src.read_text(encoding="utf-8"), encoding="utf-8")
     names = live.russian_contents(contents, root / "notebooks", out=lambda _t: None)
@@ -227,6 +229,12 @@ def test_the_browser_book_gets_the_russian_chapters_and_lecture_apps(tmp_path):
     ru = json.loads((contents / "ru" / "00_start_here.ipynb").read_text(encoding="utf-8"))
     setup = next(c for c in ru["cells"] if c.get("id") == "setup")
     assert 'lang="ru"' in "".join(setup["source"]) and ru["metadata"]["aerophoto"]["lang"] == "ru"
+    assert "ru/glossary.ipynb" in names  # the glossary in Russian, its chapter links to the Russian chapters beside it
+    gl = json.loads((contents / "ru" / "glossary.ipynb").read_text(encoding="utf-8"))
+    text = "".join("".join(c["source"]) for c in gl["cells"] if c["cell_type"] == "markdown")
+    assert text.startswith("# Словарь терминов") and "| Русский | English |" in text
+    links = set(re.findall(r"\]\(([^)\s]+\.ipynb)\)", text))
+    assert len(links) >= 15 and all((contents / "ru" / link).is_file() for link in links), links
     assert live.lecture_apps(contents) == 2
     lec = json.loads((contents / "ru" / "lectures" / "03_relief_displacement.ipynb").read_text(encoding="utf-8"))
     assert all(c["metadata"]["jupyter"]["source_hidden"] for c in lec["cells"] if c["cell_type"] == "code")

@@ -3,8 +3,8 @@ as apps, and a browser cache that works on any static host.
 
 * :func:`russian_contents` — beside the workbook, ``ru/NN_slug.ipynb``: the same student book with the Russian
   prose of ``notebooks/ru/NN_slug.md`` and ``aerophoto.setup(..., lang="ru")``
-  (:func:`aerophoto.i18n.prose.russian_notebook`; an untranslated cell stays English), the lecture index and the
-  lecture pages in Russian (``ru/lectures.ipynb``, ``ru/lectures/``).
+  (:func:`aerophoto.i18n.prose.russian_notebook`; an untranslated cell stays English), the glossary
+  (``ru/glossary.ipynb``), the lecture index and the lecture pages in Russian (``ru/lectures.ipynb``, ``ru/lectures/``).
 * :func:`lecture_apps` — the lecture pages' code cells collapsed (``jupyter.source_hidden``), so that a lecture page
   opened in the site's single-document view (``notebooks/index.html?path=lectures/…``) shows its demos, not code.
 * :func:`cache_service_worker` — JupyterLite's service worker (``service-worker.js``) fetches every file again on
@@ -52,9 +52,10 @@ def russian_contents(contents: Path, notebooks: Path, out=print) -> list[str]:
         nb, _untranslated = prose.russian_notebook(_read(src), blocks)
         _write(Path(contents) / "ru" / ch.notebook, nb)
         names.append(f"ru/{ch.notebook}")
-    for page in [Path(contents) / book.LECTURE_INDEX, *sorted((Path(contents) / book.LECTURES_DIR).glob("*.ipynb"))]:
+    pages = [Path(contents) / book.GLOSSARY_PAGE, Path(contents) / book.LECTURE_INDEX]
+    for page in [*pages, *sorted((Path(contents) / book.LECTURES_DIR).glob("*.ipynb"))]:
         rel = page.relative_to(contents)
-        blocks = prose.read_translations(prose.translation_path(Path(notebooks) / rel))  # e.g. ru/lectures.md
+        blocks = prose.read_translations(prose.translation_path(Path(notebooks) / rel))  # ru/glossary.md, ru/lectures.md…
         nb, _u = prose.russian_notebook(_read(page), blocks)
         _write(Path(contents) / "ru" / rel, nb)
         names.append(f"ru/{rel.as_posix()}")

@@ -364,36 +364,46 @@ def block_precision(layout: BlockLayout, sigma_mm: float = 0.005, *, trials: int
     col = np.full(len(lay.points_m), -1)
     col[free] = np.arange(len(free))
     u = 6 * n + 3 * len(free)
-    blocks, rows_total = [], 0
+    # the design matrix A (2·Σk × u) is sparse: a row touches its photo's 6 unknowns and its point's 3.  Built
+    # as such and multiplied by scipy.sparse, the normal matrix costs what its non-zeros cost; the dense
+    # Cholesky factor and its inverse go to LAPACK (scipy.linalg).  A dense numpy ``A.T @ A`` took 90 s in the
+    # browser book (Pyodide's numpy multiplies without BLAS), against 0.1 s here.
+    from scipy import linalg as sla
+    from scipy import sparse
+
+    rows, cols, vals, rows_total = [], [], [], 0
     for j, pose in enumerate(lay.poses):
         idx = np.flatnonzero(lay.visible[:, j])
         if len(idx) == 0:
             continue
         _, dP, dR = _image_jacobians(lay.camera, pose, lay.points_m[idx])
         k = len(idx)
-        A = np.zeros((2 * k, u))
-        A[:, 6 * j:6 * j + 3] = -dP.reshape(2 * k, 3)  # moving S is moving every point the other way
-        A[:, 6 * j + 3:6 * j + 6] = dR.reshape(2 * k, 3)
+        r = rows_total + np.arange(2 * k)
+        for a in range(3):  # the photo's exterior orientation: moving S is moving every point the other way
+            rows += [r, r]
+            cols += [np.full(2 * k, 6 * j + a), np.full(2 * k, 6 * j + 3 + a)]
+            vals += [-dP.reshape(2 * k, 3)[:, a], dR.reshape(2 * k, 3)[:, a]]
         has = col[idx] >= 0
-        for a in range(3):
-            rr = np.flatnonzero(np.repeat(has, 2))
-            cc = 6 * n + 3 * np.repeat(col[idx][has], 2) + a
-            A[rr, cc] = dP[has].reshape(-1, 3)[:, a]
-        blocks.append(A)
+        rr = r[np.repeat(has, 2)]
+        for a in range(3):  # the point's X, Y, Z where it is not a control point
+            rows.append(rr)
+            cols.append(6 * n + 3 * np.repeat(col[idx][has], 2) + a)
+            vals.append(dP[has].reshape(-1, 3)[:, a])
         rows_total += 2 * k
-    A = np.vstack(blocks)
-    N = A.T @ A
+    A = sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                          shape=(rows_total, u))
+    N = (A.T @ A).toarray()
     try:
-        L = np.linalg.cholesky(N)
+        L = sla.cholesky(N, lower=True)
     except np.linalg.LinAlgError:
         raise ValueError("the block cannot be adjusted: its normal matrix is singular (too few control points or "
                          "a photo without ties)") from None
-    Linv = np.linalg.inv(L)
+    Linv = sla.solve_triangular(L, np.eye(u), lower=True)
     var = np.einsum("ij,ij->j", Linv, Linv) * sigma**2  # diag of N⁻¹ = Σ_i (L⁻¹)_ij²
     vp = var[6 * n:].reshape(-1, 3)
     rng = np.random.default_rng(seed)
     e = rng.normal(0.0, sigma, size=(rows_total, trials))
-    x = Linv.T @ (Linv @ (A.T @ e))
+    x = sla.cho_solve((L, True), A.T @ e)
     mc = x[6 * n:].reshape(len(free), 3, trials)[:, 2, :].T
     return BlockPrecision(lay, sigma, np.sqrt(vp[:, 2]), np.sqrt(vp[:, 0] + vp[:, 1]), mc)
 

@@ -182,3 +182,22 @@ def test_the_site_read_from_the_cache_is_the_site_built(cdir):
     (read,) = cache.load(key, types)
     _same(read, built)
     assert read.height(5000.0, 2500.0) == built.height(5000.0, 2500.0)
+
+
+def test_the_interpretation_site_is_built_once_and_read_back_bit_for_bit(cdir, monkeypatch):
+    from aerophoto.site import cover
+
+    calls = []
+    real = cover.build_interpretation_site
+    monkeypatch.setattr(cover, "build_interpretation_site", lambda seed=0: calls.append(seed) or real(seed))
+    cover.interpretation_site.cache_clear()
+    try:
+        built = cover.interpretation_site(0)
+        cover.interpretation_site.cache_clear()  # a new kernel: only the disk remembers
+        read = cover.interpretation_site(0)
+    finally:
+        cover.interpretation_site.cache_clear()
+    assert calls == [0] and read is not built
+    _same(read, built)
+    assert len(cache.entries("interpretation-site")) == 1
+    assert read.texel_m == built.texel_m and repr(read) == repr(built)

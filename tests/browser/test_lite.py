@@ -69,8 +69,9 @@ def test_site_is_self_contained_and_recorded(lite_site):
     lock = json.loads((lite_site / "static" / "pyodide" / "pyodide-lock.json").read_text(encoding="utf-8"))
     for pkg in lock["packages"].values():
         assert lite.sha256(lite_site / "static" / "pyodide" / pkg["file_name"]) == pkg["sha256"], pkg["file_name"]
-    assert "aerophoto" in lock["packages"] and m["preloaded"] == ["aerophoto", lite.FONT_CACHE]
+    assert "aerophoto" in lock["packages"] and m["preloaded"] == ["aerophoto", lite.FONT_CACHE, lite.SHIPPED_WHEEL]
     assert lock["packages"][lite.FONT_CACHE]["depends"] == ["matplotlib"]  # installed after matplotlib
+    assert lock["packages"][lite.SHIPPED_WHEEL]["depends"] == ["aerophoto"]
     for cfg in lite_site.rglob("jupyter-lite.json"):
         assert not re.search(r"https?://", cfg.read_text(encoding="utf-8")), cfg
     (patch,) = m["patches"]
@@ -78,10 +79,51 @@ def test_site_is_self_contained_and_recorded(lite_site):
     assert "__aero_run" in js and lite.sha256(lite_site / patch["file"]) == patch["sha256_after"]
     # the student book: every chapter, no solutions
     assert sorted(n for n in m["notebooks"] if "/" not in n) == sorted(
-        [f"{c.name}.ipynb" for c in book.CHAPTERS] + [book.LECTURE_INDEX])
+        [f"{c.name}.ipynb" for c in book.CHAPTERS] + [book.LECTURE_INDEX, book.GLOSSARY_PAGE])
+    assert "ru/glossary.ipynb" in m["notebooks"]
     for name in m["notebooks"]:
         text = (lite_site / "files" / name).read_text(encoding="utf-8")
         assert "BEGIN SOLUTION" not in text, name
+
+
+def test_the_browser_book_ships_the_default_site_and_its_python_reads_it(lite_site, tmp_path):
+    """The default site comes with the book (aerophoto.lite.shipped_wheel), keyed by this checkout's code, and the
+    site's own Pyodide (run by node, without a browser) reads it instead of building it."""
+    import shutil
+    import subprocess
+    import zipfile
+
+    from aerophoto import cache
+    from aerophoto import site as _site
+
+    lock = json.loads((lite_site / "static" / "pyodide" / "pyodide-lock.json").read_text(encoding="utf-8"))
+    whl = lite_site / "static" / "pyodide" / lock["packages"][lite.SHIPPED_WHEEL]["file_name"]
+    name, inputs, _build, _types = _site.cache_entry(_site.SiteParams())
+    key = cache.portable_key(name, inputs)
+    with zipfile.ZipFile(whl) as z:
+        metas = [json.loads(z.read(n)) for n in z.namelist() if n.endswith("/meta.json")]
+    assert [m["key"] for m in metas] == [key]
+    node = shutil.which("node")
+    assert node, "node is needed to run the site's Pyodide (CI installs nodejs for the hub's proxy)"
+    pyodide = (lite_site / "static" / "pyodide").as_posix()
+    script = tmp_path / "read.mjs"
+    script.write_text(f"""
+import {{ loadPyodide }} from "{pyodide}/pyodide.mjs";
+const py = await loadPyodide({{ indexURL: "{pyodide}/" }});
+await py.loadPackage({json.dumps(list(lite.PRELOAD))}, {{ messageCallback: () => {{}} }});
+console.log(py.runPython(`
+import json, time
+from aerophoto import cache, site
+t = time.perf_counter()
+s = site.get_site()
+json.dumps({{"hits": cache.shipped_hits(), "s": time.perf_counter() - t, "shape": list(s.dem.shape)}})
+`));
+""", encoding="utf-8")
+    p = subprocess.run([node, str(script)], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr[-3000:]
+    got = json.loads(p.stdout.strip().splitlines()[-1])
+    assert got["hits"] == ["site"], got
+    assert got["shape"] == list(_site.get_site().dem.shape)
 
 
 def test_a_damaged_pyodide_file_fails_the_build(tmp_path):

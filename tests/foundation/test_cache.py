@@ -201,3 +201,39 @@ def test_the_interpretation_site_is_built_once_and_read_back_bit_for_bit(cdir, m
     _same(read, built)
     assert len(cache.entries("interpretation-site")) == 1
     assert read.texel_m == built.texel_m and repr(read) == repr(built)
+
+
+def test_a_shipped_entry_is_read_only_in_the_browser_and_only_for_its_own_code(cdir, tmp_path, monkeypatch):
+    """The browser book's precomputed entries (aerophoto.lite.shipped_wheel): read back bit for bit where the
+    package's source is the one that wrote them, never on the desktop, in a grading kernel or when damaged."""
+    import sys
+
+    shipped = tmp_path / "shipped"
+    monkeypatch.setattr(cache, "shipped_dir", lambda: shipped)
+    d = cache.write_shipped(shipped, "thing", {"n": 1}, _value(), (Thing,))
+    meta = json.loads((d / "meta.json").read_text(encoding="utf-8"))
+    assert meta["key"] == cache.portable_key("thing", {"n": 1}) and set(meta["key"]) == {"format", "name", "inputs",
+                                                                                            "code"}
+    assert meta["made_on"]["python"] and meta["made_on"]["machine"]
+    (read,) = cache.load_shipped("thing", {"n": 1}, (Thing,))
+    _same(read, _value())
+    assert cache.load_shipped("thing", {"n": 2}, (Thing,)) is None  # other inputs
+    assert cache.shipped_hits()[-1] == "thing"
+
+    built = []
+    build = lambda: built.append(1) or "built"  # noqa: E731
+    assert cache.load_or_build("thing", {"n": 1}, build, types=(Thing,)) == "built"  # the desktop builds
+    cache.clear()
+    monkeypatch.setattr(sys, "platform", "emscripten")  # the browser book reads the shipped entry
+    _same(cache.load_or_build("thing", {"n": 1}, build, types=(Thing,)), _value())
+    assert built == [1]
+    monkeypatch.setenv("AEROPHOTO_GRADING", "1")
+    assert cache.load_shipped("thing", {"n": 1}, (Thing,)) is None
+    monkeypatch.delenv("AEROPHOTO_GRADING")
+
+    monkeypatch.setattr(cache, "_FINGERPRINT", ["another version of the package"])
+    assert cache.load_shipped("thing", {"n": 1}, (Thing,)) is None  # written by other code: never read
+    monkeypatch.setattr(cache, "_FINGERPRINT", [])
+    a0 = d / "a0.npy"
+    a0.write_bytes(a0.read_bytes()[:-1] + b"\x01")
+    assert cache.load_shipped("thing", {"n": 1}, (Thing,)) is None  # a damaged array

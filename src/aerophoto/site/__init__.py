@@ -139,16 +139,25 @@ __all__ = [
     "Site",
     "get_site",
     "build_site",
+    "cache_entry",
 ]
+
+
+def cache_entry(params: SiteParams) -> tuple:
+    """``(name, inputs, build, types)`` of the site's entry in :mod:`aerophoto.cache` — what :func:`get_site`
+    reads, and what the browser book ships for the default site (:func:`aerophoto.lite.shipped_wheel`)."""
+    return "site", asdict(params), (lambda: build_site(params)), (Site, SiteObjects, SiteParams)
 
 
 @functools.lru_cache(maxsize=4)
 def _cached(params: SiteParams) -> Site:
     # built once on a machine, then read from the user's disk cache (aerophoto.cache: verified, keyed by the
-    # package's code and the parameters; the same arrays bit for bit)
+    # package's code and the parameters; the same arrays bit for bit); in the browser book the default site
+    # comes with the book (aerophoto.cache.load_shipped)
     from .. import cache
 
-    return cache.load_or_build("site", asdict(params), lambda: build_site(params), types=(Site, SiteObjects, SiteParams))
+    name, inputs, build, types = cache_entry(params)
+    return cache.load_or_build(name, inputs, build, types=types)
 
 
 def get_site(params: SiteParams | None = None, **changes) -> Site:

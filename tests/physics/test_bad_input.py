@@ -707,6 +707,8 @@ VALID: dict = {
     "simulate.required_site_size": {},
     # site
     "site.get_site": lambda S: {"width_m": 2000.0, "height_m": 1500.0},
+    "site.cache_entry": lambda S: {"params": __import__("aerophoto.site").site.SiteParams(width_m=2000.0,
+                                                                                          height_m=1500.0)},
     "site.cover.default_soil": {},
     "site.soils.soil_layer": lambda S: {"site": _g("site", S), "spacing_m": 50.0},
     "site.soils.key_sheets": lambda S: {"layer": __import__("aerophoto.site.soils").site.soils.soil_layer(

@@ -146,6 +146,8 @@ __all__ = [
 def cache_entry(params: SiteParams) -> tuple:
     """``(name, inputs, build, types)`` of the site's entry in :mod:`aerophoto.cache` — what :func:`get_site`
     reads, and what the browser book ships for the default site (:func:`aerophoto.lite.shipped_wheel`)."""
+    if not isinstance(params, SiteParams):
+        raise ValueError(f"params = {params!r} must be a SiteParams (aerophoto.site.SiteParams())")
     return "site", asdict(params), (lambda: build_site(params)), (Site, SiteObjects, SiteParams)
 
 

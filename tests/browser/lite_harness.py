@@ -37,10 +37,12 @@ SITE = ROOT / "_site"
 MANIFEST = "aerophoto-lite.json"
 LOOPBACK = ("127.0.0.1", "localhost", "[::1]", "::1")
 #: the browser's own background services: Debian's chromium asks these with nothing but about:blank open,
-#: whatever the flags (component updates, sign-in, time, autofill); the trap refuses them like any other, and
-#: the tests fail for any other host
+#: whatever the flags (component updates, sign-in, time, autofill; chromium 150 also www.google.com and
+#: android.clients.google.com — seen with about:blank alone, 2026-12-02); the trap refuses them like any other,
+#: and the tests fail for any other host
 BROWSER_OWN = ("update.googleapis.com", "accounts.google.com", "clients2.google.com", "content-autofill.googleapis.com",
-               "optimizationguide-pa.googleapis.com", "redirector.gvt1.com", "edgedl.me.gvt1.com")
+               "optimizationguide-pa.googleapis.com", "redirector.gvt1.com", "edgedl.me.gvt1.com", "www.google.com",
+               "android.clients.google.com")
 #: quieten what can be quietened of that traffic
 QUIET_ARGS = ["--disable-features=AutofillServerCommunication,OptimizationHints,OptimizationGuideModelDownloading,"
               "MediaRouter,Translate", "--no-pings", "--disable-domain-reliability",

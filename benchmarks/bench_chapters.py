@@ -48,6 +48,13 @@ def _proc_hwm_gb(pid: int) -> float:
     return float("nan")
 
 
+def chapter_paths() -> list[Path]:
+    """The chapters' notebooks, all or those ``AEROPHOTO_BENCH_ONLY`` names (``07,08`` or ``07_stereoscope``)."""
+    only = [c.strip() for c in os.environ.get("AEROPHOTO_BENCH_ONLY", "").split(",") if c.strip()]
+    paths = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+    return [p for p in paths if not only or p.name[:2] in only or p.stem in only]
+
+
 def run_notebook(path: Path, *, book: str = "teacher", env: dict | None = None) -> dict:
     """Run one chapter in a new kernel; its wall time, kernel CPU time, peak memory and slowest cells."""
     import nbformat
@@ -92,14 +99,11 @@ def run_notebook(path: Path, *, book: str = "teacher", env: dict | None = None) 
 
 
 def run(quick: bool = False) -> dict:
-    only = [c.strip() for c in os.environ.get("AEROPHOTO_BENCH_ONLY", "").split(",") if c.strip()]
     book = os.environ.get("AEROPHOTO_BENCH_BOOK", "teacher")
     if book not in ("teacher", "student"):
         raise ValueError(f"AEROPHOTO_BENCH_BOOK = {book!r}; valid: teacher, student")
     cache_off = os.environ.get("AEROPHOTO_BENCH_CACHE", "on") == "off"
-    paths = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
-    if only:
-        paths = [p for p in paths if p.name[:2] in only or p.stem in only]
+    paths = chapter_paths()
     out = {"method": __doc__.split("Method: ")[1].split("Each chapter runs")[0].strip().replace("\n", " "),
            "book": book, "budget": {"wall_s": BUDGET_S, "peak_rss_gb": BUDGET_GB}, "chapters": {}}
     for p in paths:

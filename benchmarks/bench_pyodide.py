@@ -30,6 +30,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from _timing import load_module as _load
+
 ROOT = Path(__file__).resolve().parents[1]
 MARK = "AEROPHOTO_PYODIDE_RESULT "
 
@@ -96,10 +98,7 @@ def run(quick: bool = False) -> dict:
     node = shutil.which("node")
     if node is None:
         raise RuntimeError("bench_pyodide needs node (Debian: apt-get install nodejs)")
-    only = [c.strip() for c in os.environ.get("AEROPHOTO_BENCH_ONLY", "").split(",") if c.strip()]
-    paths = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
-    if only:
-        paths = [p for p in paths if p.name[:2] in only or p.stem in only]
+    paths = _load("bench_chapters", ROOT / "benchmarks" / "bench_chapters.py").chapter_paths()
     out = {"method": __doc__.split("Method: ")[1].strip().replace("\n", " "), "chapters": {}}
     with tempfile.TemporaryDirectory(prefix="aerophoto-bench-pyodide-") as tmp:
         site = Path(tmp) / "site"

@@ -71,13 +71,15 @@ _SHIPPED_HITS: list = []
 
 
 # =========================================================================== where, and whether
+def _switched_off() -> bool:
+    """``AEROPHOTO_CACHE=0`` (or off/no/false), or a grading kernel: no entry is read, shipped or not."""
+    return (os.environ.get("AEROPHOTO_CACHE", "1").strip().lower() in _OFF
+            or bool(os.environ.get("AEROPHOTO_GRADING")))
+
+
 def enabled() -> bool:
     """Whether the cache is on in this process (see the module notes)."""
-    if os.environ.get("AEROPHOTO_CACHE", "1").strip().lower() in _OFF:
-        return False
-    if os.environ.get("AEROPHOTO_GRADING"):
-        return False
-    return sys.platform != "emscripten"
+    return not _switched_off() and sys.platform != "emscripten"
 
 
 def cache_dir() -> Path:
@@ -272,9 +274,15 @@ def load(key: dict, types: tuple = ()):
     d = _entry_dir(key)
     if not all(_trusted(p) for p in (root, d.parent, d)):
         return None
+    return _read_entry(d, key, types, _trusted)
+
+
+def _read_entry(d: Path, key: dict, types: tuple, trusted=lambda _p: True):
+    """``(value,)`` of the entry folder ``d`` when its ``meta.json`` carries exactly ``key``, every file passes
+    ``trusted`` and every array file its recorded SHA-256; else None.  Data only (``allow_pickle=False``)."""
     try:
         meta_path = d / "meta.json"
-        if not _trusted(meta_path):
+        if not trusted(meta_path):
             return None
         meta = json.loads(meta_path.read_text(encoding="utf-8"))
         if meta.get("key") != key:
@@ -282,7 +290,7 @@ def load(key: dict, types: tuple = ()):
         arrays = []
         for i, (fname, digest) in enumerate(meta["files"]):
             p = d / fname
-            if fname != f"a{i}.npy" or not _trusted(p) or _sha256(p) != digest:
+            if fname != f"a{i}.npy" or not trusted(p) or _sha256(p) != digest:
                 return None
             arrays.append(np.load(p, allow_pickle=False))
         return (decode(meta["tree"], arrays, types),)
@@ -314,9 +322,9 @@ def save(key: dict, value, types: tuple = ()) -> bool:
         return False
 
 
-def _write_entry(parent: Path, key: dict, arrays: list, tree, exists_ok) -> Path:
+def _write_entry(parent: Path, key: dict, arrays: list, tree, exists_ok, extra: dict | None = None) -> Path:
     """Write one entry under ``parent`` atomically (a temporary folder renamed into place); ``exists_ok()`` says
-    whether an entry already there is good (then it is kept)."""
+    whether an entry already there is good (then it is kept); ``extra``: more fields of its ``meta.json``."""
     tmp = parent / f".tmp-{secrets.token_hex(8)}"
     tmp.mkdir(mode=0o700)
     try:
@@ -325,7 +333,8 @@ def _write_entry(parent: Path, key: dict, arrays: list, tree, exists_ok) -> Path
             p = tmp / f"a{i}.npy"
             np.save(p, a, allow_pickle=False)
             files.append([p.name, _sha256(p)])
-        (tmp / "meta.json").write_text(json.dumps({"key": key, "files": files, "tree": tree}), encoding="utf-8")
+        meta = {"key": key, "files": files, "tree": tree, **(extra or {})}
+        (tmp / "meta.json").write_text(json.dumps(meta), encoding="utf-8")
         final = parent / _key_hash(key)
         if final.exists():
             if exists_ok():  # another process wrote it meanwhile: keep theirs
@@ -414,27 +423,16 @@ def load_shipped(name: str, inputs, types: tuple = ()):
     SHA-256; it is data only (``allow_pickle=False``, dataclasses from ``types``).  Never in a grading kernel or
     with the cache switched off.
     """
-    if os.environ.get("AEROPHOTO_GRADING") or os.environ.get("AEROPHOTO_CACHE", "1").strip().lower() in _OFF:
+    if _switched_off():
         return None
     root = shipped_dir()
     if root is None:
         return None
     key = portable_key(name, inputs)
-    d = root / key["name"] / _key_hash(key)
-    try:
-        meta = json.loads((d / "meta.json").read_text(encoding="utf-8"))
-        if meta.get("key") != key:
-            return None
-        arrays = []
-        for i, (fname, digest) in enumerate(meta["files"]):
-            if fname != f"a{i}.npy" or _sha256(d / fname) != digest:
-                return None
-            arrays.append(np.load(d / fname, allow_pickle=False))
-        value = decode(meta["tree"], arrays, types)
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
-    _SHIPPED_HITS.append(key["name"])
-    return (value,)
+    hit = _read_entry(root / key["name"] / _key_hash(key), key, types)
+    if hit is not None:
+        _SHIPPED_HITS.append(key["name"])
+    return hit
 
 
 def write_shipped(dest: Path, name: str, inputs, value, types: tuple = ()) -> Path:
@@ -445,11 +443,8 @@ def write_shipped(dest: Path, name: str, inputs, value, types: tuple = ()) -> Pa
     key = portable_key(name, inputs)
     parent = Path(dest) / key["name"]
     parent.mkdir(parents=True, exist_ok=True)
-    final = _write_entry(parent, key, arrays, tree, lambda: False)
-    meta = json.loads((final / "meta.json").read_text(encoding="utf-8"))
-    meta["made_on"] = {"python": platform.python_version(), "numpy": np.__version__, "machine": platform.machine()}
-    (final / "meta.json").write_text(json.dumps(meta), encoding="utf-8")
-    return final
+    made_on = {"python": platform.python_version(), "numpy": np.__version__, "machine": platform.machine()}
+    return _write_entry(parent, key, arrays, tree, lambda: False, {"made_on": made_on})
 
 
 def shipped_hits() -> list:

@@ -220,7 +220,37 @@ def test_ipc_folder_is_sealed_after_start(tmp_path):
         box.remove()
 
 
+def test_a_timed_out_cells_interrupt_never_lands_in_the_next_cell(tmp_path):
+    """A cell busy in C code past its limit: the grader waits until the kernel has ended it and answered the
+    interrupt before it sends the next cell (there a check cell that records nothing would score 0)."""
+    import nbformat
 
+    from aerophoto.course.sandbox_execute import SandboxExecute
+
+    nb = nbformat.v4.new_notebook(cells=[
+        # the interpreter lock held for 6 s: the kernel's control thread turns the interrupt into SIGINT after
+        nbformat.v4.new_code_cell("import ctypes\nctypes.PyDLL(None).sleep(6)\n"),
+        nbformat.v4.new_code_cell("import time\ntime.sleep(1.5)\nx = 41 + 1\n"),
+        nbformat.v4.new_code_cell("print('x =', x)\n")])
+    ex = SandboxExecute(timeout=3, iopub_timeout=1, interrupt_on_timeout=True, allow_errors=True,
+                        interrupt_grace_s=20, limits=Limits(),
+                        error_on_timeout={"ename": "CellTimeoutError", "evalue": "over 3 s", "traceback": []})
+    ex.preprocess(nb, {"metadata": {"path": str(tmp_path)}})
+    errors = [[o.get("ename") for o in c.outputs if o.get("output_type") == "error"] for c in nb.cells]
+    assert "CellTimeoutError" in errors[0] and errors[1:] == [[], []], errors
+    assert nb.cells[2].outputs[0]["text"] == "x = 42\n"
+    assert [e.kind for e in ex.events] == ["timeout"]
+    # a cell that ignores the interrupt: its kernel is ended after the grace; the next cell runs in a new one
+    nb = nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_code_cell("y = 7\n"),
+        nbformat.v4.new_code_cell("import signal\nsignal.signal(signal.SIGINT, signal.SIG_IGN)\nwhile True:\n"
+                                  "    pass\n"),
+        nbformat.v4.new_code_cell("print('y =', y)\n")])
+    ex.interrupt_grace_s = 2
+    ex.preprocess(nb, {"metadata": {"path": str(tmp_path)}})
+    assert [e.kind for e in ex.events] == ["kernel_died"]
+    assert "did not stop when interrupted" in ex.events[0].message
+    assert nb.cells[2].outputs[0]["text"] == "y = 7\n"
 
 
 def test_one_recipe_for_the_grader_and_the_hub():

@@ -3,6 +3,8 @@
 :class:`SandboxExecute` is nbgrader's ``Execute`` with
 
 * the kernel in the sandbox (:class:`~.sandbox_kernel.SandboxKernelManager`, ipc transport);
+* a timed-out cell is interrupted and the next cell waits until the kernel has answered the interrupt and
+  ended the cell (``interrupt_grace_s``), so the interrupt cannot land in the next cell (a check cell);
 * a kernel that dies (memory, CPU time, ``os._exit``) or stops answering after a timed-out cell: the cell
   gets an error output with the reason, a new kernel is started, the earlier cells are replayed silently
   (not the failed ones, not the check cells) and grading goes on with the next cell — at most
@@ -29,7 +31,7 @@ from nbclient.exceptions import CellTimeoutError, DeadKernelError
 from nbclient.util import run_sync
 from nbformat import NotebookNode
 from nbgrader.preprocessors import Execute
-from traitlets import Any, Bool, Integer, Unicode
+from traitlets import Any, Bool, Float, Integer, Unicode
 
 from .bwrap import NOBODY
 from .common import DEFAULT_TIMEOUT_S, is_test, one_line
@@ -69,6 +71,8 @@ class SandboxExecute(Execute):
     limits = Any(None).tag(config=True)
     uid = Integer(NOBODY).tag(config=True)  # run as root: the uid the kernel drops to (one per grading job)
     max_restarts = Integer(2).tag(config=True)
+    # seconds a timed-out cell has to stop once interrupted before its kernel is ended (None: its limit, 5–30 s)
+    interrupt_grace_s = Float(None, allow_none=True).tag(config=True)
     startup_timeout = Integer(120).tag(config=True)
     shutdown_kernel = Unicode("immediate").tag(config=True)
 
@@ -90,9 +94,40 @@ class SandboxExecute(Execute):
 
     start_new_kernel_client = run_sync(async_start_new_kernel_client)
 
+    async def _async_poll_for_reply(self, msg_id, cell, timeout, task_poll_output_msg, task_poll_kernel_alive):
+        self._waiting_for = msg_id
+        return await super()._async_poll_for_reply(msg_id, cell, timeout, task_poll_output_msg,
+                                                   task_poll_kernel_alive)
+
     async def _async_handle_timeout(self, timeout, cell=None):
         self._timed_out = True
-        return await super()._async_handle_timeout(timeout, cell)
+        reply = await super()._async_handle_timeout(timeout, cell)  # the interrupt is sent
+        # nbclient would go on with the next cell at once, while the kernel may still be in this one: its
+        # interrupt (the control thread's SIGINT, sent once it gets the interpreter lock) would then stop
+        # the next cell — a check cell that records nothing.  Go on only when the kernel has answered both
+        # the interrupt and this cell; a kernel that does not within the grace is ended (a new one replays
+        # the earlier cells).
+        grace = self.interrupt_grace_s if self.interrupt_grace_s is not None else _grace_s(timeout)
+        t0 = time.monotonic()
+        if not (await self.km.wait_interrupted(grace)
+                and await self._wait_for_reply(self._waiting_for, grace - (time.monotonic() - t0))):
+            raise CellTimeoutError.error_from_timeout_and_cell(
+                "the cell did not stop when interrupted", timeout, cell)
+        return reply
+
+    async def _wait_for_reply(self, msg_id, timeout: float) -> bool:
+        """True once the kernel's execute reply to ``msg_id`` has come on the shell channel."""
+        from queue import Empty
+
+        deadline = time.monotonic() + timeout
+        while (left := deadline - time.monotonic()) > 0:
+            try:
+                msg = await self.kc.shell_channel.get_msg(timeout=left)
+            except Empty:
+                return False
+            if msg.get("parent_header", {}).get("msg_id") == msg_id:
+                return True
+        return False
 
     # outputs ------------------------------------------------------------------------------------
     def _over_cap(self, content, cell_index) -> bool:
@@ -306,6 +341,11 @@ class SandboxExecute(Execute):
         if key is not None:
             EVENTS[key] = [e.as_dict() for e in self.events]
         return self.nb, self.resources
+
+
+def _grace_s(timeout) -> float:
+    """Seconds a timed-out cell gets to stop once interrupted: as long as its limit, 5–30 s."""
+    return float(min(30, max(5, int(timeout or 0))))
 
 
 def _key(resources):

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import time
 from pathlib import Path
 
 import zmq
@@ -137,8 +138,29 @@ class SandboxKernelManager(AsyncKernelManager):
         msg = self.session.msg("interrupt_request", content={})
         self._connect_control_socket()
         self.session.send(self._control_socket, msg)
+        self._interrupt_id = msg["header"]["msg_id"]
 
     interrupt_kernel = _async_interrupt_kernel
+
+    async def wait_interrupted(self, timeout: float) -> bool:
+        """True once the kernel has answered the last interrupt (it has sent itself SIGINT), within ``timeout`` s.
+
+        The kernel's control thread turns the request into the signal only when it gets the interpreter
+        lock: a cell busy in C code holds it, and the signal can then land in a later cell.
+        """
+        want, sock = getattr(self, "_interrupt_id", None), self._control_socket
+        if want is None or sock is None:
+            return False
+        deadline = time.monotonic() + max(0.0, float(timeout))
+        while (left := deadline - time.monotonic()) > 0:
+            if not await sock.poll(int(left * 1000) + 1):
+                return False
+            frames = await sock.recv_multipart()
+            _, frames = self.session.feed_identities(frames)
+            msg = self.session.deserialize(frames, content=False)
+            if msg.get("parent_header", {}).get("msg_id") == want:
+                return True
+        return False
 
     def exit_status(self) -> int | None:
         proc = getattr(self.provisioner, "process", None) if self.provisioner is not None else None

@@ -25,6 +25,7 @@ import copy
 import json
 import time
 from dataclasses import dataclass
+from queue import Empty
 
 from nbclient.client import NotebookClient
 from nbclient.exceptions import CellTimeoutError, DeadKernelError
@@ -117,8 +118,6 @@ class SandboxExecute(Execute):
 
     async def _wait_for_reply(self, msg_id, timeout: float) -> bool:
         """True once the kernel's execute reply to ``msg_id`` has come on the shell channel."""
-        from queue import Empty
-
         deadline = time.monotonic() + timeout
         while (left := deadline - time.monotonic()) > 0:
             try:

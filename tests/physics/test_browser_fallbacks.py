@@ -24,9 +24,9 @@ import warnings
 import numpy as np
 import pytest
 
-pytest.importorskip("skimage.feature")
-pytest.importorskip("skimage.transform")
-pyproj = pytest.importorskip("pyproj")
+import pyproj  # environment.txt installs both libraries: the comparison never skips
+import skimage.feature  # noqa: F401
+import skimage.transform  # noqa: F401
 
 from aerophoto import projective as pj  # noqa: E402
 from aerophoto import stereo as st  # noqa: E402

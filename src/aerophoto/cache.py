@@ -54,8 +54,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["FORMAT", "MAX_ENTRIES", "SHIPPED", "enabled", "cache_dir", "code_fingerprint", "key_for", "encode",
-           "decode", "load", "save", "load_or_build", "entries", "clear", "portable_key", "shipped_dir",
+__all__ = ["FORMAT", "MAX_ENTRIES", "SHIPPED", "enabled", "switched_off", "cache_dir", "code_fingerprint", "key_for",
+           "encode", "decode", "load", "save", "load_or_build", "entries", "clear", "portable_key", "shipped_dir",
            "load_shipped", "write_shipped", "shipped_hits"]
 
 #: the entry format; a change of it makes every old entry a miss
@@ -71,24 +71,25 @@ _SHIPPED_HITS: list = []
 
 
 # =========================================================================== where, and whether
-def _switched_off() -> bool:
-    """``AEROPHOTO_CACHE=0`` (or off/no/false), or a grading kernel: no entry is read, shipped or not."""
+def switched_off() -> bool:
+    """``AEROPHOTO_CACHE=0`` (or off/no/false), or a grading kernel: no entry is read, shipped or not — of this
+    cache or of the report's signed one (:func:`aerophoto.diskcache.enabled`)."""
     return (os.environ.get("AEROPHOTO_CACHE", "1").strip().lower() in _OFF
             or bool(os.environ.get("AEROPHOTO_GRADING")))
 
 
 def enabled() -> bool:
     """Whether the cache is on in this process (see the module notes)."""
-    return not _switched_off() and sys.platform != "emscripten"
+    return not switched_off() and sys.platform != "emscripten"
 
 
 def cache_dir() -> Path:
     """The cache's folder: ``$AEROPHOTO_CACHE_DIR``, else ``$AEROPHOTO_HOME/cache``, else ``~/.aerophoto/cache``."""
-    if os.environ.get("AEROPHOTO_CACHE_DIR"):
-        return Path(os.environ["AEROPHOTO_CACHE_DIR"])
-    if os.environ.get("AEROPHOTO_HOME"):
-        return Path(os.environ["AEROPHOTO_HOME"]) / "cache"
-    return Path.home() / ".aerophoto" / "cache"
+    env = os.environ.get("AEROPHOTO_CACHE_DIR", "").strip()
+    if env:
+        return Path(env).expanduser()
+    home = os.environ.get("AEROPHOTO_HOME", "").strip()
+    return (Path(home).expanduser() if home else Path.home() / ".aerophoto") / "cache"
 
 
 def _trusted(path: Path) -> bool:
@@ -391,9 +392,19 @@ def entries(name: str | None = None) -> list:
 
 
 def clear() -> None:
-    """Remove every entry (the folder itself stays)."""
+    """Remove every entry of both halves of the cache: the chapters' folders and the report's signed files
+    (:mod:`aerophoto.diskcache`, ``<2 hex digits>/<hash>.data`` and ``.sig``).  The folder and the report's
+    secret key stay."""
     for d in entries():
         shutil.rmtree(d, ignore_errors=True)
+    root = cache_dir()
+    if not root.is_dir():
+        return
+    for sub in root.iterdir():
+        if sub.is_dir() and len(sub.name) == 2 and all(c in "0123456789abcdef" for c in sub.name):
+            for f in sub.iterdir():
+                if f.suffix in (".data", ".sig") and f.is_file():
+                    f.unlink(missing_ok=True)
 
 
 # =========================================================================== the browser book's shipped entries
@@ -423,7 +434,7 @@ def load_shipped(name: str, inputs, types: tuple = ()):
     SHA-256; it is data only (``allow_pickle=False``, dataclasses from ``types``).  Never in a grading kernel or
     with the cache switched off.
     """
-    if _switched_off():
+    if switched_off():
         return None
     root = shipped_dir()
     if root is None:

@@ -7,9 +7,9 @@ beside it and checked before the entry is used.  An entry written by anyone with
 edited, truncated, left by another package version) fails the check and is rebuilt; the failure is counted
 (:attr:`Cache.stats`), never raised.
 
-Keys are JSON-able mappings; the cache adds :func:`code_fingerprint` — the package version and a cheap
-fingerprint of its source files (path, size and modification time of every ``.py`` file of the installed
-package) — so an entry never outlives the code that computed it.
+Keys are JSON-able mappings, completed by the chapters' cache's own rule (:func:`aerophoto.cache.key_for`: a
+SHA-256 of the package's source files, numpy's and Python's versions, the machine and its CPU features), so an
+entry never outlives the code that computed it and is never read on another machine.
 
 **Off unless asked for.**  Nothing reads or writes the cache unless the caller opens it with
 :func:`enabled` (a context manager; the setting is a :mod:`contextvars` variable, so it holds for that
@@ -22,10 +22,13 @@ left on disk.  Code that wants a cached value asks :func:`active` and computes i
         c = diskcache.active()
         arrays = c.arrays("site", {"i": 57}, lambda: build_site_arrays(57))
 
-Where: ``$AEROPHOTO_CACHE_DIR`` if set, else ``<state dir>/cache`` (``$AEROPHOTO_HOME`` or ``~/.aerophoto``, the
-folder that already holds ``student.json``).  ``AEROPHOTO_CACHE=0`` (or off, no, false) and a grading kernel
-(``AEROPHOTO_GRADING`` set) keep it off even inside :func:`enabled`.  Layer 1 (foundation): the standard library
-and numpy only.
+This is the report's half of the book's one disk cache (:mod:`aerophoto.cache` is the chapters' half): the same
+folder (:func:`aerophoto.cache.cache_dir`: ``$AEROPHOTO_CACHE_DIR``, else ``$AEROPHOTO_HOME/cache``, else
+``~/.aerophoto/cache``, beside ``student.json``), the same key, the same switch — ``AEROPHOTO_CACHE=0`` (or off,
+no, false) and a grading kernel (``AEROPHOTO_GRADING`` set) keep it off even inside :func:`enabled`
+(:func:`aerophoto.cache.switched_off`) — and the same :func:`aerophoto.cache.clear`.  The two differ in what they
+trust: the chapters' entries are the same for everyone and are checked by owner and hash; the report's hold a
+student's own work and are signed.  Layer 1 (foundation): the standard library, numpy and :mod:`aerophoto.cache`.
 """
 
 from __future__ import annotations
@@ -42,55 +45,28 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Cache", "enabled", "active", "default_folder", "code_fingerprint", "canonical_key", "MAX_ENTRY_BYTES"]
+from . import cache as _cache
+
+__all__ = ["Cache", "enabled", "active", "canonical_key", "MAX_ENTRY_BYTES"]
 
 #: an entry larger than this is neither written nor read (a rendered sheet of photos is ~30 MB)
 MAX_ENTRY_BYTES = 200_000_000
 _KEY_BYTES = 32
 _ACTIVE: contextvars.ContextVar = contextvars.ContextVar("aerophoto_diskcache", default=None)
-_FINGERPRINT: list = []
-
-
-def default_folder() -> Path:
-    """``$AEROPHOTO_CACHE_DIR``, else ``$AEROPHOTO_HOME/cache``, else ``~/.aerophoto/cache``."""
-    env = os.environ.get("AEROPHOTO_CACHE_DIR", "").strip()
-    if env:
-        return Path(env).expanduser()
-    home = os.environ.get("AEROPHOTO_HOME", "").strip()
-    return (Path(home).expanduser() if home else Path.home() / ".aerophoto") / "cache"
-
-
-def code_fingerprint() -> str:
-    """The package version, Python's and numpy's versions, the machine, and a hash of (path, size, mtime) of every
-    ``.py`` file of the package (once per process): an entry is read only by the code and the machine that wrote it."""
-    if not _FINGERPRINT:
-        import platform
-
-        import numpy as np
-
-        from . import __version__
-
-        root = Path(__file__).resolve().parent
-        h = hashlib.sha256(f"{__version__}|{platform.python_version()}|{np.__version__}|{platform.machine()}".encode())
-        for p in sorted(root.rglob("*.py")):
-            if "__pycache__" in p.parts:
-                continue
-            st = p.stat()
-            h.update(f"{p.relative_to(root)}\0{st.st_size}\0{st.st_mtime_ns}\n".encode())
-        _FINGERPRINT.append(f"{__version__}+{h.hexdigest()[:20]}")
-    return _FINGERPRINT[0]
 
 
 def canonical_key(namespace: str, key) -> str:
-    """The entry's key as canonical JSON text (sorted keys, no spaces), code fingerprint included.
+    """The entry's key as canonical JSON text (sorted keys, no spaces): :func:`aerophoto.cache.key_for`'s key —
+    the namespace, ``key``, the package's source fingerprint, numpy's and Python's versions, the machine and its CPU
+    features — the same key the chapters' cache uses.
 
     Raises ValueError naming ``key`` when it is not plain JSON data (a float NaN, an object).
     """
     if not isinstance(namespace, str) or not namespace.replace("-", "").replace("_", "").isalnum():
         raise ValueError(f"namespace = {namespace!r}: expected a short name of letters, digits, '-' and '_'")
     try:
-        return json.dumps({"code": code_fingerprint(), "ns": namespace, "key": key}, sort_keys=True,
-                          separators=(",", ":"), ensure_ascii=True, allow_nan=False)
+        return json.dumps(_cache.key_for(namespace, key), sort_keys=True, separators=(",", ":"), ensure_ascii=True,
+                          allow_nan=False)
     except (TypeError, ValueError) as exc:
         raise ValueError(f"key = {key!r} is not plain JSON data ({exc})") from None
 
@@ -223,13 +199,11 @@ class Cache:
 def enabled(folder=None):
     """Open the cache for this context (the student's machine): :func:`active` returns it inside the block.
 
-    ``folder``: default :func:`default_folder`.  A folder that cannot be used (read-only, a key with the wrong
+    ``folder``: default :func:`aerophoto.cache.cache_dir` (one folder for both caches).  A folder that cannot be used (read-only, a key with the wrong
     owner or mode) leaves the cache off, so the caller computes everything as without it; so do
     ``AEROPHOTO_CACHE=0`` and a grading kernel.
     """
-    off = os.environ.get("AEROPHOTO_CACHE", "").strip().lower() in ("0", "off", "no", "false") \
-        or bool(os.environ.get("AEROPHOTO_GRADING"))
-    cache = None if off else Cache(Path(folder) if folder is not None else default_folder())
+    cache = None if _cache.switched_off() else Cache(Path(folder) if folder is not None else _cache.cache_dir())
     if cache is not None:
         try:
             cache._key()

@@ -237,3 +237,39 @@ def test_a_shipped_entry_is_read_only_in_the_browser_and_only_for_its_own_code(c
     a0 = d / "a0.npy"
     a0.write_bytes(a0.read_bytes()[:-1] + b"\x01")
     assert cache.load_shipped("thing", {"n": 1}, (Thing,)) is None  # a damaged array
+
+
+# =========================================================================== one cache, two halves
+def test_the_reports_signed_half_shares_the_folder_key_switch_and_clear(cdir, monkeypatch):
+    """aerophoto.diskcache (the report's signed entries) keeps no rules of its own: the folder is cache_dir(), the
+    key is cache.key_for's (so another code fingerprint is another entry), the switch is cache.switched_off() and
+    cache.clear() removes its entries too (its secret key stays)."""
+    from aerophoto import diskcache
+
+    with diskcache.enabled() as c:
+        assert c is not None and c.folder == cdir
+        c.json("t", {"a": 1}, lambda: {"x": 1})
+        text = diskcache.canonical_key("t", {"a": 1})
+        assert json.loads(text) == cache.key_for("t", {"a": 1})
+        with pytest.raises(ValueError, match="key = "):
+            diskcache.canonical_key("t", {"a": float("nan")})
+        monkeypatch.setattr(cache, "_FINGERPRINT", ["another version of the package"])
+        assert c.get_bytes("t", {"a": 1}) is None  # the code changed: a miss, not the old entry
+        monkeypatch.undo()
+        monkeypatch.setenv("AEROPHOTO_CACHE_DIR", str(cdir))
+        monkeypatch.setenv("AEROPHOTO_CACHE", "1")
+        monkeypatch.delenv("AEROPHOTO_GRADING", raising=False)
+        assert c.get_bytes("t", {"a": 1}) is not None
+        cache.load_or_build("thing", {"n": 1}, lambda: np.arange(3))
+        assert len(cache.entries()) == 1 and len(list(cdir.rglob("*.data"))) == 1
+        cache.clear()
+        assert cache.entries() == [] and list(cdir.rglob("*.data")) == [] and list(cdir.rglob("*.sig")) == []
+        assert (cdir / "key").is_file()
+        assert c.json("t", {"a": 1}, lambda: {"x": 2}) == {"x": 2}  # rebuilt after clear
+    for off in ({"AEROPHOTO_CACHE": "off"}, {"AEROPHOTO_GRADING": "1"}):
+        with monkeypatch.context() as m:
+            for k, v in off.items():
+                m.setenv(k, v)
+            assert cache.switched_off()
+            with diskcache.enabled() as c:
+                assert c is None

@@ -295,7 +295,7 @@ def build(workbook_dir, out_dir=None, *, student: str = "", record_book=None, gr
     sheet, figures : whether to draw the fotoschema sheet and the sections' figures
     formats : any of ``"pdf"``, ``"html"``
     cache : keep the slow parts in the student's verified cache (True: the default folder,
-        :func:`aerophoto.diskcache.default_folder`; a path: that folder; False: compute everything)
+        :func:`aerophoto.cache.cache_dir`; a path: that folder; False: compute everything)
 
     Returns a :class:`Report`.  Bad input raises ValueError naming the parameter.
     """

@@ -23,7 +23,8 @@ with N students and an instructor:
   the browser, timed from the key press to the painted frame with the method of bench_browser.py
   (``performance.now()`` in the page);
 * **CPU**: the share of a core the students' servers, their kernels and the hub with its proxy use while the
-  class sits idle (chapter open, nobody moving, :data:`IDLE_S` s) and while it moves (``cpu_core_share``);
+  class sits idle (chapter open, nobody moving: two windows of :data:`IDLE_S` s, the first just after the last
+  student opened the chapter, ``idle_just_opened``, then ``idle``) and while it moves (``cpu_core_share``);
 * **memory**: after that, the proportional set size (PSS: shared pages split between their users) of each
   student's server and kernel processes (found by the student's uid), the hub and the proxy, and how much of
   the machine's available memory the class took;
@@ -390,10 +391,13 @@ def _one_class(n: int, launch, hc, h, browser) -> dict:
         def all_opened():
             while not done.is_set():
                 if all("open_s" in sim[u.name] for u in sims):
-                    # the class idle (chapter open, nobody moving): what it costs the machine anyway
-                    c0, t0 = _cpu_s(hub), time.perf_counter()
-                    time.sleep(IDLE_S)
-                    cpu["idle"] = _cpu_rate(c0, _cpu_s(hub), time.perf_counter() - t0, n)
+                    # the class idle (chapter open, nobody moving): what it costs the machine anyway — in two
+                    # windows: the first holds the tail of the class's start (the last kernels' first full draws),
+                    # the second is what an idle class costs for as long as it sits
+                    for window in ("idle_just_opened", "idle"):
+                        c0, t0 = _cpu_s(hub), time.perf_counter()
+                        time.sleep(IDLE_S)
+                        cpu[window] = _cpu_rate(c0, _cpu_s(hub), time.perf_counter() - t0, n)
                     cpu["moving_from"] = (_cpu_s(hub), time.perf_counter())
                     opened.set()
                     return

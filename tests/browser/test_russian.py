@@ -80,3 +80,39 @@ def test_chapter_00_in_russian_in_jupyterlab(lab_ru, tab):
     h.lab_kernel_idle(page)
     assert probe.table_text() == start_table, f"{where}: Сброс did not restore the table"
     assert_clean(tab, where)
+
+
+#: the issue-33 screens: the lecture projector's 1920×1080 (1280×800 is the test above, in the README's command)
+BIG = {"width": 1920, "height": 1080}
+NOTEBOOK = ".jp-NotebookPanel:not(.lm-mod-hidden) .jp-Notebook"
+
+
+@pytest.mark.exhaustive
+def test_chapter_00_in_russian_fits_1920x1080(lab_ru, tab):
+    """Chapter 00 in Russian at 1920×1080 in JupyterLab (file browser as Lab opens it): after Run All every demo's
+    figure and table lie inside the notebook's column, its sliders carry their Russian labels, nothing scrolls
+    sideways; a screenshot of each demo (``AEROPHOTO_SCREENSHOTS=1``)."""
+    page = tab.page
+    page.set_viewport_size(BIG)
+    h.open_lab_notebook(page, lab_ru, CHAPTER.notebook)
+    h.run_all_cells(page)
+    where = f"JupyterLab (ru) {CHAPTER.notebook} at 1920×1080"
+    assert_clean(tab, where)
+    column = page.locator(NOTEBOOK).first.bounding_box()
+    for demo in CHAPTER.demos:
+        root = h.lab_demo_root(page, demo.cell)
+        assert root.count() == 1, f"{where}: cell {demo.cell!r} shows no live demo"
+        probe = h.DemoProbe(page, root)
+        probe.wait_rendered()
+        tab.add(f"ru-1920x1080-{demo.cell}", page.screenshot())
+        labels = probe.slider_labels()
+        english = [label for label, _ in demo.sliders if label in labels and translate(label, "ru") != label]
+        assert not english, f"{where} [{demo.cell}]: English slider labels {english}"
+        for what, box in (("figure", probe.canvas().bounding_box()), ("table", probe.table().bounding_box())):
+            assert box is not None, f"{where} [{demo.cell}]: the {what} is not displayed"
+            assert box["x"] >= column["x"] - 0.5 and box["x"] + box["width"] <= column["x"] + column["width"] + 0.5, (
+                f"{where} [{demo.cell}]: the {what} {box} leaves the notebook's column {column}")
+    over = page.evaluate(f"() => {{ const e = document.querySelector({NOTEBOOK!r}); "
+                         "return e.scrollWidth - e.clientWidth; }")
+    assert over <= 1, f"{where}: the notebook scrolls sideways by {over} px"
+    assert_clean(tab, where)

@@ -320,8 +320,17 @@ def _course_run(hub):
             users[name].start_server()
             _hand_in(users[name], answer)
         phase("petrov and sidorova submitted")
-        # an idle kernel that no tab holds: her server culls it after KERNEL_CULL_S (seen in its log, below)
-        ev["idle_kernel"] = users["sidorova"].start_kernel()
+        # an idle kernel that no tab holds: her server culls it after KERNEL_CULL_S (its log line is checked below).
+        # Watched here, while her server surely runs: asking for her kernels keeps the server active for the hub's
+        # culler but is no activity of the kernel (under CI's load the server used to be culled with the kernel
+        # still in it, before its own culler had said anything: no log line, the test failed)
+        kid = ev["idle_kernel"] = users["sidorova"].start_kernel()
+        t_kernel = time.monotonic()
+        while kid in users["sidorova"].kernels() and time.monotonic() - t_kernel < KERNEL_CULL_S + 120:
+            time.sleep(1)
+        ev["idle_kernel_alive_s"] = round(time.monotonic() - t_kernel, 1)
+        ev["idle_kernel_left"] = kid in users["sidorova"].kernels()
+        phase("sidorova's idle kernel culled")
         teacher.start_server()  # idle while the class worked: the culler may have stopped it (his files stay)
         out = teacher.run(SHELL.format(cmds=[["nbgrader", "collect", A],
                                              ["aerophoto-course", "autograde", "--jobs", "2"],
@@ -498,5 +507,9 @@ def test_idle_servers_and_kernels_are_culled(course_run):
     assert course_run["idler_running"] is False
     assert "Culling server idler" in course_run["log"] or "culling server idler" in course_run["log"].lower()
     kid = course_run["idle_kernel"]
+    assert course_run["idle_kernel_left"] is False, (
+        f"an idle kernel with no tab still ran {course_run['idle_kernel_alive_s']} s after it started "
+        f"(cull after {KERNEL_CULL_S} s)")
+    assert course_run["idle_kernel_alive_s"] >= KERNEL_CULL_S, course_run["idle_kernel_alive_s"]  # idle, then culled
     culled = [line for line in course_run["log"].splitlines() if "Culling" in line and kid in line]
     assert culled and "inactivity" in culled[0], culled

@@ -108,3 +108,17 @@ def load_module(name: str, path):
     sys.modules[name] = mod
     spec.loader.exec_module(mod)
     return mod
+
+
+def chapter_opening(notebook: str, demo_cell: str, record_book: str | None = None) -> str:
+    """The code a student runs to open a chapter up to one demo: its setup cell (with ``record_book`` typed in,
+    if given) and the demo's cell, then the demo displayed — read from ``notebooks/<notebook>.ipynb``."""
+    import json
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "notebooks" / f"{notebook}.ipynb"
+    cells = {c.get("id"): "".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"]}
+    setup = cells["setup"]
+    if record_book is not None:
+        setup = setup.replace("RECORD_BOOK = None", f'RECORD_BOOK = "{record_book}"')
+    return setup + "\n" + cells[demo_cell] + "\nfrom IPython.display import display\ndisplay(demo)\n"

@@ -49,6 +49,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from _timing import chapter_opening
 from _timing import load_module as _load
 from _timing import summarize
 
@@ -82,20 +83,7 @@ CANVAS_HELLO = ({"type": "set_dpi_ratio", "dpi_ratio": 1}, {"type": "initialized
 
 
 def _hubclient():
-    sys.path.insert(0, str(HUB))
-    try:
-        import hubclient
-    finally:
-        sys.path.remove(str(HUB))
-    return hubclient
-
-
-def _chapter_opening(record_book: str) -> str:
-    """The code of chapter 00 up to its demo (setup cell with the student's number, the demo cell), shown."""
-    nb = json.loads((ROOT / "notebooks" / f"{A}.ipynb").read_text(encoding="utf-8"))
-    cells = {c.get("id"): "".join(c["source"]) for c in nb["cells"]}
-    setup = cells["setup"].replace("RECORD_BOOK = None", f'RECORD_BOOK = "{record_book}"')
-    return setup + "\n" + cells["demo-footprint"] + "\nfrom IPython.display import display\ndisplay(demo)\n"
+    return _load("hubclient", HUB / "hubclient.py")  # by path, as bench_idle loads it: no sys.path edit
 
 
 def _mem_available_mb() -> float:
@@ -264,7 +252,7 @@ async def _student(hc, user, rb: str, go: threading.Event, stop: threading.Event
     ws = await user.connect(kid)
     try:
         t0 = time.perf_counter()
-        await _execute(hc, ws, _chapter_opening(rb))
+        await _execute(hc, ws, chapter_opening(A, "demo-footprint", rb))
         reply = await _execute(hc, ws, INSTRUMENT, expressions={"ids": "_aero_ids"})
         ids = json.loads(ast.literal_eval(reply["user_expressions"]["ids"]["data"]["text/plain"]))
         for hello in CANVAS_HELLO:

@@ -393,18 +393,12 @@ def entries(name: str | None = None) -> list:
 
 def clear() -> None:
     """Remove every entry of both halves of the cache: the chapters' folders and the report's signed files
-    (:mod:`aerophoto.diskcache`, ``<2 hex digits>/<hash>.data`` and ``.sig``).  The folder and the report's
-    secret key stay."""
+    (:meth:`aerophoto.diskcache.Cache.clear`).  The folder and the report's secret key stay."""
+    from . import diskcache  # imported here: diskcache builds on this module
+
     for d in entries():
         shutil.rmtree(d, ignore_errors=True)
-    root = cache_dir()
-    if not root.is_dir():
-        return
-    for sub in root.iterdir():
-        if sub.is_dir() and len(sub.name) == 2 and all(c in "0123456789abcdef" for c in sub.name):
-            for f in sub.iterdir():
-                if f.suffix in (".data", ".sig") and f.is_file():
-                    f.unlink(missing_ok=True)
+    diskcache.Cache(cache_dir()).clear()
 
 
 # =========================================================================== the browser book's shipped entries

@@ -111,6 +111,20 @@ class Cache:
         sub = self.folder / name[:2]
         return sub / f"{name}.data", sub / f"{name}.sig"
 
+    def clear(self) -> int:
+        """Remove every entry (``<2 hex digits>/<hash>.data`` and ``.sig``); the secret key stays.  The count of
+        files removed.  :func:`aerophoto.cache.clear` calls it for the book's one cache folder."""
+        n = 0
+        if not self.folder.is_dir():
+            return n
+        for sub in self.folder.iterdir():
+            if sub.is_dir() and len(sub.name) == 2 and all(c in "0123456789abcdef" for c in sub.name):
+                for f in sub.iterdir():
+                    if f.suffix in (".data", ".sig") and f.is_file():
+                        f.unlink(missing_ok=True)
+                        n += 1
+        return n
+
     def _sign(self, text: str, data: bytes) -> str:
         return hmac.new(self._key(), text.encode() + b"\0" + data, hashlib.sha256).hexdigest()
 

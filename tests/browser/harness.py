@@ -584,6 +584,24 @@ def _png_pixels(png: bytes):
     return Image.open(io.BytesIO(png)).convert("RGB")
 
 
+#: a JupyterLab chapter's notebook (the open one)
+LAB_NOTEBOOK = ".jp-NotebookPanel:not(.lm-mod-hidden) .jp-Notebook"
+
+
+def assert_no_sideways_scroll(page, where: str, scroller: str = "document.scrollingElement") -> None:
+    """Fail when ``scroller`` (a JavaScript expression for an element; default the page) scrolls sideways."""
+    over = page.evaluate(f"() => {{ const e = {scroller}; return e.scrollWidth - e.clientWidth; }}")
+    assert over <= 1, f"{where}: the page scrolls sideways by {over} px"
+
+
+def assert_demo_in_column(probe, column: dict, where: str) -> None:
+    """Fail unless the demo's figure and table are displayed and lie within ``column`` (a bounding box) sideways."""
+    for what, box in (("figure", probe.canvas().bounding_box()), ("table", probe.table().bounding_box())):
+        assert box is not None, f"{where}: the {what} is not displayed"
+        assert box["x"] >= column["x"] - 0.5 and box["x"] + box["width"] <= column["x"] + column["width"] + 0.5, (
+            f"{where}: the {what} {box} leaves the notebook's column {column}")
+
+
 def pixel_change(before: bytes, after: bytes) -> float:
     """Fraction of pixels that differ between two screenshots of the same element."""
     from PIL import ImageChops

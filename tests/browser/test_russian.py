@@ -84,7 +84,6 @@ def test_chapter_00_in_russian_in_jupyterlab(lab_ru, tab):
 
 #: the issue-33 screens: the lecture projector's 1920×1080 (1280×800 is the test above, in the README's command)
 BIG = {"width": 1920, "height": 1080}
-NOTEBOOK = ".jp-NotebookPanel:not(.lm-mod-hidden) .jp-Notebook"
 
 
 @pytest.mark.exhaustive
@@ -98,7 +97,7 @@ def test_chapter_00_in_russian_fits_1920x1080(lab_ru, tab):
     h.run_all_cells(page)
     where = f"JupyterLab (ru) {CHAPTER.notebook} at 1920×1080"
     assert_clean(tab, where)
-    column = page.locator(NOTEBOOK).first.bounding_box()
+    column = page.locator(h.LAB_NOTEBOOK).first.bounding_box()
     for demo in CHAPTER.demos:
         root = h.lab_demo_root(page, demo.cell)
         assert root.count() == 1, f"{where}: cell {demo.cell!r} shows no live demo"
@@ -108,11 +107,6 @@ def test_chapter_00_in_russian_fits_1920x1080(lab_ru, tab):
         labels = probe.slider_labels()
         english = [label for label, _ in demo.sliders if label in labels and translate(label, "ru") != label]
         assert not english, f"{where} [{demo.cell}]: English slider labels {english}"
-        for what, box in (("figure", probe.canvas().bounding_box()), ("table", probe.table().bounding_box())):
-            assert box is not None, f"{where} [{demo.cell}]: the {what} is not displayed"
-            assert box["x"] >= column["x"] - 0.5 and box["x"] + box["width"] <= column["x"] + column["width"] + 0.5, (
-                f"{where} [{demo.cell}]: the {what} {box} leaves the notebook's column {column}")
-    over = page.evaluate(f"() => {{ const e = document.querySelector({NOTEBOOK!r}); "
-                         "return e.scrollWidth - e.clientWidth; }")
-    assert over <= 1, f"{where}: the notebook scrolls sideways by {over} px"
+        h.assert_demo_in_column(probe, column, f"{where} [{demo.cell}]")
+    h.assert_no_sideways_scroll(page, where, f"document.querySelector({h.LAB_NOTEBOOK!r})")
     assert_clean(tab, where)

@@ -32,8 +32,7 @@ from .chapters import LECTURE_INDEX
 
 pytestmark = [pytest.mark.browser, pytest.mark.exhaustive, pytest.mark.timeout(2400)]
 
-#: a JupyterLab chapter's notebook (the open one)
-NOTEBOOK = ".jp-NotebookPanel:not(.lm-mod-hidden) .jp-Notebook"
+NOTEBOOK = h.LAB_NOTEBOOK
 #: what the book puts in it: the chapter's text and the cells' outputs
 CONTENT = f"{NOTEBOOK} .jp-MarkdownOutput, {NOTEBOOK} .jp-OutputArea-output"
 #: the issue's four lecture pages
@@ -51,11 +50,6 @@ def _inside(box, screen: dict, where: str, what: str) -> None:
     assert box is not None, f"{where}: the {what} is not displayed"
     assert box["x"] >= -0.5 and box["y"] >= -0.5 and box["x"] + box["width"] <= vw + 0.5 and \
         box["y"] + box["height"] <= vh + 0.5, f"{where}: the {what} {box} is not inside the {vw}×{vh} screen"
-
-
-def _no_sideways_scroll(page, where: str, scroller: str = "document.scrollingElement") -> None:
-    over = page.evaluate(f"() => {{ const e = {scroller}; return e.scrollWidth - e.clientWidth; }}")
-    assert over <= 1, f"{where}: the page scrolls sideways by {over} px"
 
 
 def _smallest_text(root) -> dict:
@@ -87,7 +81,7 @@ def _demos_fit(tab, page, chapter, screen: dict, where: str, shot: str, *, whole
             room = side.evaluate("(el) => ({over: el.scrollHeight - el.clientHeight, "
                                  "scrolls: ['auto', 'scroll'].includes(getComputedStyle(el).overflowY)})")
             assert room["over"] <= 1 or room["scrolls"], f"{w}: the side column hides {room['over']} px of its table"
-    _no_sideways_scroll(page, where)
+    h.assert_no_sideways_scroll(page, where)
 
 
 def _set_projector(page, on: bool) -> None:
@@ -161,12 +155,8 @@ def test_a_chapter_in_jupyterlab_fits_beside_the_open_file_browser(lab, tab):
         probe = h.DemoProbe(page, root)
         probe.wait_rendered()
         tab.add(f"{demo.cell}-lab-filebrowser", page.screenshot())
-        w = f"JupyterLab {chapter.notebook} [{demo.cell}], file browser open"
-        for what, box in (("figure", probe.canvas().bounding_box()), ("table", probe.table().bounding_box())):
-            assert box is not None, f"{w}: the {what} is not displayed"
-            assert box["x"] >= column["x"] - 0.5 and box["x"] + box["width"] <= column["x"] + column["width"] + 0.5, (
-                f"{w}: the {what} {box} leaves the notebook's column {column}")
-    _no_sideways_scroll(page, f"JupyterLab {chapter.notebook}", f"document.querySelector({NOTEBOOK!r})")
+        h.assert_demo_in_column(probe, column, f"JupyterLab {chapter.notebook} [{demo.cell}], file browser open")
+    h.assert_no_sideways_scroll(page, f"JupyterLab {chapter.notebook}", f"document.querySelector({NOTEBOOK!r})")
     # the chapter's own content — its text and its outputs (the demos); the editors, prompts and the windowed list
     # around them are JupyterLab's (axe finds its CodeMirror content and heading buttons unnamed: not the book's)
     bad = [v for v in S.run_axe(page, S.axe_source(), within=CONTENT) if v["impact"] in ("serious", "critical")]

@@ -253,12 +253,9 @@ def test_the_reports_signed_half_shares_the_folder_key_switch_and_clear(cdir, mo
         assert json.loads(text) == cache.key_for("t", {"a": 1})
         with pytest.raises(ValueError, match="key = "):
             diskcache.canonical_key("t", {"a": float("nan")})
-        monkeypatch.setattr(cache, "_FINGERPRINT", ["another version of the package"])
-        assert c.get_bytes("t", {"a": 1}) is None  # the code changed: a miss, not the old entry
-        monkeypatch.undo()
-        monkeypatch.setenv("AEROPHOTO_CACHE_DIR", str(cdir))
-        monkeypatch.setenv("AEROPHOTO_CACHE", "1")
-        monkeypatch.delenv("AEROPHOTO_GRADING", raising=False)
+        with monkeypatch.context() as m:
+            m.setattr(cache, "_FINGERPRINT", ["another version of the package"])
+            assert c.get_bytes("t", {"a": 1}) is None  # the code changed: a miss, not the old entry
         assert c.get_bytes("t", {"a": 1}) is not None
         cache.load_or_build("thing", {"n": 1}, lambda: np.arange(3))
         assert len(cache.entries()) == 1 and len(list(cdir.rglob("*.data"))) == 1

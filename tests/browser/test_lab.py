@@ -1,8 +1,8 @@
 """Each chapter's live demos in JupyterLab: run all cells, move the headline sliders, see it change.
 
 Chapters 00 and 05 run in the README's test command; the others are ``exhaustive`` (CI runs them in a step of
-their own, see tests/browser/chapters.py): every chapter's demos also run in Voilà on its lecture page, on the
-same widget and figure front end, in the README's command."""
+their own, see tests/browser/chapters.py), and every chapter's demos also run in Voilà on its lecture page, on the
+same widget and figure front end (in the README's command those of 05, 08, 11 and 16)."""
 
 from __future__ import annotations
 

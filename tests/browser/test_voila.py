@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from . import harness as h
-from .chapters import CHAPTERS, LECTURE_INDEX, core_params
+from .chapters import CHAPTERS, CORE_VOILA, LECTURE_INDEX, core_params
 from .demo_checks import assert_clean, exercise_demo
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(1800)]
@@ -19,7 +19,7 @@ def voila_demo_root(page, demo):
     return loc.nth(demo.nth)
 
 
-@pytest.mark.parametrize("chapter", core_params())
+@pytest.mark.parametrize("chapter", core_params(core=CORE_VOILA))
 def test_demos_in_voila(chapter, voila, tab):
     page = tab.page
     h.open_voila(page, voila, chapter.notebook)

@@ -2,7 +2,9 @@
 
 Every attack of issue 11, and of the issue "Grading holes a hostile class still finds" (the second half of
 :func:`attacks`, :data:`EDITS`, :data:`RAW` and the Moodle folders of :func:`_moodle_claims`), is a submission of
-chapter 00 (one task, 3 points).  Asserted:
+chapter 00 (one task, 3 points).  The class is graded as an instructor grades one on a 2-core machine, two
+submissions at a time (``autograde --jobs 2``: a fork bomb, a memory hog or an endless loop runs beside another
+student's notebook).  Asserted:
 
 * every honest student gets the right grade; every attack scores what its real answers deserve (the trusted
   check, in this process, for the roster's variant) and carries its flag;
@@ -35,6 +37,9 @@ from conftest import NOTEBOOKS
 pytestmark = pytest.mark.slow
 
 A = "00_start_here"
+#: graded as an instructor grades a class on a 2-core machine (``autograde --jobs 2``): each job's sandbox is a uid
+#: of its own, so the fork bomb, the memory hog and the endless loops cannot change what a neighbour scores
+JOBS = 2
 TIMEOUT = 10  # per cell: the setup cell needs a few seconds on a loaded machine
 MARK = f"aerophoto-hostile-{uuid.uuid4().hex[:12]}"
 PWNED = Path("/tmp") / f"{MARK}-pwned"
@@ -263,7 +268,7 @@ def hostile(tmp_path_factory):
     scan = c.import_submissions(export)
     before = _course_files(c.root)
     t0 = time.perf_counter()
-    results = c.autograde()
+    results = c.autograde(jobs=JOBS)
     seconds = time.perf_counter() - t0
     time.sleep(0.5)
     return c, plan, results, before, seconds, scan, log
@@ -294,6 +299,8 @@ def test_every_submission_was_graded(hostile):
     for sid in RAW:
         r = next(r for r in results if r.student == sid)
         assert r.status == "corrupt" and r.score == 0 and {f.code for f in r.flags} == {"corrupt"}, r
+    log = hostile[6]
+    assert any(f"in {JOBS} parallel jobs" in line for line in log), log[:5]
     print(f"hostile class: {len(results)} submissions in {seconds:.0f} s")
 
 

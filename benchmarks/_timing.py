@@ -122,3 +122,11 @@ def chapter_opening(notebook: str, demo_cell: str, record_book: str | None = Non
     if record_book is not None:
         setup = setup.replace("RECORD_BOOK = None", f'RECORD_BOOK = "{record_book}"')
     return setup + "\n" + cells[demo_cell] + "\nfrom IPython.display import display\ndisplay(demo)\n"
+
+
+def hubclient():
+    """deploy/jupyterhub/hubclient.py (the course hub's kernel-protocol client, as the hub tests use it), loaded by
+    path once."""
+    from pathlib import Path
+
+    return load_module("hubclient", Path(__file__).resolve().parents[1] / "deploy" / "jupyterhub" / "hubclient.py")

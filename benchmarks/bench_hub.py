@@ -49,7 +49,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from _timing import chapter_opening
+from _timing import chapter_opening, hubclient
 from _timing import load_module as _load
 from _timing import summarize
 
@@ -80,10 +80,6 @@ _aero_ids = _json.dumps({"slider": _aero_ctl.model_id, "canvas": demo.fig.canvas
 #: never hears "initialized" keeps encoding a second, full PNG of every frame for the widget state
 CANVAS_HELLO = ({"type": "set_dpi_ratio", "dpi_ratio": 1}, {"type": "initialized"}, {"type": "send_image_mode"},
                 {"type": "refresh"})
-
-
-def _hubclient():
-    return _load("hubclient", HUB / "hubclient.py")  # by path, as bench_idle loads it: no sys.path edit
 
 
 def _mem_available_mb() -> float:
@@ -477,7 +473,7 @@ def _grading(students) -> dict:
 def run(quick: bool = False) -> dict:
     launch = _load("aerophoto_hub_launch", HUB / "launch.py")
     h = _load("aerophoto_browser_harness", ROOT / "tests" / "browser" / "harness.py")
-    hc = _hubclient()
+    hc = hubclient()
     need = launch.missing()
     if need:
         return {"skipped": "the course hub cannot start here: " + "; ".join(need)}

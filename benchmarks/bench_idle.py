@@ -21,11 +21,9 @@ import sys
 import tempfile
 import time
 import uuid
-from pathlib import Path
 
-from _timing import chapter_opening, load_module
+from _timing import chapter_opening, hubclient
 
-HUB = Path(__file__).resolve().parents[1] / "deploy" / "jupyterhub"
 #: seconds of nothing over which the CPU is measured
 IDLE_S = 30.0
 #: the kernel's first cells' own work may still be finishing (a deferred table): waited out before measuring
@@ -61,7 +59,7 @@ async def _one(code: str, idle_s: float) -> dict:
         r = await http.fetch(HTTPRequest(f"{base}/api/kernels?token={token}", method="POST", body="{}"))
         kid = json.loads(r.body)["id"]
         ws = await websocket_connect(f"ws://127.0.0.1:{port}/api/kernels/{kid}/channels?token={token}")
-        hc = load_module("hubclient", HUB / "hubclient.py")  # the kernel protocol's message, as the hub tests send it
+        hc = hubclient()  # the kernel protocol's message, as the hub tests send it
         msg_id = hc.send(ws, "execute_request", {"code": code, "silent": False, "store_history": True,
                                                  "user_expressions": {}, "allow_stdin": False})
         state = {"counting": False, "done": False, "error": None, "seen": {}}

@@ -37,8 +37,7 @@ from conftest import NOTEBOOKS
 pytestmark = pytest.mark.slow
 
 A = "00_start_here"
-#: graded as an instructor grades a class on a 2-core machine (``autograde --jobs 2``): each job's sandbox is a uid
-#: of its own, so the fork bomb, the memory hog and the endless loops cannot change what a neighbour scores
+#: parallel grading jobs (the module's docstring); each job's sandbox runs as a uid of its own (bwrap.sandbox_uid)
 JOBS = 2
 TIMEOUT = 10  # per cell: the setup cell needs a few seconds on a loaded machine
 MARK = f"aerophoto-hostile-{uuid.uuid4().hex[:12]}"

@@ -207,16 +207,26 @@ class StereoLab:
 
 # =========================================================================== building a lab
 def _visible_in_both(site, cam, poses, P, tol=0.3) -> np.ndarray:
+    """Which points (n, 3) both photos see: inside each frame (2 mm from its edge) and nothing on the ray before them.
+
+    A point is seen when the ray's first hit is no nearer the station than the point less ``tol`` (m).  Asking
+    instead whether the hit lies *at* the point fails on the points the objects are measured at — a roof corner,
+    a chimney or mast top are on the edge of their object, and a ray through such a point grazes it: whether
+    it hits the corner or slips past to the ground behind is decided in the last bit of the arithmetic, which
+    differs between machines (BLAS kernels), and one flip re-drew a whole variant's objects.
+    """
     from ..render import trace
 
     ok = np.ones(len(P), bool)
     for pose in poses:
         xy = g.ground_to_photo(cam, pose, P)
         inside = np.all(np.abs(xy) < cam.half_mm - 2.0, axis=1)
-        hit = np.full((len(P), 3), np.inf)
+        seen = np.zeros(len(P), bool)
         if inside.any():
-            hit[inside] = trace(site, cam, pose, xy[inside]).XYZ_m
-        ok &= inside & (np.linalg.norm(hit - P, axis=1) <= tol)
+            S = pose.centre
+            hit = trace(site, cam, pose, xy[inside]).XYZ_m
+            seen[inside] = np.linalg.norm(hit - S, axis=1) >= np.linalg.norm(P[inside] - S, axis=1) - tol
+        ok &= seen
     return ok
 
 

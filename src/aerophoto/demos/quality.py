@@ -322,7 +322,7 @@ class RoughMosaicView:
         self.strips = LineCollection([], linewidths=1.3, linestyles=(0, (4, 3)), zorder=4)
         a.add_collection(self.strips)
         (self.o,) = a.plot([], [], linestyle="none", marker="+", ms=9, mew=1.8, color=C["black"], zorder=5)
-        self.numbers = []
+        self.numbers = plots.PointLabels(a, offset_pt=(4.0, 4.0), fontsize=9, zorder=6)
         # legend
         from matplotlib.patches import Patch
 
@@ -341,7 +341,7 @@ class RoughMosaicView:
         else:
             a.legend(handles=handles, loc="upper left", fontsize=8, framealpha=0.85)
         self.title = a.set_title("")
-        self.moving = (self.image, self.frames, self.bases, self.strips, self.o, self.title)
+        self.moving = (self.image, self.frames, self.bases, self.strips, self.o, *self.numbers.artists, self.title)
         if result is not None:
             self.update(result)
 
@@ -392,18 +392,8 @@ class RoughMosaicView:
         self.strips.set_colors(scol)
         o = r.o_ground_m / km
         self.o.set_data(o[:, 0], o[:, 1])
-        while len(self.numbers) < len(o):
-            self.numbers.append(self.ax.annotate("", (0, 0), xytext=(4, 4), textcoords="offset points", fontsize=9,
-                                                 fontweight="bold", zorder=6,
-                                                 bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.7)))
-        for k, t in enumerate(self.numbers):
-            if k < len(o):
-                t.xy = (o[k, 0], o[k, 1])
-                t.set_text(str(shots[k].number))
-                t.set_color(_FAIL if bad_photo.get(shots[k].number, False) else plots.COLORS["black"])
-                t.set_visible(True)
-            else:
-                t.set_visible(False)
+        self.numbers.set(o, [s.number for s in shots],
+                         [_FAIL if bad_photo.get(s.number, False) else plots.COLORS["black"] for s in shots])
         n_fail = len(rep.failures())
         self.title.set_text(_t("Rough mosaic (накидной монтаж): all criteria met") if n_fail == 0 else
                             _t("Rough mosaic (накидной монтаж): checks failed: {n}", n=n_fail))

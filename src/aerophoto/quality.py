@@ -771,7 +771,8 @@ def _nearest_neighbour_pairs(strip_a, strip_b):
 
 @V.checked(flight=V.has_attrs("shots", what="a simulated flight (simulate.Strip or Block)"), dem=V.terrain(none=True),
            points_m=V.optional(V.points(3)))
-def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None = None) -> QualityReport:
+def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None = None,
+                  nadirs: dict | None = None) -> QualityReport:
     """Measure a simulated flight as the guide measures a rough mosaic (§3) and judge it.
 
     Parameters
@@ -789,6 +790,9 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
     photographic : dict, optional
         Values of the guide's visual-control columns ``sharpness``,
         ``detail``, ``defects``; default "n/a (simulated)".
+    nadirs : dict, optional
+        Filled with each photo's principal ground point (pose → X, Y, Z in m, shape (3,)), intersected once for
+        all the measurements: a caller that draws the points reads them here instead of intersecting again.
 
     Returns
     -------
@@ -804,7 +808,7 @@ def assess_flight(flight, dem=None, *, points_m=None, photographic: dict | None 
     H0 = st0.H_m
     m = st0.m
     lim_crab = crab_limit_deg(cam.f_mm)
-    nadirs: dict = {}  # each photo's principal ground point, intersected once for every measurement below
+    nadirs = {} if nadirs is None else nadirs  # each photo's principal ground point, intersected once for all
     photos, pairs, strip_checks = [], [], []
     for st in strips:
         shots = st.shots

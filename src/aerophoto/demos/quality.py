@@ -97,8 +97,7 @@ def _footprint_box(shot, site, pad_m: float):
     """A box that surely holds the ground ``shot`` shows: its frame corners cut with the planes at the terrain's
     lowest and highest heights (every ray meets the terrain between them), widened by ``pad_m``."""
     c = shot.camera.corners_mm()
-    pts = np.vstack([g.photo_to_dem(shot.camera, shot.pose, c, g.FlatTerrain(z))[:, :2]
-                     for z in (site.z_min_m, site.z_max_m)])
+    pts = np.vstack([g.photo_to_plane(shot.camera, shot.pose, c, z)[:, :2] for z in (site.z_min_m, site.z_max_m)])
     return pts.min(axis=0) - pad_m, pts.max(axis=0) + pad_m
 
 
@@ -259,10 +258,11 @@ def quality_model(f_mm: float = 100.0, max_tilt_deg: float = 1.0, crab_deg: floa
     flight = sim.block_over_site(site, cam, m, px_percent, py_percent, n_photos, n_strips, imperfections=imp,
                                  alternate=True)
     cat = site.catalogue[["X_m", "Y_m", "Z_m"]].to_numpy(dtype=float)
-    report = q.assess_flight(flight, site, points_m=cat)
+    nadirs: dict = {}
+    report = q.assess_flight(flight, site, points_m=cat, nadirs=nadirs)
     shots = flight.shots
     outlines = np.array([_outline(cam, s.pose, site) for s in shots])
-    o = np.array([g.photo_to_dem(cam, s.pose, np.zeros(2), site)[:2] for s in shots])
+    o = np.array([nadirs[s.pose][:2] for s in shots])  # the principal ground points the assessment intersected
     image, extent, _ = rough_mosaic_raster(shots, site, outlines, pixel_m=pixel_m, extent_m=extent_m)
     return QualityResult(flight, report, image, extent, outlines, o)
 

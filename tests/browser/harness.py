@@ -774,14 +774,11 @@ class DemoProbe:
         full-resolution picture waits for the slider to rest, is gone), then until the figure has been quiet for
         ``quiet_ms``; done when no work is scheduled then either, else again (a note that arrived while the
         figure settled: its picture is waited for in the same way)."""
-        pending = "(el) => !!el.querySelector('.aerophoto-pending')"
+        nothing_pending = "(el) => !el.querySelector('.aerophoto-pending')"
         for _ in range(5):
-            self.page.wait_for_function(
-                "(el) => !el.querySelector('.aerophoto-pending')",
-                arg=self.root.element_handle(), timeout=T_MOVE, polling=50,
-            )
+            self.page.wait_for_function(nothing_pending, arg=self.root.element_handle(), timeout=T_MOVE, polling=50)
             self.settle(quiet_ms)
-            if not self.root.evaluate(pending):
+            if self.root.evaluate(nothing_pending):
                 return
         raise AssertionError(f"the demo still had work scheduled after five quiet spells of {quiet_ms} ms")
 

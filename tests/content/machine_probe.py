@@ -9,22 +9,7 @@ from __future__ import annotations
 import json
 import sys
 
-import numpy as np
-
-
-def plain(x):
-    """``x`` (frames, series, arrays, numbers) as JSON values; numbers as floats."""
-    if hasattr(x, "to_dict"):
-        return plain(x.to_dict())
-    if isinstance(x, dict):
-        return {str(k): plain(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple, np.ndarray)):
-        return [plain(v) for v in x]
-    if isinstance(x, (bool, np.bool_)):
-        return bool(x)
-    if isinstance(x, (int, float, np.integer, np.floating)):
-        return float(x)
-    return str(x)
+from aerophoto.report.facts import plain  # numpy and pandas values as plain JSON data
 
 
 def collect(stereo_variants, task_variants) -> dict:
@@ -35,15 +20,14 @@ def collect(stereo_variants, task_variants) -> dict:
     from aerophoto.variants import variant_for_index
 
     labs = {"example": example_lab()} | {str(i): stereo_lab(variant_for_index(int(i))) for i in stereo_variants}
-    stereo = {k: {"objects": plain(lab.objects_table().round(3)), "control": plain(lab.control),
-                  "principal": plain(lab.principal)} for k, lab in labs.items()}
+    stereo = {k: {"objects": plain(lab.objects_table().round(3).to_dict()), "control": plain(lab.control.to_dict()),
+                  "principal": plain(lab.principal.to_dict())} for k, lab in labs.items()}
     answers = {}
     for i in task_variants:
         v = variant_for_index(int(i))
         for task in tasks.all_tasks():
             answers[f"{task.id} v{int(i):02d}"] = plain(task.answers(v))
-    # through JSON, as the subprocess's side comes
-    return json.loads(json.dumps({"stereo": stereo, "answers": answers}))
+    return {"stereo": stereo, "answers": answers}
 
 
 if __name__ == "__main__":

@@ -46,7 +46,9 @@ __all__ = [
     "fast_frames",
     "FRAME_COMPRESS_LEVEL",
     "PHOTO_QUALITY",
+    "PREVIEW_QUALITY",
     "PHOTO_SHARE",
+    "frame_quality",
     "snapped_limits",
     "coarse_ceil",
     "steady_title",
@@ -581,9 +583,23 @@ FRAME_COMPRESS_LEVEL = 1
 #: measured by ``benchmarks/bench_frames.py`` (90 gives 1.07 on the shooting conditions' photo), held by
 #: tests/presentation/test_frames.py
 PHOTO_QUALITY = 95
-#: a photo demo's frame goes as a JPEG when at least this share of its pixels changed (a moved photo); a smaller
-#: change (a line, a label) stays a lossless PNG of the changed pixels
-PHOTO_SHARE = 0.3
+#: JPEG quality of a photo demo's *preview* frames (a demo that shows a coarser picture while its slider moves and
+#: the full one once it rests: the fotoschema, the transformer): the lowest quality whose preview frames keep a
+#: mean ΔE₀₀ ≤ 1 from the exact preview pixels and at most 2 % of pixels above ΔE₀₀ 5 on every such demo
+#: (``benchmarks/bench_frames.py``'s ``chosen_preview_quality``); such a frame stands on the screen only while the
+#: slider moves — the resting picture follows at :data:`PHOTO_QUALITY` (the fotoschema's preview: 90 gives mean
+#: ΔE₀₀ 0.44 with 1.0 % of pixels above 5 and 109 kB against 145 kB at 95; 85 leaves 2.1 % above 5)
+PREVIEW_QUALITY = 90
+#: a photo demo's frame goes as a JPEG of the whole picture when at least this share of its pixels changed (a moved
+#: photo); a smaller change (a line, a label) stays a lossless PNG of the changed pixels.  A changed photo pixel
+#: costs the PNG ~3.4 bytes, the whole picture's JPEG at :data:`PHOTO_QUALITY` 0.2–0.7 bytes a pixel, so the JPEG is
+#: the smaller frame from 0.06–0.22 of the picture changed (``benchmarks/bench_frames.py``'s ``jpeg_from_share``:
+#: the quality demo 0.06, the fotoschema 0.09, the shooting conditions' photo 0.22), and it is 2–3× quicker to
+#: encode; a move of a photo demo changes 0.3–0.84 of its pixels (at 0.3 before, the fotoschema's preview went as
+#: a 400–500 kB PNG about every other move), a line or a label under 0.05
+PHOTO_SHARE = 0.1
+#: a PNG diff with fewer changed pixels than this share is compressed run-length (its zeros), else deflated
+_RLE_SHARE = 0.3
 
 
 def _png(rgba: np.ndarray, level: int, *, sparse: bool) -> bytes:
@@ -639,6 +655,7 @@ def _fast_diff_image(canvas, level: int, photo_quality: int | None = None):
     canvas._last_buff = buff.copy()
     canvas._force_full = False
     canvas._png_is_old = False
+    photo_quality = getattr(canvas, "_aerophoto_photo_quality", photo_quality)  # set by frame_quality
     if photo_quality is not None and opaque and share >= PHOTO_SHARE:
         canvas.set_image_mode("full")
         return _jpeg(pixels[:, :, :3], photo_quality)
@@ -648,7 +665,7 @@ def _fast_diff_image(canvas, level: int, photo_quality: int | None = None):
     else:
         canvas.set_image_mode("diff")
         output = np.where(changed, buff, 0)
-    return _png(output.view(dtype=np.uint8).reshape((*output.shape, 4)), level, sparse=share < PHOTO_SHARE)
+    return _png(output.view(dtype=np.uint8).reshape((*output.shape, 4)), level, sparse=share < _RLE_SHARE)
 
 
 def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL, *, photo_quality: int | None = None) -> bool:
@@ -658,8 +675,9 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL, *, photo_quality: int | 
     matplotlib compresses it at zlib's default level 6 with PIL's filtered rows; for a figure with a photo in
     it that costs 20–50 ms per frame.  Here the rows go unfiltered at ``level`` (1: a few per cent larger, a
     third of the time; the same pixels).  ``photo_quality`` (1–100, for demos whose frames are mostly photo,
-    :attr:`aerophoto.widgets.LiveDemo.photo_frames`): a frame in which most of the picture changed is sent as
-    a JPEG of that quality instead — 3 ms to encode and a third of the bytes, at a mean ΔE₀₀ below one
+    :attr:`aerophoto.widgets.LiveDemo.photo_frames`): a frame in which at least :data:`PHOTO_SHARE` of the picture
+    changed is sent as a JPEG of that quality instead (:func:`frame_quality` changes it, e.g. for a preview) —
+    3 ms to encode and a third to a fifth of the bytes, at a mean ΔE₀₀ below one
     just-noticeable difference for :data:`PHOTO_QUALITY`.  Only the frames change: ``savefig``, the inline
     backend and the notebook's saved picture draw the exact figure.  Only this figure's canvas is changed, and
     only when it is matplotlib's web canvas with the method this replaces; otherwise (inline backend, another
@@ -682,7 +700,24 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL, *, photo_quality: int | 
     if photo_quality is not None and not 1 <= int(photo_quality) <= 100:
         raise ValueError(f"photo_quality = {photo_quality} is outside the JPEG qualities 1 … 100")
     q = None if photo_quality is None else int(photo_quality)
+    canvas._aerophoto_photo_quality = q  # frame_quality changes it (a preview's frames)
     canvas.get_diff_image = types.MethodType(lambda self: _fast_diff_image(self, level, q), canvas)
+    return True
+
+
+def frame_quality(fig, quality: int) -> bool:
+    """The JPEG quality (1–100) of ``fig``'s photo frames from now on (a figure :func:`fast_frames` set up with a
+    ``photo_quality``); returns whether it applied.  :class:`aerophoto.widgets.LiveDemo` sends a preview at
+    :data:`PREVIEW_QUALITY` and the resting picture at :data:`PHOTO_QUALITY`.  A frame is encoded when the
+    figure is blitted or drawn, from the pixels then on the canvas, so the quality set before a draw is the one
+    its frame goes with."""
+    canvas = getattr(fig, "canvas", None)
+    if canvas is None or getattr(canvas, "_aerophoto_photo_quality", None) is None:
+        return False
+    quality = int(quality)
+    if not 1 <= quality <= 100:
+        raise ValueError(f"quality = {quality} is outside the JPEG qualities 1 … 100")
+    canvas._aerophoto_photo_quality = quality
     return True
 
 

@@ -301,7 +301,8 @@ class LiveDemo:
     legend_beside: bool = True
     #: the demo's picture is mostly a photo that a move changes whole (a moved mosaic, a rendered photo, a
     #: map): its frames to the browser go as JPEG of :data:`aerophoto.plots.PHOTO_QUALITY` (see
-    #: :func:`aerophoto.plots.fast_frames`); the figure itself, savefig and the saved notebook stay exact
+    #: :func:`aerophoto.plots.fast_frames`), a preview (a result whose ``preview`` is True) at
+    #: :data:`aerophoto.plots.PREVIEW_QUALITY`; the figure itself, savefig and the saved notebook stay exact
     photo_frames: bool = False
     #: parameters whose slider shows a note under it (what the value means, e.g. the motion a step is): the
     #: demo sets ``self.notes[name].value`` (HTML) in :meth:`render`
@@ -516,6 +517,10 @@ class LiveDemo:
         (:func:`table_after_picture`), so the page paints the figure first.
         """
         self.result = result
+        if self.photo_frames:  # a preview (result.preview) goes to the browser as a lighter JPEG
+            from .plots import PHOTO_QUALITY, PREVIEW_QUALITY, frame_quality
+
+            frame_quality(self.fig, PREVIEW_QUALITY if getattr(result, "preview", False) else PHOTO_QUALITY)
         if not self._from_slider:
             self._drop_table_later()  # a table a slider move left pending is older than this one
             self.render(result)

@@ -16,7 +16,8 @@ pytestmark = pytest.mark.usefixtures("plot_style")
 
 PHOTO_DEMOS = [("quality", "QualityDemo", {"max_tilt_deg": 2.5}), ("fotoschema", "FotoschemaDemo", {"alpha_max_deg": 1.0}),
                ("interpretation", "ConditionsDemo", {"sun_elevation_deg": 20.0}),
-               ("interpretation", "KeyDemo", {"row": 3}), ("rectification", "TransformerDemo", {"step": 3})]
+               ("interpretation", "KeyDemo", {"row": 3}), ("rectification", "TransformerDemo", {"step": 3}),
+               ("loupe", "LoupeDemo", {"x_mm": 20.0}), ("spectral_explorer", "SpectralExplorerDemo", {"moisture_pct": 30})]
 
 
 @pytest.mark.parametrize("sparse", [False, True])
@@ -103,6 +104,72 @@ def test_a_photo_demos_jpeg_frame_is_within_one_just_noticeable_difference(modul
     finally:
         demo.close()
     sent = np.asarray(Image.open(io.BytesIO(plots._jpeg(exact, plots.PHOTO_QUALITY))).convert("RGB"))
+    de = deltaE_ciede2000(rgb2lab(exact), rgb2lab(sent))
+    assert de.mean() <= 1.0, f"{cls}: mean ΔE00 {de.mean():.2f}"
+    assert (de > 5).mean() <= 0.02, f"{cls}: {(de > 5).mean():.2%} of the pixels above ΔE00 5"
+
+
+def test_a_frame_goes_at_the_quality_set_before_it():
+    """plots.frame_quality: the next photo frame is the JPEG of the canvas' pixels at that quality, byte for byte."""
+    fig, img, line = _web_figure()
+    assert plots.fast_frames(fig, photo_quality=plots.PHOTO_QUALITY)
+    for q in (plots.PREVIEW_QUALITY, plots.PHOTO_QUALITY):
+        assert plots.frame_quality(fig, q)
+        img.set_data(np.flipud(img.get_array()))
+        frame, mode = _frame(fig)
+        exact = np.asarray(fig.canvas.get_renderer().buffer_rgba())[..., :3]
+        assert mode == "full" and frame == plots._jpeg(exact, q)
+    assert len(plots._jpeg(exact, plots.PREVIEW_QUALITY)) < len(plots._jpeg(exact, plots.PHOTO_QUALITY))
+    with pytest.raises(ValueError, match="quality = 101"):
+        plots.frame_quality(fig, 101)
+    assert not plots.frame_quality(_web_figure()[0], 50)  # no photo frames set up: nothing to change
+    lossless, _, _ = _web_figure()
+    assert plots.fast_frames(lossless) and not plots.frame_quality(lossless, 50)
+
+
+# the demos that show a preview while a slider moves (result.preview), with a move of a slider that previews
+PREVIEW_DEMOS = [("fotoschema", "FotoschemaDemo", {"alpha_max_deg": 1.0}),
+                 ("rectification", "TransformerDemo", {"alpha_deg": 4.0})]
+
+
+def _preview(demo, move):
+    if hasattr(demo, "render_full"):  # the fotoschema: set(..., preview=True)
+        return demo.set(preview=True, **move)
+    demo.values.update(demo._checked(move))
+    demo._preview = True
+    try:
+        demo.update()
+    finally:
+        demo._preview = False
+    return demo
+
+
+@pytest.mark.parametrize(("module", "cls", "move"), PREVIEW_DEMOS, ids=[c for _, c, _ in PREVIEW_DEMOS])
+def test_a_preview_goes_at_the_preview_quality_and_the_resting_picture_at_the_photo_quality(module, cls, move):
+    """LiveDemo.show chooses the quality of the frames to come from the result it shows; a preview's JPEG stays
+    within one just-noticeable difference of the exact preview (mean ΔE00 ≤ 1, ≤ 2 % of pixels above 5, as a
+    resting photo frame)."""
+    import importlib
+
+    import matplotlib
+
+    from skimage.color import deltaE_ciede2000, rgb2lab
+
+    matplotlib.use("Agg")
+    demo = getattr(importlib.import_module(f"aerophoto.demos.{module}"), cls)()
+    try:
+        assert demo.photo_frames
+        canvas = demo.fig.canvas
+        canvas._aerophoto_photo_quality = plots.PHOTO_QUALITY  # as plots.fast_frames sets it on ipympl's canvas
+        _preview(demo, move)
+        assert demo.result.preview and canvas._aerophoto_photo_quality == plots.PREVIEW_QUALITY
+        demo.draw(force=True)
+        exact = np.asarray(canvas.buffer_rgba())[..., :3].copy()
+        demo.set(**move)  # the resting picture
+        assert not demo.result.preview and canvas._aerophoto_photo_quality == plots.PHOTO_QUALITY
+    finally:
+        demo.close()
+    sent = np.asarray(Image.open(io.BytesIO(plots._jpeg(exact, plots.PREVIEW_QUALITY))).convert("RGB"))
     de = deltaE_ciede2000(rgb2lab(exact), rgb2lab(sent))
     assert de.mean() <= 1.0, f"{cls}: mean ΔE00 {de.mean():.2f}"
     assert (de > 5).mean() <= 0.02, f"{cls}: {(de > 5).mean():.2%} of the pixels above ΔE00 5"

@@ -174,6 +174,7 @@ _MARK_OPTIONS = (("— (use x, y)", "free"), *((f"mark {k}", k) for k in ("1", "
 class LoupeDemo(LiveDemo):
     """A magnifier on the chapter's photo: the student's own (``LoupeDemo(v)``) or the worked example's."""
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "A magnifier on the photo (лупа)"
     hint = ("Put the glass on a mark or click on the photo; at ×5–×6 you see the crowns of a stand, the rows and "
             "wheel tracks of a field, a road's shoulders and ditches, the rails.")

@@ -171,6 +171,7 @@ class SpectralExplorerDemo(LiveDemo):
     patch is theirs to photograph in the task.
     """
 
+    photo_frames = True  # a move changes the photo: its frames go as JPEG (plots.fast_frames; issue 32)
     title = "Spectral explorer: what moisture, humus and particle size do to a soil's reflectance"
     hint = ("Wet the soil (θ) and watch the dips at 1.45 and 1.95 µm deepen while every band darkens; add humus "
             "(the red band reacts most, and little beyond 5 %); make the particles finer than 0.4 mm.")

@@ -5,13 +5,14 @@
 
 Per demo (the registry's demo classes, each on the slider the browser benchmark times, moved →/← in a fresh
 Python with matplotlib's web canvas, as ipympl's, inside a running event loop as in a kernel, after two untimed
-moves: a demo with a preview sends its preview first), for the frame each move sends (the changed pixels as a diff, or
-the whole picture when most of it changed):
+moves: a demo with a preview sends its preview first), for the frame each move sends (the changed pixels as a
+diff, or the whole picture):
 
 * ``on_slider_ms`` — the move itself, served as the slider's callback serves it (``LiveDemo._serve_slider``:
   compute, render, the blitted Agg draw; a table that follows the picture is not in it);
 * ``sent`` — the frame the book sends for the move (:func:`aerophoto.plots.fast_frames`: a JPEG at the quality
-  the demo chose when most of a photo demo's picture changed, else the PNG of the changed pixels), and
+  the demo chose when at least :data:`aerophoto.plots.PHOTO_SHARE` of a photo demo's picture changed, else the
+  PNG of the changed pixels), and
   ``kernel_ms`` = ``on_slider_ms`` + its encoding: the kernel's part of the move, which the browser benchmark
   uses to bound a demo's ratio to the floor (:func:`kernel_per_move`);
 * per encoding, ``encode_ms`` (process CPU time), ``kB`` and ``decode_ms`` (PIL, a stand-in for the page's
@@ -26,7 +27,8 @@ the whole picture when most of it changed):
   The moves of a demo with a preview (``preview_frames``: the fotoschema; the transformer's timed slider, its
   step, is drawn whole at once, and its previews are held by tests/presentation/test_frames.py) send their preview;
   ``chosen_preview_quality`` is the lowest quality whose preview frames keep a mean ΔE₀₀ ≤ 1 and at most 2 % of
-  pixels above ΔE₀₀ 5 (what tests/presentation/test_frames.py holds every photo frame to) on every such demo: :data:`aerophoto.plots.PREVIEW_QUALITY`;
+  pixels above ΔE₀₀ 5 (what tests/presentation/test_frames.py holds every photo frame to) on every such demo:
+  :data:`aerophoto.plots.PREVIEW_QUALITY`;
 * ``jpeg_from_share`` (photo demos) — the share of changed pixels from which the whole picture's JPEG at 95 is a
   smaller frame than the PNG of the changed pixels (the PNG's bytes scaled to that share):
   :data:`aerophoto.plots.PHOTO_SHARE` lies just above it.
@@ -80,7 +82,6 @@ async def one(path, n):
     d = Cls(); c = d.fig.canvas
     c.draw_idle = lambda *a, **k: c.draw()
     c.draw()
-    last = np.asarray(c.get_renderer().buffer_rgba()).view(np.uint32).squeeze(2).copy()
     up = p.validate(p.default + p.step if p.default + p.step <= p.hi else p.default - p.step)
     for i in range(2):  # warm up (the first moves fill caches); not timed
         d._serve_slider(p.name, {{"new": up if i % 2 == 0 else p.default}})

@@ -87,6 +87,7 @@ async def one(path, n):
         d._serve_slider(p.name, {{"new": up if i % 2 == 0 else p.default}})
         await asyncio.sleep(getattr(Cls, "settle_s", 0.0) + 0.35)
     c.draw()
+    c.get_diff_image()  # the page has the picture at rest (the canvas' own record of what it last sent)
     last = np.asarray(c.get_renderer().buffer_rgba()).view(np.uint32).squeeze(2).copy()
     rows = []
     for i in range(n):
@@ -101,15 +102,10 @@ async def one(path, n):
         last = buff.copy()
         preview = bool(getattr(d.result, "preview", False))
         row = {{"on_slider_ms": slider, "changed_share": share, "preview": preview}}
-        # the frame the book sends for this move (plots.fast_frames): a JPEG of the whole picture at the quality
-        # LiveDemo chose (a preview's or the resting one's) when most of a photo demo's picture changed, else the
-        # unfiltered PNG of the changed pixels
-        q = getattr(c, "_aerophoto_photo_quality", None)
-        if q is not None and share >= plots.PHOTO_SHARE:
-            ms, data = cpu_ms(lambda: plots._jpeg(px[..., :3], q))
-        else:
-            ms, data = cpu_ms(lambda: plots._png(diff, 1, sparse=share < plots._RLE_SHARE))
-        row["sent"] = {{"encode_ms": ms, "kB": len(data) / 1000, "decode_ms": decode_ms(data)}}
+        # the frame the book sends for this move, made as ipympl asks for it (the canvas' get_diff_image, which
+        # plots.fast_frames replaced): its diff, and its JPEG or PNG at the quality LiveDemo chose
+        ms, data = cpu_ms(c.get_diff_image)
+        row["sent"] = {{"encode_ms": ms, "kB": len(data or b"") / 1000, "decode_ms": decode_ms(data) if data else 0.0}}
         row["kernel_ms"] = slider + ms
         if QUALITIES:
             for name, fn in (("mpl_png6", lambda: pil(diff, format="png")),
@@ -127,6 +123,7 @@ async def one(path, n):
                                  "share_dE00_above_5": float((de > 5).mean())}}
         rows.append(row)
         await asyncio.sleep(getattr(Cls, "settle_s", 0.0) + 0.35)  # a delayed full picture lands here (not timed)
+        c.get_diff_image()  # ... and goes to the page
         last = np.asarray(c.get_renderer().buffer_rgba()).view(np.uint32).squeeze(2).copy()
     d.close()
     med = lambda xs: round(statistics.median(xs), 4)

@@ -636,11 +636,12 @@ def _jpeg(rgb: np.ndarray, quality: int) -> bytes:
         return buf.getvalue()
 
 
-def _fast_diff_image(canvas, level: int, photo_quality: int | None = None):
+def _fast_diff_image(canvas, level: int):
     """``FigureCanvasWebAggCore.get_diff_image`` (matplotlib 3.9–3.11), cheaper to encode.
 
     Same full/diff decision and bookkeeping as matplotlib's; the frame is :func:`_png` at ``level`` (the same
-    pixels, faster) — or, with ``photo_quality``, a JPEG of the whole figure in "full" mode when at least
+    pixels, faster) — or, when the canvas has a photo quality (``canvas._aerophoto_photo_quality``, set by
+    :func:`fast_frames` and :func:`frame_quality`), a JPEG of the whole figure in "full" mode when at least
     :data:`PHOTO_SHARE` of the pixels changed (ipympl's page decodes whatever image it is sent).  Returns the
     bytes, or None when the image is current.
     """
@@ -655,7 +656,7 @@ def _fast_diff_image(canvas, level: int, photo_quality: int | None = None):
     canvas._last_buff = buff.copy()
     canvas._force_full = False
     canvas._png_is_old = False
-    photo_quality = getattr(canvas, "_aerophoto_photo_quality", photo_quality)  # set by frame_quality
+    photo_quality = getattr(canvas, "_aerophoto_photo_quality", None)
     if photo_quality is not None and opaque and share >= PHOTO_SHARE:
         canvas.set_image_mode("full")
         return _jpeg(pixels[:, :, :3], photo_quality)
@@ -699,9 +700,9 @@ def fast_frames(fig, level: int = FRAME_COMPRESS_LEVEL, *, photo_quality: int | 
         raise ValueError(f"level = {level} is outside the zlib compression levels 0 … 9")
     if photo_quality is not None and not 1 <= int(photo_quality) <= 100:
         raise ValueError(f"photo_quality = {photo_quality} is outside the JPEG qualities 1 … 100")
-    q = None if photo_quality is None else int(photo_quality)
-    canvas._aerophoto_photo_quality = q  # frame_quality changes it (a preview's frames)
-    canvas.get_diff_image = types.MethodType(lambda self: _fast_diff_image(self, level, q), canvas)
+    # the one place a frame's JPEG quality lives (None: lossless frames); frame_quality changes it (a preview's)
+    canvas._aerophoto_photo_quality = None if photo_quality is None else int(photo_quality)
+    canvas.get_diff_image = types.MethodType(lambda self: _fast_diff_image(self, level), canvas)
     return True
 
 

@@ -86,27 +86,37 @@ def test_only_photo_demos_send_jpeg_frames():
             assert klass.photo_frames == (d.cls in photo), d.cls
 
 
-@pytest.mark.parametrize(("module", "cls", "move"), PHOTO_DEMOS, ids=[c for _, c, _ in PHOTO_DEMOS])
-def test_a_photo_demos_jpeg_frame_is_within_one_just_noticeable_difference(module, cls, move):
-    """CIEDE2000 between the exact picture and its frame at PHOTO_QUALITY: mean ≤ 1, few pixels above 5."""
+def _demo(module, cls):
     import importlib
 
     import matplotlib
 
+    matplotlib.use("Agg")
+    return getattr(importlib.import_module(f"aerophoto.demos.{module}"), cls)()
+
+
+def _assert_within_one_jnd(cls, exact, quality):
+    """The JPEG of ``exact`` (h, w, 3) at ``quality`` against the exact pixels (CIEDE2000): mean ΔE00 ≤ 1 (about
+    one just-noticeable difference), at most 2 % of the pixels above 5."""
     from skimage.color import deltaE_ciede2000, rgb2lab
 
-    matplotlib.use("Agg")
-    demo = getattr(importlib.import_module(f"aerophoto.demos.{module}"), cls)()
+    sent = np.asarray(Image.open(io.BytesIO(plots._jpeg(exact, quality))).convert("RGB"))
+    de = deltaE_ciede2000(rgb2lab(exact), rgb2lab(sent))
+    assert de.mean() <= 1.0, f"{cls} at {quality}: mean ΔE00 {de.mean():.2f}"
+    assert (de > 5).mean() <= 0.02, f"{cls} at {quality}: {(de > 5).mean():.2%} of the pixels above ΔE00 5"
+
+
+@pytest.mark.parametrize(("module", "cls", "move"), PHOTO_DEMOS, ids=[c for _, c, _ in PHOTO_DEMOS])
+def test_a_photo_demos_jpeg_frame_is_within_one_just_noticeable_difference(module, cls, move):
+    """CIEDE2000 between the exact picture and its frame at PHOTO_QUALITY: mean ≤ 1, few pixels above 5."""
+    demo = _demo(module, cls)
     try:
         demo.set(**move)
         demo.draw(force=True)
         exact = np.asarray(demo.fig.canvas.buffer_rgba())[..., :3].copy()
     finally:
         demo.close()
-    sent = np.asarray(Image.open(io.BytesIO(plots._jpeg(exact, plots.PHOTO_QUALITY))).convert("RGB"))
-    de = deltaE_ciede2000(rgb2lab(exact), rgb2lab(sent))
-    assert de.mean() <= 1.0, f"{cls}: mean ΔE00 {de.mean():.2f}"
-    assert (de > 5).mean() <= 0.02, f"{cls}: {(de > 5).mean():.2%} of the pixels above ΔE00 5"
+    _assert_within_one_jnd(cls, exact, plots.PHOTO_QUALITY)
 
 
 def test_a_frame_goes_at_the_quality_set_before_it():
@@ -128,20 +138,8 @@ def test_a_frame_goes_at_the_quality_set_before_it():
 
 
 # the demos that show a preview while a slider moves (result.preview), with a move of a slider that previews
-PREVIEW_DEMOS = [("fotoschema", "FotoschemaDemo", {"alpha_max_deg": 1.0}),
-                 ("rectification", "TransformerDemo", {"alpha_deg": 4.0})]
-
-
-def _preview(demo, move):
-    if hasattr(demo, "render_full"):  # the fotoschema: set(..., preview=True)
-        return demo.set(preview=True, **move)
-    demo.values.update(demo._checked(move))
-    demo._preview = True
-    try:
-        demo.update()
-    finally:
-        demo._preview = False
-    return demo
+PREVIEW_DEMOS = [("fotoschema", "FotoschemaDemo", ("alpha_max_deg", 1.25)),  # off the defaults: a move
+                 ("rectification", "TransformerDemo", ("alpha_deg", 4.0))]
 
 
 @pytest.mark.parametrize(("module", "cls", "move"), PREVIEW_DEMOS, ids=[c for _, c, _ in PREVIEW_DEMOS])
@@ -149,27 +147,25 @@ def test_a_preview_goes_at_the_preview_quality_and_the_resting_picture_at_the_ph
     """LiveDemo.show chooses the quality of the frames to come from the result it shows; a preview's JPEG stays
     within one just-noticeable difference of the exact preview (mean ΔE00 ≤ 1, ≤ 2 % of pixels above 5, as a
     resting photo frame)."""
-    import importlib
+    import asyncio
 
-    import matplotlib
-
-    from skimage.color import deltaE_ciede2000, rgb2lab
-
-    matplotlib.use("Agg")
-    demo = getattr(importlib.import_module(f"aerophoto.demos.{module}"), cls)()
+    name, value = move
+    demo = _demo(module, cls)
     try:
         assert demo.photo_frames
         canvas = demo.fig.canvas
         canvas._aerophoto_photo_quality = plots.PHOTO_QUALITY  # as plots.fast_frames sets it on ipympl's canvas
-        _preview(demo, move)
+
+        async def slider_move():  # in a running loop, as in a kernel: the slider's callback shows a preview
+            demo._serve_slider(name, {"new": value})
+            demo.cancel_later()  # the full picture it scheduled is drawn below, by set()
+
+        asyncio.run(slider_move())
         assert demo.result.preview and canvas._aerophoto_photo_quality == plots.PREVIEW_QUALITY
         demo.draw(force=True)
         exact = np.asarray(canvas.buffer_rgba())[..., :3].copy()
-        demo.set(**move)  # the resting picture
+        demo.set(**{name: value})  # the resting picture
         assert not demo.result.preview and canvas._aerophoto_photo_quality == plots.PHOTO_QUALITY
     finally:
         demo.close()
-    sent = np.asarray(Image.open(io.BytesIO(plots._jpeg(exact, plots.PREVIEW_QUALITY))).convert("RGB"))
-    de = deltaE_ciede2000(rgb2lab(exact), rgb2lab(sent))
-    assert de.mean() <= 1.0, f"{cls}: mean ΔE00 {de.mean():.2f}"
-    assert (de > 5).mean() <= 0.02, f"{cls}: {(de > 5).mean():.2%} of the pixels above ΔE00 5"
+    _assert_within_one_jnd(cls, exact, plots.PREVIEW_QUALITY)

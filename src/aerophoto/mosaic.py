@@ -790,9 +790,10 @@ def _pattern(X, Y):
     return np.where(grid, 0.15, 0.55 + 0.3 * chk).astype(np.float32)
 
 
-@V.checked(fs=Fotoschema, ground=V.terrain(none=True), background=V.number(), max_pixels=V.whole(1, 10**9))
+@V.checked(fs=Fotoschema, ground=V.terrain(none=True), background=V.number(), max_pixels=V.whole(1, 10**9),
+           lattice_px=V.optional(V.whole(2, 64)))
 def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=None, extent_mm=None,
-                 background: float = 1.0, max_pixels: int = 20_000_000):
+                 background: float = 1.0, max_pixels: int = 20_000_000, lattice_px: int | None = None):
     """Glue the working areas onto the sheet: a greyscale raster of the fotoschema.
 
     Every sheet pixel (centre P) is given to the photo whose working area it
@@ -818,6 +819,8 @@ def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=
     px_per_mm : float
         Resolution, pixels per sheet millimetre, 0 < r ≤ 20 (1 for a preview,
         4–6 for print).
+    lattice_px : None or int, 2…64 — a preview's shortcut: rays cut with the terrain every ``lattice_px``
+        pixels only, interpolated between (:func:`aerophoto.geometry.photo_to_dem`'s ``lattice_mm``).
 
     Returns
     -------
@@ -828,25 +831,25 @@ def sheet_raster(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=
     """
     image = extent = None
     for image, extent, _done in sheet_raster_bands(fs, ground, px_per_mm, photos=photos, extent_mm=extent_mm,
-                                                   background=background, max_pixels=max_pixels, band_px=None):
+                                                   background=background, max_pixels=max_pixels, band_px=None,
+                                                   lattice_px=lattice_px):
         pass
     return image, extent
 
 
 @V.checked(fs=Fotoschema, ground=V.terrain(none=True), px_per_mm=V.number(0.0, 20.0, lo_open=True),
-           background=V.number(), max_pixels=V.whole(1, 10**9), band_px=V.optional(V.whole(1, 10**9)))
+           background=V.number(), max_pixels=V.whole(1, 10**9), band_px=V.optional(V.whole(1, 10**9)),
+           lattice_px=V.optional(V.whole(2, 64)))
 def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, photos=None, extent_mm=None,
-                       background: float = 1.0, max_pixels: int = 20_000_000, band_px: int | None = 60_000):
+                       background: float = 1.0, max_pixels: int = 20_000_000, band_px: int | None = 60_000,
+                       lattice_px: int | None = None):
     """:func:`sheet_raster` a band of rows at a time: a generator of ``(image, extent, rows_done)``.
 
-    The image is allocated once (``background`` everywhere) and each step
-    glues the next band of whole rows, about ``band_px`` pixels (at least one
-    row; ``None``: everything in one step), and yields the same array.  After
-    the last step the image is :func:`sheet_raster`'s (to the ray–terrain tolerance,
-    0.1 mm on the ground, far below a pixel).
-    A live demo glues a large sheet this way, one band per turn of the event
-    loop, so that a slider moved meanwhile is served within one band
-    (about 15 ms) and the rest can be abandoned.
+    The image is allocated once (``background`` everywhere) and each step glues the next band of whole rows, about
+    ``band_px`` pixels (at least one row; ``None``: everything in one step), and yields the same array.  After the
+    last step the image is :func:`sheet_raster`'s (to the ray–terrain tolerance, 0.1 mm on the ground, far below a
+    pixel).  A live demo glues a large sheet this way, one band per turn of the event loop, so that a slider moved
+    meanwhile is served within one band (about 15 ms) and the rest can be abandoned.
     """
     r = check_positive("px_per_mm", px_per_mm, unit="px/mm", hi=20.0)
     x0, x1, y0, y1 = fs.extent_mm if extent_mm is None else extent_mm
@@ -857,8 +860,6 @@ def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, p
                          f"(px_per_mm ≤ {math.sqrt(max_pixels / ((x1 - x0) * (y1 - y0))):.2f})")
     if photos is not None and len(photos) != len(fs.poses):
         raise ValueError(f"photos has {len(photos)} prints; the valid input is one per photo ({len(fs.poses)})")
-    if band_px is not None and int(band_px) < 1:
-        raise ValueError(f"band_px = {band_px} is not a pixel count; the valid range is ≥ 1 (or None)")
     x1, y1 = x0 + nx / r, y0 + ny / r
     extent = (x0, x1, y0, y1)
     xs = x0 + (np.arange(nx) + 0.5) / r
@@ -884,14 +885,15 @@ def sheet_raster_bands(fs: Fotoschema, ground=None, px_per_mm: float = 2.0, *, p
             sel = np.flatnonzero(idx == i)
             row, col = np.divmod(sel, nx)
             xy = T.apply(np.column_stack([xs[col], ys[r0 + row]]))  # photo mm
-            ins = np.all(np.abs(xy) <= h, axis=1)
+            ins = np.abs(xy) <= h
+            ins = ins[:, 0] & ins[:, 1]  # (np.all(axis=1) on two columns costs 20× more)
             sel, xy = sel[ins], xy[ins]
             if not sel.size:
                 continue
             if photos is not None:
                 out[sel] = photos[i].value_at(xy)
                 continue
-            G = g.photo_to_dem(fs.camera, pose, xy, dem)
+            G = g.photo_to_dem(fs.camera, pose, xy, dem, lattice_mm=None if lattice_px is None else lattice_px / r)
             out[sel] = sampler(G[:, 0], G[:, 1], level, outside=background) if sampler is not None \
                 else _pattern(G[:, 0], G[:, 1])
         yield image, extent, r1

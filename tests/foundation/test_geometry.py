@@ -139,6 +139,49 @@ def test_photo_to_dem_on_hills():
     assert np.allclose(g.ground_to_photo(CAM, pose, P), xy, atol=1e-6)
 
 
+def test_photo_to_dem_on_a_lattice_interpolates_between_exact_cuts():
+    """lattice_mm: the rays cut at a lattice's nodes only, the points interpolated — exact at the nodes, its error
+    shrinking with the step's square, and the exact answer where a lattice would not save work."""
+    class Hills:
+        z_min_m, z_max_m = 100.0, 300.0
+
+        def height(self, X, Y):
+            return 200 + 100 * np.sin(X / 700.0) * np.cos(Y / 500.0)
+
+    pose = g.Pose(0, 0, 1400, alpha_deg=4, lambda_deg=20)
+    rng = np.random.default_rng(5)
+    xy = rng.uniform(-85, 85, (20000, 2))  # more points than the 2 mm lattice has nodes (86²)
+    exact = g.photo_to_dem(CAM, pose, xy, Hills(), tol_m=1e-7)
+    err = {}
+    for s in (2.0, 4.0, 8.0):
+        approx = g.photo_to_dem(CAM, pose, xy, Hills(), tol_m=1e-7, lattice_mm=s)
+        assert approx.shape == exact.shape
+        err[s] = np.hypot(*(approx - exact)[:, :2].T).max()
+    assert 0 < err[2.0] < err[4.0] < err[8.0] < 5.0  # metres on the ground at 1:14 000
+    assert 2.5 < err[8.0] / err[4.0] < 6.0 and 2.5 < err[4.0] / err[2.0] < 6.0  # ~ step²
+    # a point on a node is cut exactly (the lattice starts at the points' lower-left corner)
+    corner = xy.min(axis=0)
+    on_node = np.vstack([corner, corner + 4.0 * np.array([3, 5]), xy])
+    got = g.photo_to_dem(CAM, pose, on_node, Hills(), tol_m=1e-7, lattice_mm=4.0)
+    assert np.allclose(got[:2], g.photo_to_dem(CAM, pose, on_node[:2], Hills(), tol_m=1e-7), atol=1e-9)
+    # the shape follows the input's; a few points (fewer than a lattice's nodes) are cut exactly
+    grid = xy[:12].reshape(3, 4, 2)
+    assert g.photo_to_dem(CAM, pose, grid, Hills(), lattice_mm=4.0).shape == (3, 4, 3)
+    assert np.array_equal(g.photo_to_dem(CAM, pose, grid, Hills(), lattice_mm=4.0),
+                          g.photo_to_dem(CAM, pose, grid, Hills()))
+    with pytest.raises(ValueError, match="lattice_mm"):
+        g.photo_to_dem(CAM, pose, xy, Hills(), lattice_mm=0.0)
+
+
+def test_rotation_matrix_is_remembered_read_only():
+    pose = g.Pose(0, 0, 1400, alpha_deg=4, lambda_deg=20, kappa_deg=7)
+    R = g.rotation_matrix(pose)
+    assert R is g.rotation_matrix(g.Pose(5, 5, 900, alpha_deg=4, lambda_deg=20, kappa_deg=7))  # angles only
+    assert np.allclose(R @ R.T, np.eye(3), atol=1e-12)
+    with pytest.raises(ValueError, match="read-only"):
+        R[0, 0] = 2.0
+
+
 def test_footprint_of_vertical_photo_is_square():
     pose = g.Pose.vertical(0, 0, 1200)
     fp = g.footprint(CAM, pose, 0)

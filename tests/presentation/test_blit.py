@@ -232,3 +232,72 @@ def test_transformer_preview_and_full_resolution_both_blit():
                                              (8.5, 10.0), (0.031, 0.032), (0.0, 1e-6)])
 def test_coarse_ceil_is_the_next_round_value(reach, half):
     assert plots.coarse_ceil(reach) == pytest.approx(half)
+
+
+# ------------------------------------------------------------------ images drawn by gathering pixels (blit.NearestImage)
+def _drawn(data, fast, *, figsize=(6.0, 4.0), dpi=100, origin="lower", interpolation="nearest", **kw):
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=figsize, dpi=dpi)
+    im = ax.imshow(data, origin=origin, interpolation=interpolation, extent=(3, 17, -2, 9.5), aspect="auto", **kw)
+    if fast:
+        assert blit.nearest_pixels(im) is im and isinstance(im, blit.NearestImage)
+    fig.canvas.draw()
+    px = np.asarray(fig.canvas.buffer_rgba()).astype(int)
+    plt.close(fig)
+    return px
+
+
+@pytest.mark.parametrize("kind, shape, origin, figsize", [
+    ("rgba8", (210, 290), "lower", (8.4, 5.4)),   # the rough mosaic's plan (quality demo)
+    ("grey", (186, 401), "lower", (8.8, 5.6)),    # the fotoschema's preview
+    ("rgb", (50, 70), "upper", (6.0, 4.0)),       # a float RGB photo, row 0 on top
+    ("grey", (33, 20), "upper", (3.0, 5.0)),
+])
+def test_a_nearest_image_drawn_by_gathering_is_matplotlibs_picture(kind, shape, origin, figsize):
+    """The same picture as matplotlib's resampler, except along a screen column or row whose pixel centres fall on
+    a boundary between two array pixels (agg's fixed-point rounding takes the neighbour there): under 1 % of the
+    pixels, each the colour of its neighbour in matplotlib's picture."""
+    rng = np.random.default_rng(len(shape) + shape[0])
+    if kind == "rgba8":
+        data = rng.integers(0, 256, shape + (4,), dtype=np.uint8)
+        data[..., 3] = 255
+    else:
+        data = rng.random(shape + ((3,) if kind == "rgb" else ())).astype(np.float32)
+    stock = _drawn(data, False, figsize=figsize, origin=origin, cmap="gray", vmin=0, vmax=1)
+    fast = _drawn(data, True, figsize=figsize, origin=origin, cmap="gray", vmin=0, vmax=1)
+    differ = np.any(stock != fast, axis=2)
+    assert differ.mean() < 0.01
+    neighbour = np.zeros(differ.shape, bool)
+    for shift in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+        neighbour |= np.all(np.roll(stock, shift, axis=(0, 1)) == fast, axis=2)
+    assert neighbour[differ].all()
+
+
+def test_a_nearest_image_leaves_the_rest_to_matplotlib_and_follows_its_data():
+    rng = np.random.default_rng(3)
+    data = rng.random((40, 60)).astype(np.float32)
+    # smoothing, shrinking (more array pixels than screen pixels) and an alpha of its own: matplotlib's own path
+    assert np.array_equal(_drawn(data, True, interpolation="antialiased"), _drawn(data, False, interpolation="antialiased"))
+    big = rng.random((900, 1300)).astype(np.float32)
+    assert np.array_equal(_drawn(big, True), _drawn(big, False))
+    assert np.array_equal(_drawn(data, True, alpha=0.5), _drawn(data, False, alpha=0.5))
+    # savefig at another resolution gathers for that resolution
+    assert np.any(_drawn(data, True, dpi=200) != 0) and _drawn(data, True, dpi=200).shape == (800, 1200, 4)
+    # new data and a new colour scale are drawn, not a picture kept from before
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(4, 3), dpi=100)
+    im = blit.nearest_pixels(ax.imshow(data, interpolation="nearest", cmap="gray", vmin=0, vmax=1))
+    fig.canvas.draw()
+    first = np.asarray(fig.canvas.buffer_rgba()).copy()
+    im.set_data(1.0 - data)
+    fig.canvas.draw()
+    second = np.asarray(fig.canvas.buffer_rgba()).copy()
+    im.set_clim(0.0, 4.0)
+    fig.canvas.draw()
+    third = np.asarray(fig.canvas.buffer_rgba()).copy()
+    plt.close(fig)
+    assert np.any(first != second) and np.any(second != third)
+    with pytest.raises(TypeError, match="image = "):
+        blit.nearest_pixels(ax)

@@ -24,6 +24,7 @@ from matplotlib.collections import LineCollection
 
 from .. import dem
 from .. import plots
+from ..blit import nearest_pixels
 from ..i18n import t
 from ..i18n.numfmt import fmt_count, fmt_number, fmt_spec
 from ..widgets import LiveDemo, Param
@@ -160,8 +161,9 @@ class ContourView:
             fig, cax = ax.figure, None
         self.fig, self.ax = fig, ax
         ax.grid(False)
-        self.image = ax.imshow(np.zeros((2, 2)), extent=(0, 1000, 0, 1000), origin="lower", cmap="RdBu_r",
-                               vmin=-ERROR_CLIM_M, vmax=ERROR_CLIM_M, interpolation="nearest")
+        self.image = nearest_pixels(ax.imshow(np.zeros((2, 2)), extent=(0, 1000, 0, 1000), origin="lower",
+                                              cmap="RdBu_r", vmin=-ERROR_CLIM_M, vmax=ERROR_CLIM_M,
+                                              interpolation="nearest"))
         if cax is not None:
             cb = fig.colorbar(self.image, cax=cax, ticks=[-ERROR_CLIM_M, 0.0, ERROR_CLIM_M])
             cb.set_label("DEM − true height, m")

@@ -25,6 +25,7 @@ import pandas as pd
 from .. import geometry as g
 from .. import interpretation as ip
 from .. import plots
+from ..blit import nearest_pixels
 from ..i18n import t
 from ..i18n.numfmt import fmt_number
 from ..widgets import LiveDemo, Param
@@ -99,8 +100,8 @@ class ConditionsView:
         self.fig, self.ax_nat, self.ax_cir = fig, ax_nat, ax_cir
         blank = np.zeros((PATCH[3], PATCH[3], 3), np.float32)
         h = 90.0
-        self.im_nat = ax_nat.imshow(blank, extent=(-h, h, -h, h), interpolation="nearest")
-        self.im_cir = ax_cir.imshow(blank, extent=(-h, h, -h, h), interpolation="nearest")
+        self.im_nat = nearest_pixels(ax_nat.imshow(blank, extent=(-h, h, -h, h), interpolation="nearest"))
+        self.im_cir = nearest_pixels(ax_cir.imshow(blank, extent=(-h, h, -h, h), interpolation="nearest"))
         ax_nat.set_title("natural colour (цветной)")
         ax_cir.set_title("colour infrared (спектрозональный)")
         for a in (ax_nat, ax_cir):

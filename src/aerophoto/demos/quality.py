@@ -39,6 +39,7 @@ from matplotlib.collections import LineCollection
 
 from .. import geometry as g
 from .. import plots
+from ..blit import nearest_pixels
 from ..i18n import t as _t
 from .. import quality as q
 from .. import simulate as sim
@@ -312,9 +313,9 @@ class RoughMosaicView:
         a.grid(False)
         a.set_xlabel("X (east), km")
         a.set_ylabel("Y (north), km")
-        # nearest: the plan pixels (20 m) upsampled about 2×, each a crisp block (half the cost of smoothing)
-        self.image = a.imshow(np.ones((2, 2, 3)), origin="lower", extent=(0, 1, 0, 1), interpolation="nearest",
-                              zorder=0)
+        # nearest: the plan pixels (20 m) upsampled about 2×, each a crisp block, gathered (blit.nearest_pixels)
+        self.image = nearest_pixels(a.imshow(np.ones((2, 2, 3)), origin="lower", extent=(0, 1, 0, 1),
+                                             interpolation="nearest", zorder=0))
         self.frames = LineCollection([], linewidths=1.2, zorder=3)
         a.add_collection(self.frames)
         self.bases = LineCollection([], linewidths=1.5, zorder=5)

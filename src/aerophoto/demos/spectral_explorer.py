@@ -23,6 +23,7 @@ import pandas as pd
 from matplotlib.collections import LineCollection
 
 from .. import plots, spectral
+from ..blit import nearest_pixels
 from ..i18n import t
 from ..widgets import LiveDemo, Param
 
@@ -140,7 +141,7 @@ class SpectralView:
         p.set_xlabel("X, km")
         p.set_ylabel("Y, km")
         p.grid(False)
-        self.img = p.imshow(np.zeros((2, 2, 3)), origin="lower", interpolation="nearest")
+        self.img = nearest_pixels(p.imshow(np.zeros((2, 2, 3)), origin="lower", interpolation="nearest"))
         if result is not None:
             self.update(result)
 

@@ -301,3 +301,20 @@ def test_a_nearest_image_leaves_the_rest_to_matplotlib_and_follows_its_data():
     assert np.any(first != second) and np.any(second != third)
     with pytest.raises(TypeError, match="image = "):
         blit.nearest_pixels(ax)
+
+
+def test_the_live_raster_demos_gather_their_nearest_images():
+    """The demos whose moves redraw a raster (the rough mosaic, the fotoschema's preview, the shooting conditions,
+    the spectral explorer, the DEM's error field) draw it with blit.NearestImage."""
+    from aerophoto.demos.dem_contours import ContourDemo
+    from aerophoto.demos.fotoschema import FotoschemaDemo
+    from aerophoto.demos.interpretation import ConditionsDemo
+    from aerophoto.demos.quality import QualityDemo
+    from aerophoto.demos.spectral_explorer import SpectralExplorerDemo
+
+    images = {QualityDemo: lambda d: [d.view.image], FotoschemaDemo: lambda d: [d.view.image],
+              ConditionsDemo: lambda d: [d.view.im_nat, d.view.im_cir], SpectralExplorerDemo: lambda d: [d.view.img],
+              ContourDemo: lambda d: [d.view.image]}
+    for Cls, get in images.items():
+        d = Cls()
+        assert all(isinstance(im, blit.NearestImage) for im in get(d)), Cls.__name__

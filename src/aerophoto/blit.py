@@ -25,8 +25,10 @@ class NearestImage(AxesImage):
 
     Whenever the image is nearest-interpolated, axis-aligned (linear axes, no rotation), unmasked and without an
     alpha of its own, each screen pixel's centre is carried back into the array and the pixel it falls in is
-    copied: the same picture as matplotlib's resampler gives (tests/presentation/test_blit.py compares them pixel
-    by pixel), without its float conversion, premultiplication and filter.  Anything else is drawn by matplotlib.
+    copied, without the resampler's float conversion, premultiplication and filter.  The picture is matplotlib's
+    but on a screen column or row whose pixel centres fall on a boundary between two array pixels, where agg's
+    fixed-point rounding may take the other neighbour (tests/presentation/test_blit.py compares the two pixel by
+    pixel: under 1 % of the pixels, each a neighbour's colour).  Anything else is drawn by matplotlib.
     Use :func:`nearest_pixels` on an image made by ``ax.imshow``.
     """
 

